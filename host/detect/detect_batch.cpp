@@ -1,0 +1,183 @@
+#include "host/detect/detect_batch.hpp"
+
+#include <algorithm>
+#include <charconv>
+#include <chrono>
+#include <ostream>
+
+#include <fmt/format.h>
+
+#include "host/bop/bop_files.hpp"
+#include "host/bop/png_image.hpp"
+#include "host/core/error.hpp"
+#include "host/core/progress.hpp"
+#include "host/detect/detect_params_file.hpp"
+#include "host/io/atomic_file.hpp"
+#include "host/io/read_file.hpp"
+
+namespace binpick {
+namespace fs = std::filesystem;
+namespace {
+
+bool parse_int(std::string_view s, int& value) {
+  auto [end, ec] = std::from_chars(s.data(), s.data() + s.size(), value);
+  return !s.empty() && ec == std::errc() && end == s.data() + s.size() && value >= 0;
+}
+
+fs::path parts_dir(const fs::path& out) { return fs::path(out.string() + ".parts"); }
+
+fs::path part_file(const fs::path& out, int scene) {
+  return parts_dir(out) / fmt::format("scene_{:06d}.csv", scene);
+}
+
+// Makes OUT.parts hold this run's fingerprint; a different one empties it first.
+void prepare_parts(const fs::path& out, const std::string& fingerprint) {
+  const fs::path dir = parts_dir(out);
+  const fs::path stamp = dir / "fingerprint.json";
+  std::error_code ec;
+  if (fs::is_directory(dir) && fs::is_regular_file(stamp) && read_file_bytes(stamp) == fingerprint)
+    return;
+  if (fs::exists(dir)) {
+    for (const auto& entry : fs::directory_iterator(dir)) {
+      const std::string name = entry.path().filename().string();
+      if (name.starts_with("scene_") && name.ends_with(".csv")) fs::remove(entry.path(), ec);
+    }
+  }
+  fs::create_directories(dir, ec);
+  if (!fs::is_directory(dir)) throw InputError("cannot create " + dir.string());
+  write_file_atomically(stamp, [&](std::ostream& s) { s << fingerprint; });
+}
+
+double seconds_since(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+}  // namespace
+
+std::vector<int> list_scenes(const fs::path& dataset, const std::string& split) {
+  const fs::path dir = dataset / split;
+  if (!fs::is_directory(dir))
+    throw InputError("dataset " + dataset.string() + " has no split directory '" + split + "'");
+  std::vector<int> ids;
+  for (const auto& entry : fs::directory_iterator(dir)) {
+    int id = 0;
+    if (entry.is_directory() && parse_int(entry.path().filename().string(), id)) ids.push_back(id);
+  }
+  std::sort(ids.begin(), ids.end());
+  if (ids.empty()) throw InputError(dir.string() + " holds no scene directory");
+  return ids;
+}
+
+std::vector<int> parse_scene_list(const std::string& text) {
+  std::vector<int> ids;
+  std::string_view rest = text;
+  while (!rest.empty()) {
+    const std::size_t comma = rest.find(',');
+    const std::string_view item = rest.substr(0, comma);
+    rest = comma == rest.npos ? std::string_view() : rest.substr(comma + 1);
+    const std::size_t dash = item.find('-');
+    int lo = 0, hi = 0;
+    const bool ok = dash == item.npos
+                        ? parse_int(item, lo) && (hi = lo, true)
+                        : parse_int(item.substr(0, dash), lo) && parse_int(item.substr(dash + 1), hi);
+    if (!ok || hi < lo || hi - lo > 1000000)
+      throw InputError("--scenes '" + text + "': expected ids and ranges like 0,3,5-9");
+    for (int id = lo; id <= hi; ++id) ids.push_back(id);
+  }
+  std::sort(ids.begin(), ids.end());
+  ids.erase(std::unique(ids.begin(), ids.end()), ids.end());
+  if (ids.empty()) throw InputError("--scenes is empty");
+  return ids;
+}
+
+bp_camera image_camera(const Eigen::Matrix3d& K, double depth_scale, std::uint32_t width,
+                       std::uint32_t height) {
+  return {float(K(0, 0)), float(K(1, 1)), float(K(0, 2)), float(K(1, 2)), float(depth_scale),
+          width, height, 0};
+}
+
+std::vector<bop::ResultRow> detection_rows(const std::vector<Detection>& detections, int scene_id,
+                                           int im_id, int obj_id, double seconds) {
+  std::vector<bop::ResultRow> rows;
+  for (const Detection& d : detections)
+    rows.push_back({scene_id, im_id, obj_id, double(d.votes), d.R, d.t, seconds});
+  return rows;
+}
+
+BatchSummary detect_dataset(Detector& detector, const BatchOptions& opt, std::ostream* log) {
+  const std::vector<int> available = list_scenes(opt.dataset, opt.split);
+  std::vector<int> scenes = opt.scenes.empty() ? available : opt.scenes;
+  for (int id : scenes)
+    if (!std::binary_search(available.begin(), available.end(), id))
+      throw InputError(fmt::format("scene {} is not in {}", id, (opt.dataset / opt.split).string()));
+  const std::string fingerprint = fmt::format(
+      "{{\"model\": \"{}\", \"obj_id\": {}, \"split\": \"{}\", \"dataset\": \"{}\", "
+      "\"params\": {}}}\n",
+      opt.model_checksum, opt.obj_id, opt.split, fs::absolute(opt.dataset).string(),
+      params_json(detector.params()));
+  prepare_parts(opt.out, fingerprint);
+
+  BatchSummary summary;
+  Progress progress("detect", scenes.size());
+  for (std::size_t s = 0; s < scenes.size(); ++s) {
+    const int scene = scenes[s];
+    ++summary.scenes;
+    if (fs::is_regular_file(part_file(opt.out, scene))) {
+      ++summary.skipped;
+      progress.update(s + 1, fmt::format("scene {} done before", scene));
+      continue;
+    }
+    const fs::path dir = opt.dataset / opt.split / fmt::format("{:06d}", scene);
+    const bop::SceneCameras cameras = bop::read_scene_cameras(dir / "scene_camera.json");
+    std::vector<bop::ResultRow> rows;
+    for (const auto& [im_id, cam] : cameras) {
+      const auto start = std::chrono::steady_clock::now();
+      const fs::path depth_path = dir / "depth" / fmt::format("{:06d}.png", im_id);
+      const GrayImage<std::uint16_t> png = read_png16(depth_path);
+      const DepthImage depth{png.width, png.height, png.pixels};
+      DetectTimes times;
+      std::vector<Detection> found;
+      try {
+        found = detector.detect(depth, image_camera(cam.K, cam.depth_scale, png.width, png.height),
+                                &times);
+      } catch (const InputError& e) {
+        throw InputError(depth_path.string() + ": " + e.what());
+      }
+      const auto image_rows = detection_rows(found, scene, im_id, opt.obj_id, seconds_since(start));
+      rows.insert(rows.end(), image_rows.begin(), image_rows.end());
+      ++summary.images;
+      if (opt.verbose && log) {
+        std::string line = fmt::format("scene {} image {}: {} hypotheses, best {} votes;", scene,
+                                       im_id, times.hypotheses,
+                                       found.empty() ? 0 : found.front().votes);
+        for (const StageTime& st : times.stages) line += fmt::format(" {} {:.1f}", st.stage, st.ms);
+        *log << line << " ms\n";
+      }
+      summary.times += times;
+    }
+    bop::write_results_csv(part_file(opt.out, scene), rows);
+    progress.update(s + 1, fmt::format("scene {}", scene));
+  }
+
+  std::vector<bop::ResultRow> all;
+  for (int scene : scenes) {
+    const auto rows = bop::read_results_csv(part_file(opt.out, scene));
+    all.insert(all.end(), rows.begin(), rows.end());
+  }
+  summary.rows = all.size();
+  bop::write_results_csv(opt.out, all);
+  progress.finish(summary_line(summary));
+  return summary;
+}
+
+std::string summary_line(const BatchSummary& s) {
+  const DetectTimes& t = s.times;
+  const double h = double(std::max<std::size_t>(t.hypotheses, 1));
+  return fmt::format(
+      "{} scenes ({} done before), {} images, {} hypotheses, {} rows; ms per hypothesis: "
+      "preparation {:.1f}, voting {:.1f}, clustering {:.1f}, total {:.1f}",
+      s.scenes, s.skipped, s.images, t.hypotheses, s.rows, t.prepare_ms / h, t.vote_ms / h,
+      t.cluster_ms / h, (t.prepare_ms + t.vote_ms + t.cluster_ms) / h);
+}
+
+}  // namespace binpick

@@ -1,0 +1,58 @@
+// Detection over the scenes of a BOP dataset (`binpick detect --dataset`), resumable: each
+// scene's rows go to OUT.parts/scene_NNNNNN.csv as soon as it is done, next to a fingerprint of
+// the run (model file checksum, object id, split and parameters). A rerun with the same
+// fingerprint skips the scenes already there; another fingerprint starts over. At the end all
+// requested scenes are merged, in scene order, into OUT (atomically). The parts stay, so a
+// rerun is only the merge.
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <iosfwd>
+#include <string>
+#include <vector>
+
+#include "host/bop/results_csv.hpp"
+#include "host/detect/detector.hpp"
+#include "host/scene/depth_image.hpp"
+
+namespace binpick {
+
+struct BatchOptions {
+  std::filesystem::path dataset;
+  std::string split = "test";
+  std::vector<int> scenes;  // empty: every scene of the split
+  int obj_id = 1;
+  std::filesystem::path out;
+  std::string model_checksum;  // part of the fingerprint
+  bool verbose = false;        // per-image stage timings to the log
+};
+
+struct BatchSummary {
+  std::size_t scenes = 0, skipped = 0, images = 0, rows = 0;
+  DetectTimes times;  // of the scenes run now (not the skipped ones)
+};
+
+// The scene ids of DATASET/SPLIT (directories named by a number), ascending. InputError if the
+// split directory does not exist or holds no scene.
+std::vector<int> list_scenes(const std::filesystem::path& dataset, const std::string& split);
+
+// Parses "0,3,5-9" into ids. InputError for anything else.
+std::vector<int> parse_scene_list(const std::string& text);
+
+// The camera of one image: K and depth_scale from scene_camera.json, size from the image.
+bp_camera image_camera(const Eigen::Matrix3d& K, double depth_scale, std::uint32_t width,
+                       std::uint32_t height);
+
+// The rows of one image (best first), with `time` its seconds.
+std::vector<bop::ResultRow> detection_rows(const std::vector<Detection>& detections, int scene_id,
+                                           int im_id, int obj_id, double seconds);
+
+// Runs the batch; progress on stderr, the log (verbose lines) to `log` if given.
+BatchSummary detect_dataset(Detector& detector, const BatchOptions& opt, std::ostream* log);
+
+// "N scenes (K skipped), H hypotheses; ms per hypothesis: preparation P, voting V,
+// clustering C, total T".
+std::string summary_line(const BatchSummary& s);
+
+}  // namespace binpick

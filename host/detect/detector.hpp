@@ -1,0 +1,94 @@
+// The detection pipeline of one image (paper section III-B/C; issue 5): scene preparation, the
+// highest points, and per hypothesis its neighbourhood -> voxel subsampling -> reference points
+// -> voting and peaks (ppf_vote) -> candidate poses (ppf_pose) -> clustering (pose_cluster); the
+// best cluster of each hypothesis is its detection. Everything data-parallel is a kernel; the
+// model's table is uploaded once per Detector.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "host/detect/hypotheses.hpp"
+#include "host/detect/ppf_vote.hpp"
+#include "host/detect/pose_cluster.hpp"
+#include "host/detect/scene_timing.hpp"
+#include "host/mesh/mesh.hpp"
+#include "host/model/ppf_model.hpp"
+#include "host/scene/depth_image.hpp"
+
+namespace binpick {
+
+// Every parameter of detection; the paper's values are the defaults (DESIGN.md section 5).
+// Ratios are fractions of the model's diameter.
+struct DetectParams {
+  double ref_ratio = 0.2;          // reference points / subsampled scene points (2 %: fast)
+  std::uint32_t hypotheses = 5;    // highest points tried
+  double exclusion_ratio = 1.2;    // radius excluded around a highest point
+  double crop_ratio = 1.0;         // radius of the neighbourhood voted on
+  double cluster_distance = 0.144; // translation threshold of pose clustering
+  double cluster_angle = 20.0;     // rotation threshold of pose clustering, degrees
+  std::uint32_t peaks_per_ref = 3; // accumulator peaks per reference point
+  double peak_ratio = 0.9;         // ... with at least this fraction of its best votes
+  double normal_ratio = 0.2;       // depth normals: neighbours within this distance (fraction)
+};
+// InputError naming the option ("--ref-ratio ...") for a value out of range.
+void check(const DetectParams& params);
+
+// The pose found around one hypothesis (model to camera, mm).
+struct Detection {
+  Hypothesis hypothesis;
+  std::uint32_t index = 0;          // the hypothesis' rank by height (0 = highest)
+  Eigen::Matrix3d R = Eigen::Matrix3d::Identity();
+  Eigen::Vector3d t = Eigen::Vector3d::Zero();
+  std::uint64_t votes = 0;          // of the best cluster: the score
+  // neighbourhood: points in the crop (from a depth image: pixels with data, whether or not
+  // they have a normal, since normals are computed only for the points subsampling keeps).
+  std::size_t neighbourhood = 0, subsampled = 0, refs = 0, peaks = 0, clusters = 0;
+};
+
+// Time per stage over the work done (ms), for the summary line and the benchmark.
+struct DetectTimes {
+  double prepare_ms = 0;  // scene preparation, highest points, crops, subsampling
+  double vote_ms = 0;     // features, votes, peaks
+  double cluster_ms = 0;  // poses, compatibility, grouping
+  std::size_t hypotheses = 0;
+  StageTimings stages;    // every stage in order, for --verbose
+  DetectTimes& operator+=(const DetectTimes& o);
+};
+
+class Detector {
+ public:
+  // Checks params; uploads the model's table to the shared device.
+  Detector(const PpfModel& model, const DetectParams& params);
+
+  const PpfModel& model() const { return model_; }
+  const DetectParams& params() const { return params_; }
+
+  // A depth image (BOP: raw * depth_scale mm). Detections best first (votes; ties: height
+  // order); a hypothesis without any vote gives no detection. InputError for an image that
+  // does not match the camera or has no valid pixel.
+  std::vector<Detection> detect(const DepthImage& depth, const bp_camera& cam,
+                                DetectTimes* times = nullptr);
+
+  // A point cloud in the camera frame (z along the viewing axis: "highest" = smallest z). Without
+  // normals they are estimated (PCA within 10 % of the diameter, oriented to the camera).
+  // InputError for NaN or infinite values or an empty cloud.
+  std::vector<Detection> detect(const PointCloud& cloud, DetectTimes* times = nullptr);
+
+  // Steps 3-5 on one neighbourhood (points with normals): subsample, vote, cluster. votes = 0
+  // if nothing voted.
+  Detection detect_neighbourhood(const PointCloud& neighbourhood, DetectTimes* times = nullptr);
+
+ private:
+  std::vector<Detection> finish(std::vector<Detection> detections) const;
+  // Steps 4-5 on a subsampled neighbourhood with normals: reference points, votes, clusters.
+  void vote_and_cluster(const PointCloud& subsampled, Detection& d, DetectTimes& t);
+
+  const PpfModel& model_;
+  DetectParams params_;
+  DeviceModel device_model_;
+};
+
+}  // namespace binpick

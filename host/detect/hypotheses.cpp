@@ -1,0 +1,119 @@
+#include "host/detect/hypotheses.hpp"
+
+#include <cmath>
+#include <limits>
+#include <string>
+
+#include "host/core/error.hpp"
+#include "host/detect/scene_chunks.hpp"
+#include "host/detect/scene_normals.hpp"
+#include "kernels/scene_shared.h"
+
+namespace binpick {
+namespace {
+
+void check_filtered(const PointImage& points, const std::vector<float>& filtered) {
+  check_point_image(points);
+  if (filtered.size() != std::size_t(points.width) * points.height)
+    throw InputError("filtered depth has " + std::to_string(filtered.size()) +
+                     " values for a point image of " + std::to_string(points.width) + " x " +
+                     std::to_string(points.height));
+}
+
+Hypothesis from_shared(const bp_hypothesis& h) {
+  return {h.pixel, h.u, h.v, h.depth, Eigen::Vector3f(h.x, h.y, h.z)};
+}
+
+}  // namespace
+
+void check(const HypothesisOptions& opt) {
+  if (!(opt.exclusion_radius >= 0) || std::isinf(opt.exclusion_radius))
+    throw InputError("hypothesis exclusion radius must be finite and non-negative (mm)");
+  if (opt.count > 10000) throw InputError("at most 10000 hypotheses");
+}
+
+std::vector<Hypothesis> find_hypotheses(ocl::Device& dev, const ocl::Buffer<float>& points,
+                                        const ocl::Buffer<float>& filtered, std::uint32_t width,
+                                        std::uint32_t height, const HypothesisOptions& opt) {
+  check(opt);
+  const std::size_t n = std::size_t(width) * height;
+  const Chunks ch = chunks_for(n);
+  if (opt.count == 0 || ch.count == 0) return {};
+  ocl::Buffer<std::uint8_t> excluded(dev, n);
+  excluded.fill(dev, 0);
+  ocl::Buffer<float> part_depth(dev, ch.count);
+  ocl::Buffer<cl_uint> part_pixel(dev, ch.count);
+  ocl::Buffer<bp_hypothesis> hyps(dev, opt.count);
+  cl::Kernel argmin = dev.kernel("scene_hypotheses.cl", "hyp_chunk_argmin");
+  cl::Kernel select = dev.kernel("scene_hypotheses.cl", "hyp_select");
+  cl::Kernel exclude = dev.kernel("scene_hypotheses.cl", "hyp_exclude");
+  const float radius2 = opt.exclusion_radius * opt.exclusion_radius;
+  for (cl_uint k = 0; k < opt.count; ++k) {
+    ocl::launch(dev, argmin, ch.count, filtered, excluded, cl_uint(n), cl_uint(ch.size),
+                part_depth, part_pixel);
+    ocl::launch(dev, select, 1, part_depth, part_pixel, cl_uint(ch.count), points, filtered,
+                cl_uint(width), k, hyps);
+    // The last round's exclusion would only serve a next round.
+    if (k + 1 < opt.count) ocl::launch(dev, exclude, n, points, cl_uint(n), hyps, k, radius2, excluded);
+  }
+  std::vector<Hypothesis> out;
+  for (const bp_hypothesis& h : hyps.read(dev)) {
+    if (h.pixel == BP_NO_PIXEL) break;  // once none is left, no later round finds one
+    out.push_back(from_shared(h));
+  }
+  return out;
+}
+
+std::vector<Hypothesis> find_hypotheses(const PointImage& points,
+                                        const std::vector<float>& filtered,
+                                        const HypothesisOptions& opt) {
+  check_filtered(points, filtered);
+  check(opt);
+  auto& dev = ocl::Device::shared();
+  ocl::Buffer<float> p(dev, std::span<const float>(points.xyzw), CL_MEM_READ_ONLY);
+  ocl::Buffer<float> f(dev, std::span<const float>(filtered), CL_MEM_READ_ONLY);
+  return find_hypotheses(dev, p, f, points.width, points.height, opt);
+}
+
+std::vector<Hypothesis> find_hypotheses_reference(const PointImage& points,
+                                                  const std::vector<float>& filtered,
+                                                  const HypothesisOptions& opt) {
+  check_filtered(points, filtered);
+  check(opt);
+  const std::size_t n = filtered.size();
+  const float radius2 = opt.exclusion_radius * opt.exclusion_radius;
+  std::vector<std::uint8_t> excluded(n, 0);
+  std::vector<Hypothesis> out;
+  for (std::uint32_t k = 0; k < opt.count; ++k) {
+    float best = std::numeric_limits<float>::infinity();
+    std::size_t best_i = n;
+    for (std::size_t i = 0; i < n; ++i)
+      if (filtered[i] > 0.0f && !excluded[i] && filtered[i] < best) best = filtered[i], best_i = i;
+    if (best_i == n) break;
+    const float* p = &points.xyzw[4 * best_i];
+    const float s = filtered[best_i] / p[2];
+    bp_hypothesis h{std::uint32_t(best_i), std::uint32_t(best_i % points.width),
+                    std::uint32_t(best_i / points.width), filtered[best_i], p[0] * s, p[1] * s,
+                    filtered[best_i], {0, 0}};
+    out.push_back(from_shared(h));
+    for (std::size_t i = 0; i < n; ++i) {
+      const float* q = &points.xyzw[4 * i];
+      if (i == best_i || (q[3] != 0.0f && bp_dist2(q[0], q[1], q[2], h.x, h.y, h.z) <= radius2))
+        excluded[i] = 1;
+    }
+  }
+  return out;
+}
+
+std::vector<Hypothesis> find_hypotheses(const PreparedScene& scene, const HypothesisOptions& opt,
+                                        StageTimings* timings) {
+  Stopwatch clock;
+  std::vector<Hypothesis> out =
+      scene.device ? find_hypotheses(ocl::Device::shared(), scene.device->points,
+                                     scene.device->filtered, scene.width, scene.height, opt)
+                   : find_hypotheses(scene.points, scene.filtered_depth, opt);
+  if (timings) timings->push_back({"hypotheses", clock.lap()});
+  return out;
+}
+
+}  // namespace binpick

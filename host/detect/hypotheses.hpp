@@ -1,0 +1,53 @@
+// The highest-point heuristic (paper section III-C): the `count` highest points (nearest the
+// camera) of the low-pass filtered range image, each excluding its neighbourhood (radius
+// slightly larger than the part diameter) from the next (kernels/scene_hypotheses.cl).
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "host/cl/cl_buffer.hpp"
+#include "host/detect/scene_prepare.hpp"
+#include "host/detect/scene_timing.hpp"
+#include "host/scene/depth_image.hpp"
+
+namespace binpick {
+
+struct HypothesisOptions {
+  std::uint32_t count = 5;        // the paper's 5
+  float exclusion_radius = 60.0f;  // mm; slightly larger than the diameter (52 in the paper)
+};
+
+struct Hypothesis {
+  std::uint32_t pixel = 0;  // row-major pixel index (point index for a cloud)
+  std::uint32_t u = 0, v = 0;  // pixel column and row (0 for a cloud)
+  float depth = 0.0f;          // filtered depth (mm)
+  Eigen::Vector3f point = Eigen::Vector3f::Zero();  // on the pixel's ray at that depth (mm)
+};
+
+void check(const HypothesisOptions& opt);
+
+// Routine: on the device, from a point image and its filtered depth (one float a pixel,
+// 0 = no data). Highest first; fewer than count when the valid pixels run out.
+std::vector<Hypothesis> find_hypotheses(const PointImage& points,
+                                        const std::vector<float>& filtered,
+                                        const HypothesisOptions& opt = {});
+// Reference: the same rounds in plain C++ (same float predicate: the same pixels exactly).
+std::vector<Hypothesis> find_hypotheses_reference(const PointImage& points,
+                                                  const std::vector<float>& filtered,
+                                                  const HypothesisOptions& opt = {});
+
+// The rounds on device buffers (one read-back at the end).
+std::vector<Hypothesis> find_hypotheses(ocl::Device& dev, const ocl::Buffer<float>& points,
+                                        const ocl::Buffer<float>& filtered, std::uint32_t width,
+                                        std::uint32_t height, const HypothesisOptions& opt);
+
+// On a prepared scene: its device buffers if it has them, else its host images. Appends the
+// stage "hypotheses" to timings if given.
+std::vector<Hypothesis> find_hypotheses(const PreparedScene& scene,
+                                        const HypothesisOptions& opt = {},
+                                        StageTimings* timings = nullptr);
+
+}  // namespace binpick

@@ -1,0 +1,71 @@
+// Pose clustering (Drost 2010; paper section III-B and IV; issue 5 step 4): candidate poses
+// within a translation threshold (14.4 % of the diameter) and a rotation threshold (20 degrees)
+// are grouped, the group's votes summed and its poses averaged.
+//
+// The pairwise compatibility matrix and each pose's neighbourhood score (the votes of all poses
+// compatible with it) are a kernel (kernels/ppf_cluster.cl). The grouping is greedy on the host,
+// which is sequential by nature and cheap (n^2 bytes read once): poses in order of score, then
+// votes, then index; each pose not yet grouped starts a cluster and takes every ungrouped pose
+// compatible with it. Unlike Drost's first-come grouping this centres clusters on the densest
+// poses, so a cluster is not split by whichever pose happened to come first. A cluster's pose is
+// the vote-weighted mean: translations averaged, quaternions sign-aligned with the centre's,
+// summed and normalised (the rotation threshold keeps them close, where this mean is accurate).
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+
+#include "host/cl/cl_buffer.hpp"
+#include "host/detect/ppf_pose.hpp"
+
+namespace binpick {
+
+struct ClusterOptions {
+  float max_distance = 7.5f;  // mm (14.4 % of a 52 mm diameter)
+  float max_angle_deg = 20.0f;
+};
+void check(const ClusterOptions& opt);
+
+struct PoseCompatibility {
+  std::size_t n = 0;
+  std::vector<std::uint8_t> compatible;  // n * n, row-major, 1 = may be grouped
+  std::vector<std::uint32_t> scores;     // n: votes of the poses compatible with each
+};
+
+// Largest number of candidates clustered at once (the matrix is n^2 bytes).
+inline constexpr std::size_t kMaxClusterPoses = 8192;
+
+// The predicate of the kernel, in the same float operations.
+bool pose_compatible(const PoseCandidate& a, const PoseCandidate& b, float max_dist2,
+                     float min_cos_half);
+
+// Device routine (kernel pose_compatibility). InputError for more than kMaxClusterPoses.
+PoseCompatibility pose_compatibility(ocl::Device& dev, const std::vector<PoseCandidate>& poses,
+                                     const ClusterOptions& opt);
+// Reference: the same matrix and scores in plain C++.
+PoseCompatibility pose_compatibility_reference(const std::vector<PoseCandidate>& poses,
+                                               const ClusterOptions& opt);
+
+struct PoseCluster {
+  Eigen::Quaterniond q = Eigen::Quaterniond::Identity();  // averaged, unit
+  Eigen::Vector3d t = Eigen::Vector3d::Zero();            // averaged, mm
+  std::uint64_t votes = 0;                                // summed
+  std::uint32_t centre = 0;                               // index of the centre pose
+  std::vector<std::uint32_t> members;                     // ascending pose indices
+};
+
+// The greedy grouping of the comment above; clusters by votes (most first; ties: the order in
+// which they were formed).
+std::vector<PoseCluster> group_poses(const std::vector<PoseCandidate>& poses,
+                                     const PoseCompatibility& compatibility);
+
+// Both steps: at most kMaxClusterPoses candidates, the most voted (ties: lower index) if there
+// are more. Appends the stage "cluster" to timings if given.
+std::vector<PoseCluster> cluster_poses(ocl::Device& dev, const std::vector<PoseCandidate>& poses,
+                                       const ClusterOptions& opt,
+                                       StageTimings* timings = nullptr);
+
+}  // namespace binpick

@@ -1,0 +1,218 @@
+#include "host/detect/ppf_vote.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <span>
+#include <string>
+
+#include <fmt/format.h>
+
+#include "host/core/error.hpp"
+#include "host/model/cloud_input.hpp"
+#include "host/model/ppf_features.hpp"
+
+namespace binpick {
+namespace {
+
+// Like ocl::launch, with one work item per work group: each reference point is an independent
+// task of uneven cost, and left to itself PoCL may put a few hundred of them in one work group,
+// which runs on one core.
+template <class... Args>
+void launch_tasks(ocl::Device& dev, cl::Kernel& kernel, std::size_t global, const Args&... args) {
+  if (global == 0) return;
+  const std::string name = kernel.getInfo<CL_KERNEL_FUNCTION_NAME>();
+  ocl::guarded("launching kernel " + name, [&] {
+    cl_uint index = 0;
+    (kernel.setArg(index++, ocl::detail::arg(args)), ...);
+    dev.queue().enqueueNDRangeKernel(kernel, cl::NullRange, cl::NDRange(global), cl::NDRange(1));
+  });
+}
+
+std::size_t cells_of(const PpfModel& model) {
+  return model.cloud.points.size() * std::size_t(model.quant.n_alpha);
+}
+
+}  // namespace
+
+DeviceModel upload_model(ocl::Device& dev, const PpfModel& model) {
+  if (model.table.offsets.size() != std::size_t(bp_ppf_key_count(model.quant)) + 1)
+    throw InputError("PPF model table does not match its discretisation");
+  DeviceModel d;
+  d.model = &model;
+  d.offsets = ocl::Buffer<std::uint32_t>(
+      dev, std::span<const std::uint32_t>(model.table.offsets), CL_MEM_READ_ONLY);
+  d.entries = ocl::Buffer<bp_ppf_entry>(dev, std::span<const bp_ppf_entry>(model.table.entries),
+                                        CL_MEM_READ_ONLY);
+  return d;
+}
+
+std::vector<std::uint32_t> select_reference_points(std::size_t n, double ratio) {
+  if (!(std::isfinite(ratio) && ratio > 0 && ratio <= 1))
+    throw InputError(fmt::format("reference point ratio {} must be in (0, 1]", ratio));
+  std::vector<std::uint32_t> refs;
+  if (n == 0) return refs;
+  const std::size_t m = std::clamp<std::size_t>(std::size_t(std::llround(ratio * double(n))), 1, n);
+  refs.reserve(m);
+  for (std::size_t j = 0; j < m; ++j) refs.push_back(static_cast<std::uint32_t>(j * n / m));
+  return refs;
+}
+
+void check(const VoteOptions& opt) {
+  if (opt.peaks_per_ref < 1 || opt.peaks_per_ref > 16)
+    throw InputError(fmt::format("peaks per reference point {} must be in [1, 16]",
+                                 opt.peaks_per_ref));
+  if (!(opt.peak_ratio >= 0 && opt.peak_ratio <= 1))
+    throw InputError(fmt::format("peak ratio {} must be in [0, 1]", opt.peak_ratio));
+  if (opt.max_accumulator_cells == 0) throw InputError("accumulator budget must be positive");
+}
+
+std::vector<VotePeak> vote_peaks(ocl::Device& dev, const DeviceModel& dmodel,
+                                 const PointCloud& input, const std::vector<std::uint32_t>& refs,
+                                 const VoteOptions& opt, StageTimings* timings,
+                                 ScenePairs* pairs_out) {
+  check(opt);
+  const PpfModel& model = *dmodel.model;
+  const PointCloud scene = ppf_input(input, kMaxVoteScenePoints, "scene neighbourhood");
+  const std::size_t n = scene.points.size();
+  for (std::uint32_t r : refs)
+    if (r >= n) throw InputError(fmt::format("reference point {} of {} points", r, n));
+  const std::size_t n_refs = refs.size();
+  const std::size_t cells = cells_of(model);
+  std::vector<VotePeak> peaks;
+  if (n_refs == 0 || n == 0 || cells == 0) return peaks;
+  Stopwatch clock;
+
+  ocl::Buffer<cl_float4> points(dev, std::span<const cl_float4>(pack_float4(scene.points)),
+                                CL_MEM_READ_ONLY);
+  ocl::Buffer<cl_float4> normals(dev, std::span<const cl_float4>(pack_float4(scene.normals)),
+                                 CL_MEM_READ_ONLY);
+  ocl::Buffer<std::uint32_t> ref_buf(dev, std::span<const std::uint32_t>(refs), CL_MEM_READ_ONLY);
+  ocl::Buffer<std::uint32_t> keys(dev, n_refs * n);
+  ocl::Buffer<float> alphas(dev, n_refs * n);
+  const auto n32 = static_cast<std::uint32_t>(n), refs32 = static_cast<std::uint32_t>(n_refs);
+  cl::Kernel features = dev.kernel("ppf_vote.cl", "ppf_scene_features");
+  launch_tasks(dev, features, n_refs, points, normals, n32, ref_buf, refs32, model.quant, keys,
+              alphas);
+  ocl::finish(dev);
+  if (timings) timings->push_back({"features", clock.lap()});
+
+  // Batches of reference points whose accumulators fit the budget. Each work item clears its
+  // own accumulator, so the buffer is reused without a fill.
+  const std::size_t batch = std::clamp<std::size_t>(opt.max_accumulator_cells / cells, 1, n_refs);
+  ocl::Buffer<std::uint32_t> acc(dev, batch * cells);
+  const std::uint32_t k = opt.peaks_per_ref;
+  ocl::Buffer<cl_uint2> peak_buf(dev, n_refs * k);
+  cl::Kernel vote = dev.kernel("ppf_vote.cl", "ppf_vote");
+  cl::Kernel find_peaks = dev.kernel("ppf_vote.cl", "ppf_peaks");
+  const auto n_model = static_cast<std::uint32_t>(model.cloud.points.size());
+  const auto cells32 = static_cast<std::uint32_t>(cells);
+  double vote_ms = 0, peaks_ms = 0;
+  for (std::size_t first = 0; first < n_refs; first += batch) {
+    const auto count = static_cast<std::uint32_t>(std::min(batch, n_refs - first));
+    const auto first32 = static_cast<std::uint32_t>(first);
+    launch_tasks(dev, vote, count, keys, alphas, n32, first32, count, dmodel.offsets,
+                dmodel.entries, n_model, model.quant, ppf_vote_inv_step(model.quant), acc);
+    ocl::finish(dev);
+    vote_ms += clock.lap();
+    launch_tasks(dev, find_peaks, count, acc, first32, count, cells32, k, opt.peak_ratio,
+                peak_buf);
+    ocl::finish(dev);
+    peaks_ms += clock.lap();
+  }
+  const std::vector<cl_uint2> raw = peak_buf.read(dev);
+  const std::uint32_t n_alpha = model.quant.n_alpha;
+  for (std::size_t i = 0; i < raw.size(); ++i)
+    if (raw[i].s[1] > 0)
+      peaks.push_back({static_cast<std::uint32_t>(i / k), raw[i].s[0] / n_alpha,
+                       raw[i].s[0] % n_alpha, raw[i].s[1]});
+  peaks_ms += clock.lap();
+  if (timings) {
+    timings->push_back({"vote", vote_ms});
+    timings->push_back({"peaks", peaks_ms});
+  }
+  if (pairs_out) {
+    pairs_out->n = n;
+    pairs_out->refs = refs;
+    pairs_out->keys = keys.read(dev);
+    pairs_out->alphas = alphas.read(dev);
+  }
+  return peaks;
+}
+
+ScenePairs scene_pair_features_reference(const PointCloud& input,
+                                         const std::vector<std::uint32_t>& refs,
+                                         const bp_ppf_quant& quant) {
+  const PointCloud scene = ppf_input(input, kMaxVoteScenePoints, "scene neighbourhood");
+  ScenePairs pairs;
+  pairs.n = scene.points.size();
+  pairs.refs = refs;
+  pairs.keys.assign(refs.size() * pairs.n, BP_PPF_NO_KEY);
+  pairs.alphas.assign(refs.size() * pairs.n, 0.0f);
+  for (std::size_t r = 0; r < refs.size(); ++r) {
+    const std::uint32_t ref = refs.at(r);
+    if (ref >= pairs.n) throw InputError(fmt::format("reference point {} of {} points", ref, pairs.n));
+    for (std::size_t i = 0; i < pairs.n; ++i) {
+      if (i == ref) continue;
+      const PairFeature f =
+          ppf_pair_feature_reference(scene.points[ref], scene.normals[ref], scene.points[i],
+                                     scene.normals[i], quant);
+      pairs.keys[r * pairs.n + i] = f.key;
+      pairs.alphas[r * pairs.n + i] = f.valid ? f.alpha : 0.0f;
+    }
+  }
+  return pairs;
+}
+
+float ppf_vote_inv_step(const bp_ppf_quant& quant) {
+  return float(double(quant.n_alpha) / (2.0 * std::numbers::pi));
+}
+
+std::uint32_t ppf_vote_alpha_bin(float alpha_s, float alpha_m, const bp_ppf_quant& quant) {
+  const std::uint32_t n = quant.n_alpha;
+  const float u = (alpha_s - alpha_m) * ppf_vote_inv_step(quant) + 1.5f * float(n);
+  auto b = static_cast<std::uint32_t>(u);
+  if (b >= 2 * n) b -= 2 * n;
+  else if (b >= n) b -= n;
+  return b;
+}
+
+std::vector<std::uint32_t> vote_accumulator_reference(const ScenePairs& pairs, std::size_t r,
+                                                      const PpfModel& model) {
+  const std::uint32_t n_alpha = model.quant.n_alpha;
+  std::vector<std::uint32_t> acc(cells_of(model), 0);
+  for (std::size_t i = 0; i < pairs.n; ++i) {
+    const std::uint32_t key = pairs.keys[r * pairs.n + i];
+    if (key == BP_PPF_NO_KEY) continue;
+    const float alpha_s = pairs.alphas[r * pairs.n + i];
+    for (std::uint32_t e = model.table.offsets.at(key); e < model.table.offsets.at(key + 1); ++e) {
+      const bp_ppf_entry& entry = model.table.entries[e];
+      ++acc[std::size_t(entry.point) * n_alpha + ppf_vote_alpha_bin(alpha_s, entry.alpha, model.quant)];
+    }
+  }
+  return acc;
+}
+
+std::vector<VotePeak> vote_peaks_reference(const ScenePairs& pairs, const PpfModel& model,
+                                           const VoteOptions& opt) {
+  check(opt);
+  std::vector<VotePeak> peaks;
+  const std::uint32_t n_alpha = model.quant.n_alpha;
+  for (std::size_t r = 0; r < pairs.refs.size(); ++r) {
+    const std::vector<std::uint32_t> acc = vote_accumulator_reference(pairs, r, model);
+    std::vector<std::uint32_t> order;
+    for (std::uint32_t c = 0; c < acc.size(); ++c)
+      if (acc[c] > 0) order.push_back(c);
+    std::stable_sort(order.begin(), order.end(),
+                     [&](std::uint32_t a, std::uint32_t b) { return acc[a] > acc[b]; });
+    if (order.empty()) continue;
+    const float threshold = opt.peak_ratio * float(acc[order[0]]);
+    for (std::size_t j = 0; j < std::min<std::size_t>(opt.peaks_per_ref, order.size()); ++j)
+      if (float(acc[order[j]]) >= threshold)
+        peaks.push_back({static_cast<std::uint32_t>(r), order[j] / n_alpha, order[j] % n_alpha,
+                         acc[order[j]]});
+  }
+  return peaks;
+}
+
+}  // namespace binpick

@@ -1,0 +1,27 @@
+// The low-pass filtered range image of the highest-point heuristic (paper section III-C):
+// a box mean of the valid depths around each valid pixel (kernels/scene_lowpass.cl).
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "host/cl/cl_buffer.hpp"
+#include "host/scene/depth_image.hpp"
+
+namespace binpick {
+
+// Routine: per pixel the mean z (mm) of the valid pixels in the (2r+1)^2 window, r in [0, 64];
+// 0 where the pixel itself has no data (holes are not filled).
+std::vector<float> lowpass_depth(const PointImage& points, int radius);
+// Reference: the same separable sums in the same order, in plain C++.
+std::vector<float> lowpass_depth_reference(const PointImage& points, int radius);
+
+// The two passes on device buffers (points float4 a pixel, row_sums 2 floats a pixel as
+// scratch, filtered one float a pixel), enqueued without waiting.
+void enqueue_lowpass_depth(ocl::Device& dev, const ocl::Buffer<float>& points,
+                           std::uint32_t width, std::uint32_t height, int radius,
+                           ocl::Buffer<float>& row_sums, ocl::Buffer<float>& filtered);
+
+void check_lowpass_radius(int radius);
+
+}  // namespace binpick

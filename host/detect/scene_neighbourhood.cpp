@@ -1,0 +1,156 @@
+#include "host/detect/scene_neighbourhood.hpp"
+
+#include <algorithm>
+#include <cstdint>
+#include <numeric>
+
+#include "host/core/error.hpp"
+
+namespace binpick {
+namespace {
+
+enum NormalState : std::uint8_t { kUnknown, kValid, kInvalid };
+
+// Lazily computed normals of the cropped pixels.
+class LazyNormals {
+ public:
+  LazyNormals(ocl::Device& dev, const PreparedScene& scene, const CroppedPixels& crop,
+              const NormalOptions& opt)
+      : dev_(dev), scene_(scene), crop_(crop), opt_(opt), state_(crop.pixels.size(), kUnknown),
+        normals_(crop.pixels.size(), Eigen::Vector3f::Zero()) {}
+
+  // Computes the normals of the listed crop indices not computed yet (one launch).
+  void compute(const std::vector<std::uint32_t>& indices) {
+    std::vector<std::uint32_t> todo, pixels;
+    for (std::uint32_t i : indices)
+      if (state_[i] == kUnknown) todo.push_back(i);
+    std::sort(todo.begin(), todo.end());  // an extreme point may be a kept one too
+    todo.erase(std::unique(todo.begin(), todo.end()), todo.end());
+    for (std::uint32_t i : todo) pixels.push_back(crop_.pixels[i]);
+    if (todo.empty()) return;
+    const std::vector<float> n = normals_at_pixels(dev_, scene_.device->points, scene_.width,
+                                                   scene_.height, pixels, opt_);
+    for (std::size_t j = 0; j < todo.size(); ++j) {
+      const float* o = &n[4 * j];
+      state_[todo[j]] = o[3] != 0.0f ? kValid : kInvalid;
+      normals_[todo[j]] = Eigen::Vector3f(o[0], o[1], o[2]);
+    }
+    computed_ += todo.size();
+  }
+
+  NormalState state(std::uint32_t i) const { return NormalState(state_[i]); }
+  const Eigen::Vector3f& normal(std::uint32_t i) const { return normals_[i]; }
+  std::size_t computed() const { return computed_; }
+
+ private:
+  ocl::Device& dev_;
+  const PreparedScene& scene_;
+  const CroppedPixels& crop_;
+  NormalOptions opt_;
+  std::vector<std::uint8_t> state_;
+  std::vector<Eigen::Vector3f> normals_;
+  std::size_t computed_ = 0;
+};
+
+// Positions (into s) of one point of smallest and one of largest coordinate per axis: they
+// fix voxel_grid's origin and dimensions.
+std::vector<std::uint32_t> extremes(const PointCloud& s) {
+  std::vector<std::uint32_t> out;
+  for (int a = 0; a < 3; ++a) {
+    std::uint32_t lo = 0, hi = 0;
+    for (std::uint32_t i = 1; i < s.points.size(); ++i) {
+      if (s.points[i][a] < s.points[lo][a]) lo = i;
+      if (s.points[i][a] > s.points[hi][a]) hi = i;
+    }
+    out.push_back(lo);
+    out.push_back(hi);
+  }
+  return out;
+}
+
+}  // namespace
+
+NeighbourhoodSample sample_neighbourhood(const PreparedScene& scene, const CropOptions& crop,
+                                         const NormalOptions& normal_opt, float voxel_size,
+                                         StageTimings* timings) {
+  if (!scene.device) throw InputError("sample_neighbourhood needs a scene on the device");
+  check(normal_opt);
+  auto& dev = ocl::Device::shared();
+  Stopwatch clock;
+  const CroppedPixels c = crop_pixels(dev, scene.device->points, scene.camera, crop);
+  if (timings) timings->push_back({"crop", clock.lap()});
+
+  NeighbourhoodSample out;
+  out.cropped = c.pixels.size();
+  LazyNormals normals(dev, scene, c, normal_opt);
+  std::vector<std::uint32_t> active(c.pixels.size());  // crop indices still in S
+  std::iota(active.begin(), active.end(), 0u);
+  double subsample_ms = 0, normals_ms = 0;
+  auto to_crop = [&](const std::vector<std::uint32_t>& positions) {
+    std::vector<std::uint32_t> idx;
+    idx.reserve(positions.size());
+    for (std::uint32_t k : positions) idx.push_back(active[k]);
+    return idx;
+  };
+  auto drop_invalid = [&] {
+    std::erase_if(active, [&](std::uint32_t i) { return normals.state(i) == kInvalid; });
+  };
+  while (!active.empty()) {
+    ++out.rounds;
+    const bool last = out.rounds > kLazyNormalRounds;
+    if (last) {  // many invalid normals: compute all of S, keep V
+      normals.compute(active);
+      drop_invalid();
+      normals_ms += clock.lap();
+      if (active.empty()) break;
+    }
+    PointCloud s;
+    s.points.reserve(active.size());
+    for (std::uint32_t i : active) s.points.push_back(c.points[i]);
+    const VoxelSubsample sub = voxel_subsample(s, voxel_size);
+    subsample_ms += clock.lap();
+
+    std::vector<std::uint32_t> need = sub.kept;
+    if (!last) {
+      const std::vector<std::uint32_t> ext = extremes(s);
+      need.insert(need.end(), ext.begin(), ext.end());
+    }
+    const std::vector<std::uint32_t> need_idx = to_crop(need);
+    normals.compute(need_idx);
+    normals_ms += clock.lap();
+    if (std::all_of(need_idx.begin(), need_idx.end(),
+                    [&](std::uint32_t i) { return normals.state(i) == kValid; })) {
+      for (std::uint32_t i : to_crop(sub.kept)) {
+        out.cloud.points.push_back(c.points[i]);
+        out.cloud.normals.push_back(normals.normal(i));
+      }
+      break;
+    }
+    drop_invalid();
+  }
+  out.normals = normals.computed();
+  if (timings) {
+    timings->push_back({"subsample", subsample_ms});
+    timings->push_back({"normals", normals_ms});
+  }
+  return out;
+}
+
+NeighbourhoodSample sample_neighbourhood_reference(const PointImage& points,
+                                                   const CropOptions& crop,
+                                                   const NormalOptions& normal_opt,
+                                                   float voxel_size) {
+  const PointImage normals = normals_from_points_reference(points, normal_opt);
+  CropOptions with_normals = crop;
+  with_normals.require_normals = true;
+  NeighbourhoodSample out;
+  out.cloud = voxel_subsample_reference(crop_sphere_reference(points, normals, with_normals),
+                                        voxel_size)
+                  .cloud;
+  out.cropped = crop_pixels_reference(points, crop).pixels.size();
+  out.normals = std::size_t(points.width) * points.height;
+  out.rounds = 1;
+  return out;
+}
+
+}  // namespace binpick

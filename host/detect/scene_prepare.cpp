@@ -1,0 +1,89 @@
+#include "host/detect/scene_prepare.hpp"
+
+#include <string>
+
+#include "host/core/error.hpp"
+#include "host/detect/scene_lowpass.hpp"
+
+namespace binpick {
+namespace {
+
+void check(const DepthImage& depth, const bp_camera& cam, const ScenePrepOptions& opt) {
+  if (depth.width != cam.width || depth.height != cam.height ||
+      depth.raw.size() != std::size_t(depth.width) * depth.height)
+    throw InputError("depth image of " + std::to_string(depth.width) + " x " +
+                     std::to_string(depth.height) + " does not match the camera's " +
+                     std::to_string(cam.width) + " x " + std::to_string(cam.height));
+  if (!(cam.fx > 0 && cam.fy > 0 && cam.depth_scale > 0))
+    throw InputError("camera focal lengths and depth_scale must be positive");
+  check(opt.normals);
+  check_lowpass_radius(opt.lowpass_radius);
+}
+
+}  // namespace
+
+PreparedScene prepare_scene(const DepthImage& depth, const bp_camera& cam,
+                            const ScenePrepOptions& opt) {
+  check(depth, cam, opt);
+  auto& dev = ocl::Device::shared();
+  const std::size_t n = depth.raw.size();
+  PreparedScene s;
+  s.width = depth.width, s.height = depth.height, s.camera = cam;
+  Stopwatch clock;
+  ocl::Buffer<std::uint16_t> raw(dev, std::span<const std::uint16_t>(depth.raw),
+                                 CL_MEM_READ_ONLY);
+  s.has_normals = opt.normals_everywhere;
+  s.device = std::make_shared<DeviceScene>(
+      DeviceScene{ocl::Buffer<float>(dev, 4 * n),
+                  ocl::Buffer<float>(dev, s.has_normals ? 4 * n : 0), ocl::Buffer<float>(dev, n)});
+  DeviceScene& d = *s.device;
+  ocl::finish(dev);
+  s.timings.push_back({"upload", clock.lap()});
+
+  cl::Kernel to_points = dev.kernel("depth_to_points.cl", "depth_to_points");
+  ocl::launch(dev, to_points, n, raw, cam, d.points);
+  ocl::finish(dev);
+  s.timings.push_back({"points", clock.lap()});
+
+  if (s.has_normals) {
+    enqueue_normals_from_points(dev, d.points, s.width, s.height, opt.normals, d.normals);
+    ocl::finish(dev);
+    s.timings.push_back({"normals", clock.lap()});
+  }
+
+  {
+    ocl::Buffer<float> row_sums(dev, 2 * n);
+    enqueue_lowpass_depth(dev, d.points, s.width, s.height, opt.lowpass_radius, row_sums,
+                          d.filtered);
+    ocl::finish(dev);
+  }
+  s.timings.push_back({"lowpass", clock.lap()});
+
+  if (opt.read_back) {
+    s.points = {s.width, s.height, d.points.read(dev)};
+    if (s.has_normals) s.normals = {s.width, s.height, d.normals.read(dev)};
+    s.filtered_depth = d.filtered.read(dev);
+    s.timings.push_back({"readback", clock.lap()});
+  }
+  return s;
+}
+
+PreparedScene prepare_scene_reference(const DepthImage& depth, const bp_camera& cam,
+                                      const ScenePrepOptions& opt) {
+  check(depth, cam, opt);
+  PreparedScene s;
+  s.width = depth.width, s.height = depth.height, s.camera = cam;
+  Stopwatch clock;
+  s.points = depth_to_points_reference(depth, cam);
+  s.timings.push_back({"points", clock.lap()});
+  s.has_normals = opt.normals_everywhere;
+  if (s.has_normals) {
+    s.normals = normals_from_points_reference(s.points, opt.normals);
+    s.timings.push_back({"normals", clock.lap()});
+  }
+  s.filtered_depth = lowpass_depth_reference(s.points, opt.lowpass_radius);
+  s.timings.push_back({"lowpass", clock.lap()});
+  return s;
+}
+
+}  // namespace binpick

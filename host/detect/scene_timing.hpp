@@ -1,0 +1,31 @@
+// Wall-clock time per pipeline stage, for the CLI and the benchmark ("ms per stage").
+// Each stage ends with a queue finish, so the time is the device's work, not an enqueue.
+#pragma once
+
+#include <chrono>
+#include <string>
+#include <vector>
+
+namespace binpick {
+
+struct StageTime {
+  std::string stage;  // "points", "normals", "lowpass", "hypotheses", ...
+  double ms = 0.0;
+};
+using StageTimings = std::vector<StageTime>;
+
+// Milliseconds since construction or the last lap().
+class Stopwatch {
+ public:
+  double lap() {
+    const auto now = std::chrono::steady_clock::now();
+    const double ms = std::chrono::duration<double, std::milli>(now - start_).count();
+    start_ = now;
+    return ms;
+  }
+
+ private:
+  std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now();
+};
+
+}  // namespace binpick

@@ -1,0 +1,84 @@
+#include "host/eval/eval_run.hpp"
+
+#include <algorithm>
+#include <iostream>
+
+#include <fmt/format.h>
+
+#include "host/bop/results_csv.hpp"
+#include "host/core/error.hpp"
+#include "host/eval/gnuplot.hpp"
+#include "host/eval/precision_plot.hpp"
+#include "host/eval/report_pictures.hpp"
+#include "host/eval/report_tables.hpp"
+#include "host/eval/report_html.hpp"
+
+namespace binpick::eval {
+
+std::vector<DatasetEvaluation> evaluate_inputs(const std::vector<EvalInput>& inputs,
+                                               const EvalOptions& options) {
+  if (inputs.empty()) throw InputError("eval needs at least one --dataset with its --results");
+  std::vector<DatasetEvaluation> out;
+  for (const auto& in : inputs) {
+    DatasetEvaluation e;
+    e.dataset = load_dataset(in.dataset);
+    e.results = in.results;
+    const auto rows = bop::read_results_csv(in.results);
+    try {
+      e.summary = evaluate(e.dataset, rows, options);
+    } catch (const InputError& err) {
+      throw InputError(in.results.string() + ": " + err.what());
+    }
+    e.curves = figure7_curves(e.summary.results);
+    out.push_back(std::move(e));
+  }
+  const bool all_known = std::all_of(out.begin(), out.end(),
+                                     [](const auto& e) { return e.dataset.noise >= 0; });
+  if (all_known)
+    std::stable_sort(out.begin(), out.end(), [](const auto& a, const auto& b) {
+      return a.dataset.noise < b.dataset.noise;
+    });
+  return out;
+}
+
+ReportFiles write_report(const std::vector<DatasetEvaluation>& evaluations,
+                         const ReportOptions& options) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  fs::create_directories(options.out, ec);
+  if (ec || !fs::is_directory(options.out))
+    throw InputError("cannot create report directory " + options.out.string() +
+                     (ec ? ": " + ec.message() : ""));
+  ReportFiles files;
+  files.curves_csv = options.out / "curves.csv";
+  files.hypotheses_csv = options.out / "hypotheses.csv";
+  files.json = options.out / "report.json";
+  files.html = options.out / "report.html";
+
+  std::vector<LabelledCurves> curves;
+  for (const auto& e : evaluations) curves.push_back({e.dataset.label, e.curves});
+  write_curves_csv(files.curves_csv, curves);
+  write_hypotheses_csv(files.hypotheses_csv, evaluations);
+  write_report_json(files.json, evaluations, options.eval);
+
+  if (const auto gnuplot = find_gnuplot()) {
+    try {
+      plot_figure7(*gnuplot, options.out / "precision.png", curves);
+      files.plot = options.out / "precision.png";
+    } catch (const std::exception& e) {
+      files.warnings.push_back(std::string("no precision plot: ") + e.what());
+    }
+  } else {
+    files.warnings.push_back("no precision plot: gnuplot is not on PATH (Debian: gnuplot-nox)");
+  }
+
+  std::vector<PicturedImage> pictured;
+  for (std::size_t d = 0; d < evaluations.size(); ++d) {
+    auto more = write_pictures(evaluations[d], d, options, files.warnings);
+    pictured.insert(pictured.end(), more.begin(), more.end());
+  }
+  write_report_html(files.html, evaluations, options.eval, files, pictured);
+  return files;
+}
+
+}  // namespace binpick::eval

@@ -1,0 +1,19 @@
+// Every output file of binpick is written through write_file_atomically: the content goes to a
+// temporary file next to the target and is renamed into place only once it is complete, so an
+// error (or a crash) never leaves a partial file under the final name.
+#pragma once
+
+#include <filesystem>
+#include <functional>
+#include <ostream>
+
+namespace binpick {
+
+// Calls write(stream) on a binary stream to a temporary file in path's directory, then renames
+// it to path (replacing an existing file). If write throws or the stream fails, the temporary
+// file is removed and the error propagates (stream failures become binpick::InputError naming
+// path). The directory must exist.
+void write_file_atomically(const std::filesystem::path& path,
+                           const std::function<void(std::ostream&)>& write);
+
+}  // namespace binpick

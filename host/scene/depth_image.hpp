@@ -1,0 +1,27 @@
+// A depth image as BOP stores it: uint16 values, depth_mm = value * depth_scale, 0 = no data.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "kernels/binpick_shared.h"
+
+namespace binpick {
+
+struct DepthImage {
+  std::uint32_t width = 0, height = 0;
+  std::vector<std::uint16_t> raw;  // row-major, width * height
+};
+
+// Camera-frame points, one per pixel: xyz in mm and w = 1 where there is data, all 0 elsewhere.
+struct PointImage {
+  std::uint32_t width = 0, height = 0;
+  std::vector<float> xyzw;  // 4 floats a pixel
+};
+
+// Routine: the depth_to_points kernel on the shared OpenCL device.
+PointImage depth_to_points(const DepthImage& depth, const bp_camera& cam);
+// Reference: the same in plain C++.
+PointImage depth_to_points_reference(const DepthImage& depth, const bp_camera& cam);
+
+}  // namespace binpick

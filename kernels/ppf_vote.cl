@@ -1,0 +1,109 @@
+/* Drost voting around one hypothesis (paper section III-B; issue 5 step 3).
+ *
+ * ppf_scene_features: one work item per reference point s_r; for every subsampled scene point
+ *   s_i the key and alpha_s of the pair (s_r, s_i), computed by the same bp_ppf_pair as the
+ *   model (so model and scene features cannot drift apart). Row r of keys/alphas is s_r's.
+ * ppf_vote: one work item per reference point, with its own accumulator of n_model x n_alpha
+ *   integer counters in global memory (no atomics, so the votes are exact and deterministic).
+ *   Every model entry (m_r, alpha_m) of the pair's key votes for (m_r, alpha_s - alpha_m).
+ * ppf_peaks: one work item per reference point; the `k` best accumulator cells, highest votes
+ *   first (ties: lowest cell index), that have at least peak_ratio of the best cell's votes.
+ *   Several peaks per reference point, not only the maximum: a symmetric or partly occluded
+ *   part has several near-equal poses, and the clustering decides between them.
+ *
+ * Why alpha_s - alpha_m: with R_m and R_s the rotations that take n_m and n_s onto +x, the
+ * features give R_m d_m = R_x(alpha_m) v and R_s d_s = R_x(alpha_s) v for the same v, so the
+ * rotation about x that maps the model pair onto the scene pair is R_x(alpha_s - alpha_m), and
+ * the pose is s = R_s^T R_x(alpha_s - alpha_m) R_m (m - m_r) + s_r. */
+#pragma OPENCL FP_CONTRACT OFF
+#include "binpick_shared.h"
+
+/* The alpha bin of alpha_s - alpha_m wrapped into [-pi, pi), bins of 2 pi / n_alpha from -pi.
+ * inv_step = n_alpha / (2 pi). The difference is in (-2 pi, 2 pi): in bins, shifted by 1.5 turns,
+ * it is in (n / 2, 5 n / 2), where truncation is floor and two compares wrap it: no division
+ * (the hot loop's most expensive instruction otherwise). Written out identically in
+ * ppf_vote_alpha_bin (host/detect/ppf_vote.cpp), so the reference counts the same votes. */
+static inline uint vote_alpha_bin(float alpha_s, float alpha_m, float inv_step, uint n_alpha) {
+  const float u = (alpha_s - alpha_m) * inv_step + 1.5f * (float)n_alpha;
+  uint b = (uint)u;
+  if (b >= 2u * n_alpha) b -= 2u * n_alpha;
+  else if (b >= n_alpha) b -= n_alpha;
+  return b;
+}
+
+__kernel void ppf_scene_features(__global const float4* points, __global const float4* normals,
+                                 const uint n, __global const uint* refs, const uint n_refs,
+                                 const bp_ppf_quant q, __global uint* keys,
+                                 __global float* alphas) {
+  const uint r = get_global_id(0);
+  if (r >= n_refs) return;
+  const uint ref = refs[r];
+  const float3 pr = points[ref].xyz;
+  const float3 nr = normals[ref].xyz;
+  for (uint i = 0; i < n; ++i) {
+    float alpha = 0.0f;
+    const uint key = i == ref ? BP_PPF_NO_KEY
+                              : bp_ppf_pair(pr, nr, points[i].xyz, normals[i].xyz, q, &alpha);
+    keys[(size_t)r * n + i] = key;
+    alphas[(size_t)r * n + i] = alpha;
+  }
+}
+
+/* Rows first_ref .. first_ref + count - 1 of the features vote into accumulator slices
+ * 0 .. count - 1 (a batch: the accumulators of all reference points may not fit at once). */
+__kernel void ppf_vote(__global const uint* keys, __global const float* alphas, const uint n,
+                       const uint first_ref, const uint count,
+                       __global const uint* offsets, __global const bp_ppf_entry* entries,
+                       const uint n_model, const bp_ppf_quant q, const float inv_step,
+                       __global uint* accumulators) {
+  const uint r = get_global_id(0);
+  if (r >= count) return;
+  const uint cells = n_model * q.n_alpha;
+  __global uint* acc = accumulators + (size_t)r * cells;
+  for (uint c = 0; c < cells; ++c) acc[c] = 0u;
+  __global const uint* row_keys = keys + (size_t)(first_ref + r) * n;
+  __global const float* row_alphas = alphas + (size_t)(first_ref + r) * n;
+  for (uint i = 0; i < n; ++i) {
+    const uint key = row_keys[i];
+    if (key == BP_PPF_NO_KEY) continue;
+    const float alpha_s = row_alphas[i];
+    const uint end = offsets[key + 1];
+    for (uint e = offsets[key]; e < end; ++e) {
+      const bp_ppf_entry entry = entries[e];
+      ++acc[entry.point * q.n_alpha + vote_alpha_bin(alpha_s, entry.alpha, inv_step, q.n_alpha)];
+    }
+  }
+}
+
+#define PPF_MAX_PEAKS 16
+
+/* peaks[(first_ref + r) * k + j] = (cell, votes), cell = model point * n_alpha + alpha bin;
+ * votes 0 marks an unused slot. Ranking: more votes first, then the lower cell. */
+__kernel void ppf_peaks(__global const uint* accumulators, const uint first_ref, const uint count,
+                        const uint cells, const uint k, const float peak_ratio,
+                        __global uint2* peaks) {
+  const uint r = get_global_id(0);
+  if (r >= count) return;
+  __global const uint* acc = accumulators + (size_t)r * cells;
+  uint best_cell[PPF_MAX_PEAKS], best_votes[PPF_MAX_PEAKS];
+  for (uint j = 0; j < k; ++j) best_votes[j] = 0u, best_cell[j] = 0u;
+  for (uint c = 0; c < cells; ++c) {
+    const uint v = acc[c];
+    if (v <= best_votes[k - 1]) continue; /* ties keep the earlier (lower) cell */
+    uint j = k - 1;
+    while (j > 0 && best_votes[j - 1] < v) {
+      best_votes[j] = best_votes[j - 1];
+      best_cell[j] = best_cell[j - 1];
+      --j;
+    }
+    best_votes[j] = v;
+    best_cell[j] = c;
+  }
+  /* The same float product on the host (ppf_peaks_reference), so both keep the same peaks. */
+  const float threshold = peak_ratio * (float)best_votes[0];
+  __global uint2* out = peaks + (size_t)(first_ref + r) * k;
+  for (uint j = 0; j < k; ++j) {
+    const bool keep = best_votes[j] > 0u && (float)best_votes[j] >= threshold;
+    out[j] = (uint2)(keep ? best_cell[j] : 0u, keep ? best_votes[j] : 0u);
+  }
+}

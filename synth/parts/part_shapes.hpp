@@ -1,0 +1,24 @@
+// The shapes of the built-in parts at their natural size (mm, before builtin_parts.cpp centres
+// them and scales them to the nominal diameter), with the symmetries they have in that frame.
+#pragma once
+
+#include "host/mesh/mesh.hpp"
+#include "host/mesh/symmetry.hpp"
+
+namespace binpick {
+
+struct PartShape {
+  Mesh mesh;
+  PartSymmetries symmetries;
+};
+
+// L-bracket: a base plate and a shorter upright plate at 90 degrees, one round hole in each.
+PartShape make_bracket_shape();
+
+// Hex bolt: hexagonal head on a cylindrical shank with a chamfered tip, along +z.
+PartShape make_bolt_shape();
+
+// Equal tee pipe fitting: a hollow run along x with a hollow branch along +z.
+PartShape make_tee_shape();
+
+}  // namespace binpick

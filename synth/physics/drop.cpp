@@ -1,0 +1,169 @@
+// The wave loop: release a grid of randomly oriented parts, step until every part is at rest,
+// repeat; optionally let the whole pile settle once more with nothing frozen; report part
+// poses in mm.
+#include "synth/physics/drop.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <random>
+#include <string>
+
+#include "synth/physics/bin_world.hpp"
+#include "synth/physics/bullet_units.hpp"
+#include "synth/physics/drop_layout.hpp"
+#include "synth/physics/drop_random.hpp"
+#include "synth/physics/mass_properties.hpp"
+#include "synth/physics/part_shape.hpp"
+#include "synth/physics/pile_freezer.hpp"
+
+namespace binpick {
+namespace {
+
+// Checking every few steps is enough to see a wave come to rest, and costs little.
+constexpr int kStepsPerCheck = 6;
+constexpr int kChecksPerProgress = 5;
+
+using Clock = std::chrono::steady_clock;
+
+double seconds_since(Clock::time_point start) {
+  return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+void append_message(std::string& message, const std::string& text) {
+  if (!message.empty()) message += "; ";
+  message += text;
+}
+
+// The highest point of any part in the world (units), the floor if none.
+btScalar pile_top(const BinWorld& world) {
+  btScalar top = 0;
+  for (const btRigidBody* body : world.parts()) {
+    if (!body->isInWorld()) continue;
+    btVector3 lo, hi;
+    body->getAabb(lo, hi);
+    top = std::max(top, hi.z());
+  }
+  return top;
+}
+
+bool inside_bin(const Eigen::Vector3d& centre_mm, const Eigen::Vector3d& bin_mm) {
+  return std::abs(centre_mm.x()) <= 0.5 * bin_mm.x() &&
+         std::abs(centre_mm.y()) <= 0.5 * bin_mm.y() && centre_mm.z() >= 0.0;
+}
+
+// Runs one bin: the waves, the final settling, the limits, the statistics and the progress.
+class BinDrop {
+ public:
+  BinDrop(BinWorld& world, const DropOptions& options, const ProgressFn& progress, DropStats& stats)
+      : world_(world), options_(options), progress_(progress), stats_(stats) {}
+
+  bool out_of_wall_time() const { return out_of_wall_time_; }
+
+  // Steps until every part is at rest or a limit is hit; `label` names the phase in messages.
+  void settle(int wave, bool freeze, const std::string& label) {
+    const auto wave_start = Clock::now();
+    double seconds = 0.0;
+    for (int check = 0;; ++check) {
+      for (int s = 0; s < kStepsPerCheck; ++s) seconds += world_.step();
+      if (freeze) {
+        const FreezeCounts counts = update_frozen_parts(world_);
+        stats_.parts_frozen += counts.frozen;
+        stats_.parts_thawed += counts.thawed;
+      }
+      const int moving = count_moving();
+      if (progress_ && (moving == 0 || check % kChecksPerProgress == 0))
+        progress_({wave, stats_.waves, static_cast<int>(world_.parts().size()), moving,
+                   stats_.simulated_seconds + seconds});
+      if (moving == 0) break;
+      if (seconds >= options_.max_wave_seconds) {
+        stats_.settled = false;
+        append_message(stats_.message,
+                       label + " still had " + std::to_string(moving) + " parts moving after " +
+                           std::to_string(options_.max_wave_seconds) + " simulated s");
+        break;
+      }
+      if (options_.max_wall_seconds > 0.0 && seconds_since(start_) > options_.max_wall_seconds) {
+        stats_.settled = false;
+        out_of_wall_time_ = true;
+        append_message(stats_.message, "stopped in " + label + " after " +
+                                           std::to_string(options_.max_wall_seconds) +
+                                           " wall s, with parts moving");
+        break;
+      }
+    }
+    stats_.simulated_seconds += seconds;
+    stats_.wave_simulated_seconds.push_back(seconds);
+    stats_.wave_wall_seconds.push_back(seconds_since(wave_start));
+  }
+
+ private:
+  int count_moving() {
+    int moving = 0;
+    for (btRigidBody* body : world_.parts()) {
+      if (!body->isInWorld()) continue;
+      if (body->getCenterOfMassPosition().z() < -BinWorld::kWallThickness)
+        world_.remove(body);  // tunnelled through the floor: it would fall forever
+      else if (!world_.at_rest(*body))
+        ++moving;
+    }
+    return moving;
+  }
+
+  BinWorld& world_;
+  const DropOptions& options_;
+  const ProgressFn& progress_;
+  DropStats& stats_;
+  const Clock::time_point start_ = Clock::now();
+  bool out_of_wall_time_ = false;
+};
+
+}  // namespace
+
+DropResult drop_parts(const ConvexParts& hulls, const Mesh& part, const DropOptions& options,
+                      const ProgressFn& progress) {
+  validate_drop_options(options);
+  const PartShape shape(hulls, mass_properties(part));
+  const double radius_mm = shape.bounding_radius_mm();
+  BinWorld world(options, shape);
+  std::mt19937_64 rng(options.seed);
+
+  DropResult result;
+  DropStats& stats = result.stats;
+  const int per_wave = options.grid_x * options.grid_y;
+  stats.waves = (options.objects + per_wave - 1) / per_wave;
+  stats.settled = true;
+  BinDrop drop(world, options, progress, stats);
+
+  for (int wave = 0; wave < stats.waves && !drop.out_of_wall_time(); ++wave) {
+    const int count = std::min(per_wave, options.objects - wave * per_wave);
+    const double lowest_centre_mm = pile_top(world) * kMmPerUnit + 1.1 * radius_mm;
+    for (const auto& at : wave_drop_positions(options, count, radius_mm, lowest_centre_mm)) {
+      Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
+      pose.linear() = uniform_rotation(rng).toRotationMatrix();
+      pose.translation() = at;
+      world.add_part(to_units(pose));
+    }
+    drop.settle(wave, options.freeze_resting, "wave " + std::to_string(wave + 1));
+  }
+  if (options.freeze_resting && options.final_settle_all_dynamic && !drop.out_of_wall_time()) {
+    for (btRigidBody* body : world.parts())
+      if (body->isInWorld() && world.frozen(*body)) world.thaw(body);
+    drop.settle(stats.waves - 1, false, "the final settling");
+  }
+
+  const Eigen::Isometry3d part_in_body = shape.body_in_part().inverse();
+  for (const btRigidBody* body : world.parts()) {
+    const Eigen::Isometry3d body_pose = to_mm(body->getWorldTransform());
+    if (!body->isInWorld() || !inside_bin(body_pose.translation(), options.bin_size_mm)) {
+      ++stats.parts_left_bin;
+      continue;
+    }
+    result.poses.push_back(body_pose * part_in_body);
+  }
+  if (stats.parts_left_bin > 0)
+    append_message(stats.message, std::to_string(stats.parts_left_bin) +
+                                      " parts ended outside the bin and were left out");
+  return result;
+}
+
+}  // namespace binpick

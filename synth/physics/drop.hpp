@@ -1,0 +1,95 @@
+// Drops parts into a bin with Bullet until they are at rest: the ground truth of a synthetic
+// bin (paper III-A and IV). World frame: origin at the centre of the bin floor, z up, the
+// interior spans x in [-w/2, w/2], y in [-d/2, d/2], z in [0, h]. All results in mm.
+#pragma once
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+#include <cstdint>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "host/mesh/mesh.hpp"
+#include "synth/decompose/convex_parts.hpp"
+
+namespace binpick {
+
+// Defaults are the paper's scene (DESIGN.md 4) and settings measured to settle a 350-part bin
+// quickly (bench/bench_synth_physics.cpp).
+struct DropOptions {
+  Eigen::Vector3d bin_size_mm{600.0, 400.0, 300.0};  // interior: x width, y depth, z wall height
+  int objects = 350;
+  int grid_x = 7;                 // drop positions along x per wave
+  int grid_y = 5;                 // along y; a wave is grid_x * grid_y parts, the last partial
+  double drop_height_mm = 600.0;  // of the parts' centres of mass above the floor
+  std::uint64_t seed = 1;         // orientations; same seed, same bin, bit for bit
+  // A part is at rest once its velocities, averaged over a quarter second to cancel contact
+  // jitter (rest_tracker.hpp), stayed under both speeds for rest_seconds; a wave is done
+  // when all parts are.
+  double rest_linear_speed_mm_s = 5.0;
+  double rest_angular_speed_rad_s = 0.05;
+  double rest_seconds = 0.25;
+  double max_wave_seconds = 60.0;  // simulated; an unsettled wave is reported, the next released
+  double max_wall_seconds = 0.0;   // whole bin, wall clock, 0 = unlimited; stops the drop
+  // Simulation: the step (deterministic: it depends only on the state), contact solver,
+  // materials. While a part moves faster than step_travel times the thinnest hull width per
+  // time_step_s, the step shrinks so it cannot pass through another part unseen.
+  double time_step_s = 1.0 / 120.0;
+  double step_travel = 0.5;
+  int solver_iterations = 10;
+  double friction = 0.5;
+  double restitution = 0.1;
+  // Resistance to rolling and spinning in place, as the lever arm of the contact force (mm):
+  // real contacts have a patch, Bullet's are points, and without it a torus on its rim or a
+  // part pivoting on a corner can roll or spin for a minute.
+  double rolling_friction_mm = 0.1;
+  // Parts at rest among parts at rest become static until a falling part hits near them: a
+  // landing wave then wakes only what it pushes, not the whole pile (pile_freezer.hpp).
+  // About ten times faster. The price: a frozen part does not feel the weight of parts that
+  // land on it later, so if a 350-part bin were released all at once, some parts would
+  // still shift (measured over 1 s: 80 to 110 parts by over 1 mm, 1 to 5 by over 5 mm).
+  bool freeze_resting = true;
+  // With freeze_resting: at the end, make every part dynamic and settle the whole pile once
+  // more; that removes those shifts (then under 10 parts move over 1 mm, as without
+  // freezing) at two to five times the cost of the waves.
+  bool final_settle_all_dynamic = false;
+};
+
+struct DropProgress {
+  int wave = 0;  // 0-based, of `waves`
+  int waves = 0;
+  int parts_dropped = 0;           // including this wave
+  int parts_moving = 0;            // not yet at rest
+  double simulated_seconds = 0.0;  // since the first wave
+};
+using ProgressFn = std::function<void(const DropProgress&)>;
+
+struct DropStats {
+  int waves = 0;
+  double simulated_seconds = 0.0;
+  std::vector<double> wave_simulated_seconds;  // per wave, then the final settling if any
+  std::vector<double> wave_wall_seconds;
+  bool settled = false;    // every wave (and the final settling) came to rest in the limits
+  int parts_left_bin = 0;  // ended outside the interior; not in `poses`
+  int parts_frozen = 0;    // times a part was made static (see DropOptions::freeze_resting)
+  int parts_thawed = 0;    // times a frozen part was hit and made dynamic again
+  std::string message;     // what went wrong when !settled or parts_left_bin > 0
+};
+
+struct DropResult {
+  std::vector<Eigen::Isometry3d> poses;  // part frame -> world, mm; one per part in the bin
+  DropStats stats;
+};
+
+// Throws InputError for a bin, count, grid, height, speed or time that is not positive and
+// finite, or a part too large for the grid of drop positions.
+void validate_drop_options(const DropOptions& options);
+
+// `hulls` collide; `part` (closed, mm) gives mass, centre of mass and inertia. Single threaded
+// and deterministic unless max_wall_seconds cuts it short. Bins may drop in parallel threads
+// only with the same rest_seconds (Bullet's deactivation time is a process-wide global).
+DropResult drop_parts(const ConvexParts& hulls, const Mesh& part, const DropOptions& options,
+                      const ProgressFn& progress = {});
+
+}  // namespace binpick

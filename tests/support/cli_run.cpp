@@ -1,0 +1,43 @@
+#include "tests/support/cli_run.hpp"
+
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <atomic>
+#include <cstdlib>
+#include <fstream>
+#include <sstream>
+
+namespace binpick::test {
+
+namespace fs = std::filesystem;
+
+std::string slurp(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+fs::path fresh_temp_dir(const std::string& name) {
+  static std::atomic<int> counter{0};
+  const fs::path dir = fs::temp_directory_path() / ("binpick_test_" + name + "_" +
+                                                    std::to_string(::getpid()) + "_" +
+                                                    std::to_string(counter++));
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  return dir;
+}
+
+CliRun run_binpick(const std::string& args) {
+  const fs::path dir = fresh_temp_dir("cli");
+  const fs::path out = dir / "stdout", err = dir / "stderr";
+  const std::string command = std::string("'") + BINPICK_EXE + "' " + args + " >'" +
+                              out.string() + "' 2>'" + err.string() + "' </dev/null";
+  const int raw = std::system(command.c_str());
+  CliRun r{WIFEXITED(raw) ? WEXITSTATUS(raw) : -1, slurp(out), slurp(err)};
+  fs::remove_all(dir);
+  return r;
+}
+
+}  // namespace binpick::test

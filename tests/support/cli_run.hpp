@@ -1,0 +1,23 @@
+// Runs the built `binpick` executable from a test, as a user would, and captures what it says.
+#pragma once
+
+#include <filesystem>
+#include <string>
+
+namespace binpick::test {
+
+struct CliRun {
+  int status = -1;  // exit status, -1 if it did not exit normally (a crash)
+  std::string out, err;
+};
+
+// `binpick ARGS` (ARGS as a shell would split them). Safe to call from tests running in
+// parallel: each call captures into its own temporary files.
+CliRun run_binpick(const std::string& args);
+
+// An empty directory of its own for this process and test, under the system's temp directory.
+std::filesystem::path fresh_temp_dir(const std::string& name);
+
+std::string slurp(const std::filesystem::path& path);
+
+}  // namespace binpick::test
