@@ -1,6 +1,7 @@
 // Convex decomposition with HACD and its on-disk cache.
 #include <LinearMath/btConvexHullComputer.h>
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <cmath>
 #include <cstdlib>
@@ -8,6 +9,7 @@
 #include <fstream>
 #include <limits>
 #include <numbers>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -268,13 +270,32 @@ TEST(DecomposeCache, KeyDependsOnMeshAndOptions) {
   EXPECT_EQ(decomposition_key(mesh, options), decomposition_key(mesh, elsewhere));
 }
 
+// Sets an environment variable for one scope and puts the old value back.
+class ScopedEnv {
+ public:
+  ScopedEnv(const char* name, const char* value) : name_(name) {
+    if (const char* old = std::getenv(name)) old_ = old;
+    value ? ::setenv(name, value, 1) : ::unsetenv(name);
+  }
+  ~ScopedEnv() { old_ ? ::setenv(name_, old_->c_str(), 1) : ::unsetenv(name_); }
+
+ private:
+  const char* name_;
+  std::optional<std::string> old_;
+};
+
 TEST(DecomposeCache, DirectoryFromArgumentThenEnvironment) {
-  ::setenv("BINPICK_CACHE_DIR", "/tmp/from-env", 1);
-  EXPECT_EQ(resolve_cache_dir(""), std::filesystem::path("/tmp/from-env"));
-  EXPECT_EQ(resolve_cache_dir("/tmp/from-arg"), std::filesystem::path("/tmp/from-arg"));
-  ::unsetenv("BINPICK_CACHE_DIR");
-  ::setenv("XDG_CACHE_HOME", "/tmp/xdg", 1);
+  {
+    ScopedEnv cache("BINPICK_CACHE_DIR", "/tmp/from-env");
+    EXPECT_EQ(resolve_cache_dir(""), std::filesystem::path("/tmp/from-env"));
+    EXPECT_EQ(resolve_cache_dir("/tmp/from-arg"), std::filesystem::path("/tmp/from-arg"));
+  }
+  ScopedEnv cache("BINPICK_CACHE_DIR", nullptr);
+  ScopedEnv xdg("XDG_CACHE_HOME", "/tmp/xdg");
   EXPECT_EQ(resolve_cache_dir(""), std::filesystem::path("/tmp/xdg/binpick"));
+  ScopedEnv no_xdg("XDG_CACHE_HOME", nullptr);
+  ScopedEnv home("HOME", "/tmp/home");
+  EXPECT_EQ(resolve_cache_dir(""), std::filesystem::path("/tmp/home/.cache/binpick"));
 }
 
 }  // namespace
