@@ -20,7 +20,8 @@ usage() {
 usage: ./run.sh demo | test | bench
   demo   build, then run 'binpick demo' (the whole loop on a built-in part)
   test   build, then run the test suite with ctest
-  bench  build, then run the benchmarks; results in build/bench/
+  bench  build (with OpenCV for the comparison), then run the benchmarks:
+         build/bench/bench.md and bench.json; extra arguments go to 'binpick bench'
 TXT
 }
 
@@ -64,15 +65,19 @@ case "$cmd" in
   bench)
     install_packages "${BUILD_PACKAGES[@]}" "${BENCH_PACKAGES[@]}"
     build
-    mkdir -p build/bench
+    shift
+    mkdir -p build/bench/micro
+    # The report a user reads: build/bench/bench.md and bench.json (binpick bench --help).
+    build/binpick bench --out build/bench "$@"
+    # Micro-benchmarks of single stages (Google Benchmark), medians of 5 repetitions.
     for b in build/bench_*; do
       [ -x "$b" ] || continue
       name=$(basename "$b")
       echo "== $name"
       "$b" --benchmark_repetitions=5 --benchmark_report_aggregates_only=true \
-           --benchmark_out="build/bench/$name.json" --benchmark_out_format=json
+           --benchmark_out="build/bench/micro/$name.json" --benchmark_out_format=json
     done
-    echo "run.sh: results in build/bench/"
+    echo "run.sh: report in build/bench/bench.md (and bench.json); micro-benchmarks in build/bench/micro/"
     ;;
   -h|--help|help) usage ;;
   *) usage >&2; exit 2 ;;

@@ -122,8 +122,19 @@ std::vector<Detection> Detector::finish(std::vector<Detection> detections) const
   return detections;
 }
 
+Detection Detector::detect_subsampled(const PointCloud& subsampled, DetectTimes* times) {
+  DetectTimes t;
+  Detection d;
+  d.neighbourhood = subsampled.points.size();
+  vote_and_cluster(subsampled, d, t);
+  t.hypotheses += 1;
+  if (times) *times += t;
+  return d;
+}
+
 std::vector<Detection> Detector::detect(const DepthImage& depth, const bp_camera& cam,
-                                        DetectTimes* times) {
+                                        DetectTimes* times,
+                                        std::vector<PointCloud>* neighbourhoods) {
   DetectTimes t;
   Stopwatch clock;
   require(depth.width > 0 && depth.height > 0, "the depth image is empty");
@@ -154,6 +165,7 @@ std::vector<Detection> Detector::detect(const DepthImage& depth, const bp_camera
     d.neighbourhood = sample.cropped;
     vote_and_cluster(sample.cloud, d, t);
     clock.lap();
+    if (neighbourhoods) neighbourhoods->push_back(sample.cloud);
     d.hypothesis = hyps[k];
     d.index = static_cast<std::uint32_t>(k);
     detections.push_back(d);

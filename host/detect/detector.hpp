@@ -69,8 +69,12 @@ class Detector {
   // A depth image (BOP: raw * depth_scale mm). Detections best first (votes; ties: height
   // order); a hypothesis without any vote gives no detection. InputError for an image that
   // does not match the camera or has no valid pixel.
+  // If neighbourhoods is given, each hypothesis' subsampled neighbourhood (what it voted on) is
+  // appended to it in hypothesis order, for the benchmark (which hands the same crops to
+  // another detector) and for pictures.
   std::vector<Detection> detect(const DepthImage& depth, const bp_camera& cam,
-                                DetectTimes* times = nullptr);
+                                DetectTimes* times = nullptr,
+                                std::vector<PointCloud>* neighbourhoods = nullptr);
 
   // A point cloud in the camera frame (z along the viewing axis: "highest" = smallest z). Without
   // normals they are estimated (PCA within 10 % of the diameter, oriented to the camera).
@@ -80,6 +84,11 @@ class Detector {
   // Steps 3-5 on one neighbourhood (points with normals): subsample, vote, cluster. votes = 0
   // if nothing voted.
   Detection detect_neighbourhood(const PointCloud& neighbourhood, DetectTimes* times = nullptr);
+
+  // Steps 4-5 only, on a neighbourhood already subsampled at the model's voxel (as detect()
+  // hands out); counts as one hypothesis in times. The benchmark varies the reference ratio on
+  // these fixed crops.
+  Detection detect_subsampled(const PointCloud& subsampled, DetectTimes* times = nullptr);
 
  private:
   std::vector<Detection> finish(std::vector<Detection> detections) const;
