@@ -105,8 +105,10 @@ void synth_and_train(std::ostream& os, const BenchResult& r) {
                       b.measured_now ? "" : " (earlier run)", b.physics_s, b.render_s,
                       b.decompose_s, b.write_s, sum);
   }
-  os << fmt::format("| median | {:.1f} | {:.2f} | | | {:.1f} |\n\n", median(physics),
-                    median(render), median(total));
+  if (!total.empty())
+    os << fmt::format("| median | {:.1f} | {:.2f} | | | {:.1f} |\n", median(physics),
+                      median(render), median(total));
+  os << "\n";
   os << fmt::format("## Model\n\nTraining: {} points, {} table entries, **{:.0f} ms** (voxel {} of "
                     "the diameter).\n\n",
                     r.train.points, r.train.entries, r.train.ms, r.train.voxel_ratio);

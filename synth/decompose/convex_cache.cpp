@@ -85,6 +85,7 @@ std::uint64_t decomposition_key(const Mesh& part, const DecomposeOptions& option
   h.value(options.volume_weight);
   h.value(static_cast<std::uint64_t>(options.min_clusters));
   h.value(static_cast<std::uint64_t>(options.max_hull_vertices));
+  h.value(static_cast<std::uint64_t>(options.max_hulls));
   h.value(static_cast<std::uint8_t>(options.add_extra_dist_points));
   h.value(static_cast<std::uint8_t>(options.add_neighbours_dist_points));
   h.value(static_cast<std::uint8_t>(options.add_faces_points));

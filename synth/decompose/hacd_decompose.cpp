@@ -4,6 +4,8 @@
 #include <cmath>
 #include <cstdint>
 #include <cstring>
+#include <limits>
+#include <memory>
 #include <string>
 #include <unordered_map>
 #include <vector>
@@ -111,26 +113,38 @@ ConvexParts decompose_convex_uncached(const Mesh& part, const DecomposeOptions& 
   triangles.reserve(mesh.triangles.size());
   for (const auto& t : mesh.triangles) triangles.emplace_back(t[0], t[1], t[2]);
 
-  HACD::HACD hacd;
-  hacd.SetPoints(points.data());
-  hacd.SetNPoints(points.size());
-  hacd.SetTriangles(triangles.data());
-  hacd.SetNTriangles(triangles.size());
-  hacd.SetCompacityWeight(options.compacity_weight);
-  hacd.SetVolumeWeight(options.volume_weight);
-  hacd.SetNClusters(options.min_clusters);
-  hacd.SetNVerticesPerCH(options.max_hull_vertices);
-  hacd.SetConcavity(options.concavity);
-  hacd.SetAddExtraDistPoints(options.add_extra_dist_points);
-  hacd.SetAddNeighboursDistPoints(options.add_neighbours_dist_points);
-  hacd.SetAddFacesPoints(options.add_faces_points);
-  if (!hacd.Compute()) throw InputError("HACD could not decompose the mesh");
+  // HACD merges clusters while the concavity stays under the threshold, down to NClusters. A
+  // part with holes (the built-in bracket: 14 hulls) comes out in so many pieces that a
+  // 350-part drop spends minutes in hull-pair contact tests; when that happens, decompose again
+  // with no concavity limit down to max_hulls, letting the hulls bridge small holes.
+  std::unique_ptr<HACD::HACD> hacd;
+  std::vector<HACD::Vec3<HACD::Real>> in;  // HACD rescales its input in place: a fresh copy
+  const auto run = [&](std::size_t clusters, double concavity) {
+    hacd = std::make_unique<HACD::HACD>();
+    in = points;
+    hacd->SetPoints(in.data());
+    hacd->SetNPoints(in.size());
+    hacd->SetTriangles(triangles.data());
+    hacd->SetNTriangles(triangles.size());
+    hacd->SetCompacityWeight(options.compacity_weight);
+    hacd->SetVolumeWeight(options.volume_weight);
+    hacd->SetNClusters(clusters);
+    hacd->SetNVerticesPerCH(options.max_hull_vertices);
+    hacd->SetConcavity(concavity);
+    hacd->SetAddExtraDistPoints(options.add_extra_dist_points);
+    hacd->SetAddNeighboursDistPoints(options.add_neighbours_dist_points);
+    hacd->SetAddFacesPoints(options.add_faces_points);
+    if (!hacd->Compute()) throw InputError("HACD could not decompose the mesh");
+  };
+  run(options.min_clusters, options.concavity);
+  if (options.max_hulls > 0 && hacd->GetNClusters() > options.max_hulls)
+    run(std::max(options.max_hulls, options.min_clusters), std::numeric_limits<double>::max());
 
   ConvexParts parts;
-  for (std::size_t c = 0; c < hacd.GetNClusters(); ++c) {
-    std::vector<HACD::Vec3<HACD::Real>> hull_points(hacd.GetNPointsCH(c));
-    std::vector<HACD::Vec3<long>> hull_triangles(hacd.GetNTrianglesCH(c));
-    if (hull_points.size() < 4 || !hacd.GetCH(c, hull_points.data(), hull_triangles.data()))
+  for (std::size_t c = 0; c < hacd->GetNClusters(); ++c) {
+    std::vector<HACD::Vec3<HACD::Real>> hull_points(hacd->GetNPointsCH(c));
+    std::vector<HACD::Vec3<long>> hull_triangles(hacd->GetNTrianglesCH(c));
+    if (hull_points.size() < 4 || !hacd->GetCH(c, hull_points.data(), hull_triangles.data()))
       continue;  // an empty cluster, or a flat one with no volume to collide with
     std::vector<Eigen::Vector3d> mm;
     mm.reserve(hull_points.size());
