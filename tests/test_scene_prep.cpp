@@ -16,6 +16,7 @@
 #include "host/detect/scene_normals.hpp"
 #include "host/detect/scene_prepare.hpp"
 #include "kernels/scene_shared.h"
+#include "tests/support/kernel_refs.hpp"
 
 using namespace binpick;
 
@@ -64,24 +65,10 @@ float angle_deg(const float* a, const float* b) {
   return float(std::atan2(x.cross(y).norm(), x.dot(y)) * 180.0 / M_PI);
 }
 
-// Eigenvalues (ascending) of the window covariance, as the reference forms it: to tell an
-// ill-conditioned pixel (smallest two nearly equal, or near the degeneracy threshold).
+// Eigenvalues of the window covariance (tests/support/kernel_refs.hpp): to tell an
+// ill-conditioned pixel.
 Eigen::Vector3d window_eigenvalues(const PointImage& pts, int u, int v, const NormalOptions& o) {
-  const float* c = &pts.xyzw[4 * (std::size_t(v) * pts.width + u)];
-  Eigen::Vector3d sum = Eigen::Vector3d::Zero();
-  Eigen::Matrix3d sq = Eigen::Matrix3d::Zero();
-  int n = 0;
-  for (int y = std::max(v - o.radius, 0); y <= std::min(v + o.radius, int(pts.height) - 1); ++y)
-    for (int x = std::max(u - o.radius, 0); x <= std::min(u + o.radius, int(pts.width) - 1); ++x) {
-      const float* p = &pts.xyzw[4 * (std::size_t(y) * pts.width + x)];
-      if (p[3] == 0 || bp_dist2(p[0], p[1], p[2], c[0], c[1], c[2]) > o.max_distance * o.max_distance)
-        continue;
-      const Eigen::Vector3d q(double(p[0]) - c[0], double(p[1]) - c[1], double(p[2]) - c[2]);
-      sum += q, sq += q * q.transpose(), ++n;
-    }
-  if (n < 3) return Eigen::Vector3d::Zero();
-  const Eigen::Vector3d m = sum / n;
-  return Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(sq / n - m * m.transpose()).eigenvalues();
+  return binpick::test::normal_window_eigenvalues(pts, u, v, o.radius, o.max_distance);
 }
 
 }  // namespace
