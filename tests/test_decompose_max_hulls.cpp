@@ -36,9 +36,10 @@ TEST(DecomposeMaxHulls, a_part_with_holes_is_capped_and_still_covered) {
   const ConvexParts many = decompose_convex(bracket, unlimited);
   ASSERT_GT(many.hulls.size(), 6u) << "the bracket's holes no longer split it: pick another part";
 
-  // HACD takes seconds on this mesh: one cap only, the default.
+  // HACD takes seconds on this mesh: one cap only.
   DecomposeOptions capped;
   capped.use_cache = false;
+  capped.max_hulls = 6;
   const ConvexParts few = decompose_convex(bracket, capped);
   EXPECT_LE(few.hulls.size(), capped.max_hulls);
   EXPECT_GE(few.hulls.size(), 1u);
