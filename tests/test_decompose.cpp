@@ -1,4 +1,5 @@
 // Convex decomposition with HACD and its on-disk cache.
+#include <Eigen/Eigenvalues>
 #include <LinearMath/btConvexHullComputer.h>
 #include <gtest/gtest.h>
 #include <unistd.h>
@@ -8,7 +9,6 @@
 #include <filesystem>
 #include <fstream>
 #include <limits>
-#include <numbers>
 #include <optional>
 #include <string>
 #include <vector>
@@ -16,58 +16,15 @@
 #include "host/core/error.hpp"
 #include "synth/decompose/convex_cache.hpp"
 #include "synth/decompose/decompose.hpp"
+#include "synth/parts/builtin_parts.hpp"
+#include "tests/support/test_meshes.hpp"
 
 namespace binpick {
 namespace {
 
-// An L-profile (legs 40 and 30 mm, 5 mm thick) extruded 20 mm: concave, closed.
-Mesh l_bracket() {
-  const std::vector<Eigen::Vector2f> outline = {{0, 0}, {40, 0}, {40, 5}, {5, 5}, {5, 30}, {0, 30}};
-  const auto n = static_cast<std::uint32_t>(outline.size());
-  Mesh m;
-  for (float z : {0.0f, 20.0f})
-    for (const auto& p : outline) m.positions.emplace_back(p.x(), p.y(), z);
-  for (std::uint32_t i : {4u, 5u, 0u, 1u}) {  // fan from the reflex corner
-    const std::uint32_t j = (i + 1) % n;
-    m.triangles.push_back({3, j, i});
-    m.triangles.push_back({n + 3, n + i, n + j});
-  }
-  for (std::uint32_t i = 0; i < n; ++i) {
-    const std::uint32_t j = (i + 1) % n;
-    m.triangles.push_back({i, j, n + j});
-    m.triangles.push_back({i, n + j, n + i});
-  }
-  return m;
-}
-
-Mesh box(const Eigen::Vector3f& size) {
-  Mesh m;
-  for (int i = 0; i < 8; ++i)
-    m.positions.emplace_back(i & 1 ? size.x() : 0.f, i & 2 ? size.y() : 0.f,
-                             i & 4 ? size.z() : 0.f);
-  m.triangles = {{0, 2, 1}, {1, 2, 3}, {4, 5, 6}, {5, 7, 6}, {0, 1, 4}, {1, 5, 4},
-                 {2, 6, 3}, {3, 6, 7}, {0, 4, 2}, {2, 4, 6}, {1, 3, 5}, {3, 7, 5}};
-  return m;
-}
-
-// Ring radius 20 mm, tube radius 6 mm.
-Mesh torus() {
-  const int nu = 32, nv = 12;
-  Mesh m;
-  for (int i = 0; i < nu; ++i)
-    for (int j = 0; j < nv; ++j) {
-      const double u = 2 * std::numbers::pi * i / nu, v = 2 * std::numbers::pi * j / nv;
-      m.positions.emplace_back(float((20 + 6 * std::cos(v)) * std::cos(u)),
-                               float((20 + 6 * std::cos(v)) * std::sin(u)), float(6 * std::sin(v)));
-    }
-  const auto at = [&](int i, int j) { return std::uint32_t((i % nu) * nv + j % nv); };
-  for (int i = 0; i < nu; ++i)
-    for (int j = 0; j < nv; ++j) {
-      m.triangles.push_back({at(i, j), at(i + 1, j), at(i + 1, j + 1)});
-      m.triangles.push_back({at(i, j), at(i + 1, j + 1), at(i, j + 1)});
-    }
-  return m;
-}
+using test::box;
+using test::l_bracket;
+using test::torus;
 
 // Every triangle with its own three vertices, as STL files and per-face normals give them.
 Mesh split_vertices(const Mesh& mesh) {
@@ -118,6 +75,20 @@ std::pair<Eigen::Vector3f, Eigen::Vector3f> bounds(const std::vector<Eigen::Vect
     hi = hi.cwiseMax(p);
   }
   return {lo, hi};
+}
+
+// The smallest extent of the points along their principal axes.
+float smallest_extent(const std::vector<Eigen::Vector3f>& points) {
+  Eigen::Vector3f mean = Eigen::Vector3f::Zero();
+  for (const auto& p : points) mean += p;
+  mean /= float(points.size());
+  Eigen::Matrix3f covariance = Eigen::Matrix3f::Zero();
+  for (const auto& p : points) covariance += (p - mean) * (p - mean).transpose();
+  const Eigen::Matrix3f axes = Eigen::SelfAdjointEigenSolver<Eigen::Matrix3f>(covariance).eigenvectors();
+  std::vector<Eigen::Vector3f> along;
+  for (const auto& p : points) along.push_back(axes.transpose() * p);
+  const auto [lo, hi] = bounds(along);
+  return (hi - lo).minCoeff();
 }
 
 std::filesystem::path fresh_dir(const std::string& name) {
@@ -189,6 +160,23 @@ TEST(Decompose, SameHullsAtAnyScale) {
     for (std::size_t v = 0; v < small.size(); ++v)
       EXPECT_LT((small[v] * scale - large[v]).norm(), 1e-3f * scale);
   }
+}
+
+// HACD returns some clusters of the built-in bracket (the faces around its holes) as flat
+// patches; they must not reach the physics, whose step shrinks with the thinnest hull.
+TEST(Decompose, NoFlatHulls) {
+  const Mesh bracket = make_builtin_part("bracket");
+  const auto [lo, hi] = bounds(bracket.positions);
+  const float diagonal = (hi - lo).norm();
+  std::vector<Eigen::Vector3f> all;
+  for (const auto& hull : decompose_convex(bracket, uncached()).hulls) {
+    EXPECT_GE(smallest_extent(hull.vertices), 0.01f * diagonal);
+    all.insert(all.end(), hull.vertices.begin(), hull.vertices.end());
+  }
+  // What is left still spans the part.
+  const auto [hulls_lo, hulls_hi] = bounds(all);
+  EXPECT_LT((hulls_lo - lo).cwiseAbs().maxCoeff(), 0.01f * diagonal);
+  EXPECT_LT((hulls_hi - hi).cwiseAbs().maxCoeff(), 0.01f * diagonal);
 }
 
 TEST(Decompose, SplitVerticesAreWelded) {

@@ -4,7 +4,6 @@
 #include <cmath>
 #include <limits>
 #include <map>
-#include <numbers>
 #include <string>
 #include <vector>
 
@@ -17,61 +16,15 @@
 #include "synth/physics/mass_properties.hpp"
 #include "synth/physics/part_shape.hpp"
 #include "synth/physics/penetration.hpp"
+#include "synth/physics/rest_tracker.hpp"
+#include "tests/support/test_meshes.hpp"
 
 namespace binpick {
 namespace {
 
-// An L-profile (legs 40 and 30 mm, 5 mm thick) extruded 20 mm: a bracket-like part of
-// diameter about 54 mm, concave, closed, wound counter-clockwise from outside.
-Mesh l_bracket() {
-  const std::vector<Eigen::Vector2f> outline = {{0, 0}, {40, 0}, {40, 5}, {5, 5}, {5, 30}, {0, 30}};
-  const float width = 20;
-  const auto n = static_cast<std::uint32_t>(outline.size());
-  Mesh m;
-  for (float z : {0.0f, width})
-    for (const auto& p : outline) m.positions.emplace_back(p.x(), p.y(), z);
-  // Fan from the reflex corner (index 3), which sees every other corner.
-  for (std::uint32_t i : {4u, 5u, 0u, 1u}) {
-    const std::uint32_t j = (i + 1) % n;
-    m.triangles.push_back({3, j, i});              // bottom, facing -z
-    m.triangles.push_back({n + 3, n + i, n + j});  // top, facing +z
-  }
-  for (std::uint32_t i = 0; i < n; ++i) {
-    const std::uint32_t j = (i + 1) % n;
-    m.triangles.push_back({i, j, n + j});
-    m.triangles.push_back({i, n + j, n + i});
-  }
-  return m;
-}
-
-Mesh box(const Eigen::Vector3f& size) {
-  Mesh m;
-  for (int i = 0; i < 8; ++i)
-    m.positions.emplace_back(i & 1 ? size.x() : 0.f, i & 2 ? size.y() : 0.f,
-                             i & 4 ? size.z() : 0.f);
-  m.triangles = {{0, 2, 1}, {1, 2, 3}, {4, 5, 6}, {5, 7, 6}, {0, 1, 4}, {1, 5, 4},
-                 {2, 6, 3}, {3, 6, 7}, {0, 4, 2}, {2, 4, 6}, {1, 3, 5}, {3, 7, 5}};
-  return m;
-}
-
-// Ring radius 20 mm, tube radius 6 mm: diameter 52 mm, like the paper's part; 8 HACD hulls.
-Mesh torus() {
-  const int nu = 32, nv = 12;
-  Mesh m;
-  for (int i = 0; i < nu; ++i)
-    for (int j = 0; j < nv; ++j) {
-      const double u = 2 * std::numbers::pi * i / nu, v = 2 * std::numbers::pi * j / nv;
-      m.positions.emplace_back(float((20 + 6 * std::cos(v)) * std::cos(u)),
-                               float((20 + 6 * std::cos(v)) * std::sin(u)), float(6 * std::sin(v)));
-    }
-  const auto at = [&](int i, int j) { return std::uint32_t((i % nu) * nv + j % nv); };
-  for (int i = 0; i < nu; ++i)
-    for (int j = 0; j < nv; ++j) {
-      m.triangles.push_back({at(i, j), at(i + 1, j), at(i + 1, j + 1)});
-      m.triangles.push_back({at(i, j), at(i + 1, j + 1), at(i, j + 1)});
-    }
-  return m;
-}
+using test::box;
+using test::l_bracket;
+using test::torus;
 
 // A small bin the tests can afford: 3 waves of a 3 x 4 grid.
 DropOptions small_bin(int objects = 30) {
@@ -127,6 +80,34 @@ class DropBin : public ::testing::TestWithParam<BinKind> {
  protected:
   const DroppedBin& bin() const { return dropped_bin(GetParam()); }
 };
+
+// The rest test averages velocities over a sliding quarter second (rest_tracker.hpp).
+TEST(RestTracker, JitterCancelsDriftCountsAndAStopShowsOneWindowLater) {
+  const double dt = 1.0 / 120;
+  RestTracker rest(0.5, 0.05, 0.25);  // units/s, rad/s, s
+  rest.add();  // 0: kicked back and forth at 6 times the rest speed, going nowhere
+  rest.add();  // 1: falls at 300 units/s, then lies still
+  rest.add();  // 2: creeps steadily at twice the rest speed
+  const btVector3 zero(0, 0, 0);
+  double at_rest_since = -1;  // part 1, after it stops at t = 0.5 s
+  for (int step = 1; step <= 240; ++step) {
+    const double t = step * dt;
+    const btScalar kick = step % 2 ? 3 : -3;
+    rest.update(0, btVector3(kick, 0, 0), btVector3(0, 0, kick / 10), dt);
+    rest.update(1, t <= 0.5 ? btVector3(0, 0, -300) : zero, zero, dt);
+    rest.update(2, btVector3(1, 0, 0), zero, dt);
+    if (at_rest_since < 0 && rest.at_rest(1)) at_rest_since = t;
+  }
+  EXPECT_TRUE(rest.at_rest(0));
+  EXPECT_FALSE(rest.at_rest(2));
+  EXPECT_NEAR(rest.speed_ratio(2), 2.0, 1e-3);
+  // A window to forget the fall, then rest_seconds of calm: an exponential average of the
+  // fall would still read over the rest speed a second later.
+  EXPECT_GT(at_rest_since, 0.5 + 0.25 + 0.25 - 2 * dt);
+  EXPECT_LT(at_rest_since, 0.5 + 0.25 + 0.25 + 2 * dt);
+  rest.restart(0);
+  EXPECT_FALSE(rest.at_rest(0));
+}
 
 TEST(MassProperties, BoxCentreAndInertia) {
   const auto props = mass_properties(box({10, 20, 40}));
@@ -194,8 +175,9 @@ TEST_P(DropBin, NoDeepInterpenetration) {
 
 // At rest means at rest for Bullet too: put every part back as a dynamic body where it ended
 // (nothing frozen, no sleeping history) and let the world run on for half a second. After an
-// all-dynamic final settling nothing may go anywhere; with frozen parts to the end, a part
-// may shift a little under weight it never felt (DropOptions::freeze_resting), not more.
+// all-dynamic final settling nothing may go anywhere; with parts frozen again after the
+// default second of it, a part may shift a little under weight it never felt
+// (DropOptions::freeze_resting), not more.
 TEST_P(DropBin, PartsStayPutWhenSimulatedOn) {
   const auto& b = bin();
   const PartShape shape(b.hulls, mass_properties(b.part));
@@ -287,6 +269,7 @@ TEST(Drop, BadOptionsAreInputErrors) {
   rejects([](DropOptions& o) { o.drop_height_mm = std::numeric_limits<double>::infinity(); });
   rejects([](DropOptions& o) { o.time_step_s = std::numeric_limits<double>::quiet_NaN(); });
   rejects([](DropOptions& o) { o.rest_linear_speed_mm_s = 0; });
+  rejects([](DropOptions& o) { o.final_all_dynamic_seconds = -1; });
   rejects([](DropOptions& o) { o.bin_size_mm = {40, 40, 40}; });  // narrower than the part
   EXPECT_THROW(drop_parts(ConvexParts{}, l_bracket(), small_bin()), InputError);
   EXPECT_THROW(drop_parts(bracket_hulls(), Mesh{}, small_bin()), InputError);

@@ -21,7 +21,9 @@ namespace binpick {
 namespace {
 
 constexpr char kMagic[8] = {'B', 'P', 'H', 'U', 'L', 'L', 'S', '\0'};
-constexpr std::uint32_t kVersion = 1;
+// Also hashed into every key: bumped when the decomposition itself changes, so entries made
+// by an older one are not served (2: flat hulls left out).
+constexpr std::uint32_t kVersion = 2;
 // A larger file is not one of ours; refusing it keeps a corrupt size from exhausting memory.
 constexpr std::uintmax_t kMaxFileBytes = std::uintmax_t{1} << 30;
 

@@ -18,8 +18,9 @@ struct DecomposeOptions {
   std::size_t min_clusters = 2;   // HACD stops merging at this many hulls
   // At most this many hulls (0 = no limit): a part that HACD cuts into more is decomposed again
   // without the concavity limit. Contact cost grows with hulls squared (the built-in bracket:
-  // 14 hulls; capped at 6 its 350-part drop went from over 15 min to about 6). Off by default:
-  // capping the torus (8 hulls) at 6 coarsened its hulls beyond the span and stability tests.
+  // 12 hulls once flat ones are left out; capped at 6 its 350-part drop took half as long).
+  // Off by default: capping the torus (8 hulls) at 6 coarsened its hulls beyond the span and
+  // stability tests.
   std::size_t max_hulls = 0;
   // Collision tests walk every vertex of a hull: 12 keeps a 350-part torus bin twice as fast
   // as 32, and HACD fits them to the surface.

@@ -1,6 +1,6 @@
 // The wave loop: release a grid of randomly oriented parts, step until every part is at rest,
-// repeat; optionally let the whole pile settle once more with nothing frozen; report part
-// poses in mm.
+// repeat; let the whole pile settle once more with nothing frozen, for a second or until it
+// is at rest; report part poses in mm.
 #include "synth/physics/drop.hpp"
 
 #include <algorithm>
@@ -59,8 +59,9 @@ class BinDrop {
 
   bool out_of_wall_time() const { return out_of_wall_time_; }
 
-  // Steps until every part is at rest or a limit is hit; `label` names the phase in messages.
-  void settle(int wave, bool freeze, const std::string& label) {
+  // Steps until every part is at rest or a limit is hit, or for `phase_seconds` (simulated)
+  // if that is positive; `label` names the phase in messages.
+  void settle(int wave, bool freeze, const std::string& label, double phase_seconds = 0.0) {
     const auto wave_start = Clock::now();
     double seconds = 0.0;
     for (int check = 0;; ++check) {
@@ -74,7 +75,7 @@ class BinDrop {
       if (progress_ && (moving == 0 || check % kChecksPerProgress == 0))
         progress_({wave, stats_.waves, static_cast<int>(world_.parts().size()), moving,
                    stats_.simulated_seconds + seconds});
-      if (moving == 0) break;
+      if (moving == 0 || (phase_seconds > 0.0 && seconds >= phase_seconds)) break;
       if (seconds >= options_.max_wave_seconds) {
         stats_.settled = false;
         append_message(stats_.message,
@@ -145,10 +146,15 @@ DropResult drop_parts(const ConvexParts& hulls, const Mesh& part, const DropOpti
     }
     drop.settle(wave, options.freeze_resting, "wave " + std::to_string(wave + 1));
   }
-  if (options.freeze_resting && options.final_settle_all_dynamic && !drop.out_of_wall_time()) {
+  const double all_dynamic_seconds =
+      options.final_settle_all_dynamic ? 0.0 : options.final_all_dynamic_seconds;
+  if (options.freeze_resting && !drop.out_of_wall_time() &&
+      (options.final_settle_all_dynamic || all_dynamic_seconds > 0.0)) {
     for (btRigidBody* body : world.parts())
       if (body->isInWorld() && world.frozen(*body)) world.thaw(body);
-    drop.settle(stats.waves - 1, false, "the final settling");
+    drop.settle(stats.waves - 1, false, "the final settling", all_dynamic_seconds);
+    if (!options.final_settle_all_dynamic && !drop.out_of_wall_time())
+      drop.settle(stats.waves - 1, true, "the final settling");
   }
 
   const Eigen::Isometry3d part_in_body = shape.body_in_part().inverse();

@@ -41,6 +41,7 @@ void validate_drop_options(const DropOptions& o) {
   require_positive(o.rest_seconds, "rest seconds");
   require_positive(o.max_wave_seconds, "max wave seconds");
   require_non_negative(o.max_wall_seconds, "max wall seconds");
+  require_non_negative(o.final_all_dynamic_seconds, "final all-dynamic seconds");
   require_positive(o.time_step_s, "time step");
   if (o.time_step_s > 0.05)
     throw InputError("drop option time step must be at most 0.05 s, got " +

@@ -7,7 +7,7 @@ namespace {
 
 // Long enough to cancel the jitter of resting contacts (0.05 s was not), short enough that a
 // part tipping over still shows within a rest time.
-constexpr double kAveragingSeconds = 0.25;
+constexpr double kWindowSeconds = 0.25;
 
 }  // namespace
 
@@ -19,18 +19,29 @@ void RestTracker::add() { parts_.emplace_back(); }
 void RestTracker::update(std::size_t index, const btVector3& linear, const btVector3& angular,
                          double dt) {
   Motion& m = parts_[index];
-  const auto blend = btScalar(dt / (kAveragingSeconds + dt));  // exponential moving average
-  m.linear += blend * (linear - m.linear);
-  m.angular += blend * (angular - m.angular);
-  m.calm_seconds = speed_ratio(index) < 1.0 ? m.calm_seconds + dt : 0.0;
+  const Step step{dt, linear * btScalar(dt), angular * btScalar(dt)};
+  m.window.push_back(step);
+  m.window_seconds += dt;
+  m.linear_sum += step.linear;
+  m.angular_sum += step.angular;
+  // Keep the newest steps that span the window (all of them until they do: a part just
+  // released or thawed is judged on what it did since).
+  while (m.window.size() > 1 && m.window_seconds - m.window.front().dt >= kWindowSeconds) {
+    const Step& old = m.window.front();
+    m.window_seconds -= old.dt;
+    m.linear_sum -= old.linear;
+    m.angular_sum -= old.angular;
+    m.window.pop_front();
+  }
+  const double seconds = m.window_seconds;
+  m.ratio = std::max(m.linear_sum.length() / seconds / linear_speed_,
+                     m.angular_sum.length() / seconds / angular_speed_);
+  m.calm_seconds = m.ratio < 1.0 ? m.calm_seconds + dt : 0.0;
 }
 
-void RestTracker::restart(std::size_t index) { parts_[index].calm_seconds = 0.0; }
+void RestTracker::restart(std::size_t index) { parts_[index] = Motion{}; }
 
-double RestTracker::speed_ratio(std::size_t index) const {
-  const Motion& m = parts_[index];
-  return std::max(m.linear.length() / linear_speed_, m.angular.length() / angular_speed_);
-}
+double RestTracker::speed_ratio(std::size_t index) const { return parts_[index].ratio; }
 
 bool RestTracker::at_rest(std::size_t index) const {
   return parts_[index].calm_seconds >= rest_seconds_;

@@ -40,6 +40,9 @@ json manifest(const SynthOptions& o, const std::string& model, double diameter) 
           {"grid", {d.grid_x, d.grid_y}},
           {"bin_size_mm", {d.bin_size_mm.x(), d.bin_size_mm.y(), d.bin_size_mm.z()}},
           {"drop_height_mm", d.drop_height_mm},
+          {"final_settle",
+           {{"all_dynamic_until_at_rest", d.final_settle_all_dynamic},
+            {"all_dynamic_s", d.final_all_dynamic_seconds}}},
           {"camera_height_mm", o.camera_height_mm},
           {"image", {o.width, o.height}},
           {"depth_scale", o.depth_scale}};
