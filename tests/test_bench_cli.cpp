@@ -25,10 +25,10 @@ TEST(BenchCli, help_names_the_options) {
 
 TEST(BenchCli, bad_options_fail_fast_with_one_message) {
   const fs::path dir = fresh_temp_dir("bench_bad");
-  for (const std::string& args :
+  for (const char* args :
        {"--bins 0", "--repeats 0", "--ref-ratios 0.2,abc", "--ref-ratios 0", "--ref-ratios ''",
         "--objects -3", "--model builtin:nosuchpart", "--width 4"}) {
-    const auto r = run_binpick("bench --out " + dir.string() + " " + args);
+    const auto r = run_binpick("bench --out " + dir.string() + " " + std::string(args));
     EXPECT_EQ(r.status, 2) << args << "\n" << r.err;
     EXPECT_NE(r.err.find("error"), std::string::npos) << args << "\n" << r.err;
     EXPECT_FALSE(fs::exists(dir / "bench.md")) << args;

@@ -10,43 +10,28 @@
 #include "host/cli/model_options.hpp"
 #include "host/cli/verbs.hpp"
 #include "host/core/error.hpp"
+#include "host/pipeline/experiment.hpp"
 
 namespace binpick::cli {
 namespace {
 
+ModelArgs default_model() {
+  ModelArgs m;
+  m.model = "builtin:bracket";
+  return m;
+}
+
 struct BenchArgs {
-  ModelArgs model{"builtin:bracket"};
+  ModelArgs model = default_model();
   bench::BenchOptions options;
   std::string ref_ratios = "0.2,0.02";
   bool quick = false;
 };
 
-// "0.2,0.02" -> {0.2, 0.02}; ranges are checked by bench::check.
-std::vector<double> parse_ratio_list(const std::string& text) {
-  std::vector<double> values;
-  std::size_t start = 0;
-  while (start <= text.size()) {
-    const std::size_t comma = std::min(text.find(',', start), text.size());
-    const std::string item = text.substr(start, comma - start);
-    std::size_t used = 0;
-    double v = 0;
-    try {
-      v = std::stod(item, &used);
-    } catch (const std::exception&) {
-      used = 0;
-    }
-    if (item.empty() || used != item.size())
-      throw InputError(fmt::format("--ref-ratios '{}': '{}' is not a number; e.g. 0.2,0.02", text, item));
-    values.push_back(v);
-    start = comma + 1;
-  }
-  return values;
-}
-
 void run_bench_verb(const BenchArgs& a) {
   bench::BenchOptions o = a.quick ? bench::quick_options(a.options) : a.options;
   o.part = {a.model.model, model_options_of(a.model)};
-  o.ref_ratios = parse_ratio_list(a.ref_ratios);
+  o.ref_ratios = pipeline::parse_number_list(a.ref_ratios, "--ref-ratios", "0.2,0.02");
   bench::check(o);  // before the slow stages
   const auto run = bench::run_bench(o, std::cout);
   std::cout << "\n" << bench::bench_markdown(run.result) << "\n"

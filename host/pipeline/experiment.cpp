@@ -40,10 +40,10 @@ SynthOptions synth_options(const ExperimentOptions& o, double noise) {
 
 }  // namespace
 
-std::vector<double> parse_noise_list(const std::string& text) {
-  const std::string example = "e.g. --noise 0,0.01,0.02";
-  if (text.empty()) throw InputError("--noise is empty: give at least one noise level, " + example);
-  std::vector<double> levels;
+std::vector<double> parse_number_list(const std::string& text, const std::string& option,
+                                      const std::string& example) {
+  if (text.empty()) throw InputError(option + " is empty: give at least one value, e.g. " + example);
+  std::vector<double> values;
   std::size_t start = 0;
   while (start <= text.size()) {
     const std::size_t comma = std::min(text.find(',', start), text.size());
@@ -56,11 +56,16 @@ std::vector<double> parse_noise_list(const std::string& text) {
       used = 0;
     }
     if (item.empty() || used != item.size())
-      throw InputError("--noise '" + text + "': '" + item + "' is not a number; " + example);
-    levels.push_back(value);
+      throw InputError(option + " '" + text + "': '" + item + "' is not a number; e.g. " + option +
+                       " " + example);
+    values.push_back(value);
     start = comma + 1;
   }
-  return levels;
+  return values;
+}
+
+std::vector<double> parse_noise_list(const std::string& text) {
+  return parse_number_list(text, "--noise", "0,0.01,0.02");
 }
 
 std::string noise_dir_name(double noise) {

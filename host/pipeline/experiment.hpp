@@ -44,6 +44,11 @@ void check(const ExperimentOptions& options);
 // number (range checks are check(ExperimentOptions)).
 std::vector<double> parse_noise_list(const std::string& text);
 
+// The same for any comma-separated list of numbers given to `option` (messages name it and
+// show `example`).
+std::vector<double> parse_number_list(const std::string& text, const std::string& option,
+                                      const std::string& example);
+
 // "noise_0.00": two decimals, more when the level needs them (0.005 -> noise_0.005).
 std::string noise_dir_name(double noise);
 

@@ -15,4 +15,8 @@ struct ConvexParts {
   std::vector<ConvexHull> hulls;
 };
 
+// The smallest extent of a hull along its principal axes (mm): how thin it is. Decomposition
+// drops flat hulls by it; the drop sizes its adaptive step by the thinnest hull.
+double thinnest_extent(const ConvexHull& hull);
+
 }  // namespace binpick

@@ -16,7 +16,6 @@
 #include <hacdHACD.h>
 #pragma GCC diagnostic pop
 
-#include <Eigen/Eigenvalues>
 #include <LinearMath/btConvexHullComputer.h>
 
 #include "host/core/error.hpp"
@@ -80,27 +79,6 @@ std::vector<Eigen::Vector3f> extreme_points(const std::vector<Eigen::Vector3d>& 
 // thinner than this fraction of the part's diagonal are left out; the solid they border is
 // in the other hulls.
 constexpr double kMinThickness = 0.01;
-
-// The smallest extent of the points along their principal axes (mm).
-double thickness(const std::vector<Eigen::Vector3f>& vertices) {
-  Eigen::Vector3d mean = Eigen::Vector3d::Zero();
-  for (const auto& v : vertices) mean += v.cast<double>();
-  mean /= static_cast<double>(vertices.size());
-  Eigen::Matrix3d covariance = Eigen::Matrix3d::Zero();
-  for (const auto& v : vertices) {
-    const Eigen::Vector3d d = v.cast<double>() - mean;
-    covariance += d * d.transpose();
-  }
-  const Eigen::Matrix3d axes =
-      Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(covariance).eigenvectors();
-  Eigen::Vector3d lo = Eigen::Vector3d::Constant(INFINITY), hi = -lo;
-  for (const auto& v : vertices) {
-    const Eigen::Vector3d along = axes.transpose() * v.cast<double>();
-    lo = lo.cwiseMin(along);
-    hi = hi.cwiseMax(along);
-  }
-  return (hi - lo).minCoeff();
-}
 
 void validate(const Mesh& part) {
   if (part.positions.empty() || part.triangles.empty())
@@ -181,7 +159,7 @@ ConvexParts decompose_convex_uncached(const Mesh& part, const DecomposeOptions& 
     for (const auto& q : hull_points)
       mm.push_back(Eigen::Vector3d(q.X(), q.Y(), q.Z()) * diagonal + centre);
     ConvexHull hull{extreme_points(mm)};
-    if (hull.vertices.size() >= 4 && thickness(hull.vertices) >= kMinThickness * diagonal)
+    if (hull.vertices.size() >= 4 && thinnest_extent(hull) >= kMinThickness * diagonal)
       parts.hulls.push_back(std::move(hull));
   }
   if (parts.hulls.empty()) throw InputError("HACD produced no convex hull with volume");

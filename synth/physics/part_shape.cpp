@@ -1,6 +1,5 @@
 #include "synth/physics/part_shape.hpp"
 
-#include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
 
@@ -8,29 +7,6 @@
 #include "synth/physics/bullet_units.hpp"
 
 namespace binpick {
-namespace {
-
-double thinnest_extent(const std::vector<Eigen::Vector3f>& vertices) {
-  Eigen::Vector3d mean = Eigen::Vector3d::Zero();
-  for (const auto& v : vertices) mean += v.cast<double>();
-  mean /= static_cast<double>(vertices.size());
-  Eigen::Matrix3d covariance = Eigen::Matrix3d::Zero();
-  for (const auto& v : vertices) {
-    const Eigen::Vector3d d = v.cast<double>() - mean;
-    covariance += d * d.transpose();
-  }
-  const Eigen::Matrix3d axes =
-      Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(covariance).eigenvectors();
-  Eigen::Vector3d lo = Eigen::Vector3d::Constant(INFINITY), hi = -lo;
-  for (const auto& v : vertices) {
-    const Eigen::Vector3d along = axes.transpose() * v.cast<double>();
-    lo = lo.cwiseMin(along);
-    hi = hi.cwiseMax(along);
-  }
-  return (hi - lo).minCoeff();
-}
-
-}  // namespace
 
 PartShape::PartShape(const ConvexParts& hulls, const MassProperties& mass)
     : inertia_per_mass_(to_units(mass.inertia_per_mass) / btScalar(kMmPerUnit)),
@@ -39,7 +15,7 @@ PartShape::PartShape(const ConvexParts& hulls, const MassProperties& mass)
   const Eigen::Isometry3d part_in_body = body_in_part_.inverse();
   thinnest_mm_ = INFINITY;
   for (const auto& hull : hulls.hulls) {
-    thinnest_mm_ = std::min(thinnest_mm_, thinnest_extent(hull.vertices));
+    thinnest_mm_ = std::min(thinnest_mm_, thinnest_extent(hull));
     auto shape = std::make_unique<btConvexHullShape>();
     for (const auto& v : hull.vertices) {
       const Eigen::Vector3d in_body = part_in_body * v.cast<double>();
