@@ -33,6 +33,7 @@ TEST(DecomposeMaxHulls, a_part_with_holes_is_capped_and_still_covered) {
   DecomposeOptions unlimited;
   unlimited.use_cache = false;
   unlimited.max_hulls = 0;
+  unlimited.merge.max_added_per_merge = 0;  // HACD's own count (merging makes it 2)
   const ConvexParts many = decompose_convex(bracket, unlimited);
   ASSERT_GT(many.hulls.size(), 6u) << "the bracket's holes no longer split it: pick another part";
 
@@ -40,6 +41,7 @@ TEST(DecomposeMaxHulls, a_part_with_holes_is_capped_and_still_covered) {
   DecomposeOptions capped;
   capped.use_cache = false;
   capped.max_hulls = 6;
+  capped.merge.max_added_per_merge = 0;
   const ConvexParts few = decompose_convex(bracket, capped);
   EXPECT_LE(few.hulls.size(), capped.max_hulls);
   EXPECT_GE(few.hulls.size(), 1u);

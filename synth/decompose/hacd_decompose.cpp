@@ -121,10 +121,10 @@ ConvexParts decompose_convex_uncached(const Mesh& part, const DecomposeOptions& 
   triangles.reserve(mesh.triangles.size());
   for (const auto& t : mesh.triangles) triangles.emplace_back(t[0], t[1], t[2]);
 
-  // HACD merges clusters while the concavity stays under the threshold, down to NClusters. A
-  // part with holes (the built-in bracket: 14 hulls) comes out in so many pieces that a
-  // 350-part drop spends minutes in hull-pair contact tests; when that happens, decompose again
-  // with no concavity limit down to max_hulls, letting the hulls bridge small holes.
+  // HACD merges clusters while the concavity stays under the threshold, down to NClusters. With
+  // max_hulls set and more hulls than that, decompose again with no concavity limit down to
+  // max_hulls, letting the hulls bridge small holes. (By default, merge_hulls does that job
+  // below, with a bound on the volume it adds.)
   std::unique_ptr<HACD::HACD> hacd;
   std::vector<HACD::Vec3<HACD::Real>> in;  // HACD rescales its input in place: a fresh copy
   const auto run = [&](std::size_t clusters, double concavity) {
@@ -163,6 +163,7 @@ ConvexParts decompose_convex_uncached(const Mesh& part, const DecomposeOptions& 
       parts.hulls.push_back(std::move(hull));
   }
   if (parts.hulls.empty()) throw InputError("HACD produced no convex hull with volume");
+  if (options.merge.max_added_per_merge > 0.0) return merge_hulls(parts, options.merge);
   return parts;
 }
 

@@ -1,0 +1,146 @@
+#include "synth/decompose/hull_merge.hpp"
+
+#include <LinearMath/btConvexHullComputer.h>
+
+#include <Eigen/Geometry>
+#include <limits>
+#include <vector>
+
+namespace binpick {
+namespace {
+
+// Samples per axis of a hull's bounding box: 20^3 = 8000 points resolve 0.1 % of a hull's
+// volume, and a decomposition takes well under a second.
+constexpr int kGrid = 20;
+
+// A convex hull as half-spaces n.p + d <= 0, with its bounding box for quick rejection.
+struct HalfSpaces {
+  std::vector<Eigen::Vector4d> planes;
+  Eigen::Vector3d lo, hi;
+  std::vector<Eigen::Vector3f> vertices;  // the extreme points only
+};
+
+HalfSpaces half_spaces(const std::vector<Eigen::Vector3f>& points) {
+  std::vector<Eigen::Vector3d> in;
+  in.reserve(points.size());
+  for (const auto& p : points) in.push_back(p.cast<double>());
+  btConvexHullComputer hull;
+  hull.compute(in.data()->data(), sizeof(Eigen::Vector3d), static_cast<int>(in.size()), 0, 0);
+  HalfSpaces h;
+  h.lo = Eigen::Vector3d::Constant(std::numeric_limits<double>::infinity());
+  h.hi = -h.lo;
+  for (int i = 0; i < hull.vertices.size(); ++i) {
+    const btVector3& v = hull.vertices[i];
+    const Eigen::Vector3d p(v.x(), v.y(), v.z());
+    h.lo = h.lo.cwiseMin(p);
+    h.hi = h.hi.cwiseMax(p);
+    h.vertices.push_back(p.cast<float>());
+  }
+  for (int f = 0; f < hull.faces.size(); ++f) {
+    // Newell's normal of the face polygon: robust for faces with many vertices.
+    const btConvexHullComputer::Edge* first = &hull.edges[hull.faces[f]];
+    const btConvexHullComputer::Edge* e = first;
+    std::vector<Eigen::Vector3d> polygon;
+    do {
+      const btVector3& v = hull.vertices[e->getSourceVertex()];
+      polygon.emplace_back(v.x(), v.y(), v.z());
+      e = e->getNextEdgeOfFace();
+    } while (e != first);
+    Eigen::Vector3d normal = Eigen::Vector3d::Zero();
+    for (std::size_t i = 0; i < polygon.size(); ++i)
+      normal += polygon[i].cross(polygon[(i + 1) % polygon.size()]);
+    if (normal.norm() == 0.0) continue;
+    normal.normalize();
+    h.planes.emplace_back(normal.x(), normal.y(), normal.z(), -normal.dot(polygon.front()));
+  }
+  return h;
+}
+
+bool contains(const HalfSpaces& h, const Eigen::Vector3d& p) {
+  if ((p.array() < h.lo.array()).any() || (p.array() > h.hi.array()).any()) return false;
+  for (const auto& plane : h.planes)
+    if (plane.head<3>().dot(p) + plane.w() > 1e-9) return false;
+  return true;
+}
+
+// Volume of `region` (mm^3) and of the part of it that none of `covered` contains.
+struct Sampled {
+  double volume = 0.0;
+  double uncovered = 0.0;
+};
+
+Sampled sample(const HalfSpaces& region, const std::vector<HalfSpaces>& covered) {
+  const Eigen::Vector3d size = region.hi - region.lo;
+  const double cell = size.prod() / (kGrid * kGrid * kGrid);
+  Sampled s;
+  for (int a = 0; a < kGrid; ++a)
+    for (int b = 0; b < kGrid; ++b)
+      for (int c = 0; c < kGrid; ++c) {
+        const Eigen::Vector3d p =
+            region.lo + Eigen::Vector3d(a + 0.5, b + 0.5, c + 0.5).cwiseProduct(size) / kGrid;
+        if (!contains(region, p)) continue;
+        s.volume += cell;
+        bool inside = false;
+        for (const auto& h : covered)
+          if ((inside = contains(h, p))) break;
+        if (!inside) s.uncovered += cell;
+      }
+  return s;
+}
+
+bool boxes_touch(const HalfSpaces& a, const HalfSpaces& b) {
+  return (a.lo.array() <= b.hi.array()).all() && (b.lo.array() <= a.hi.array()).all();
+}
+
+std::vector<HalfSpaces> half_spaces_of(const ConvexParts& parts) {
+  std::vector<HalfSpaces> hulls;
+  for (const auto& hull : parts.hulls) hulls.push_back(half_spaces(hull.vertices));
+  return hulls;
+}
+
+}  // namespace
+
+double union_volume(const ConvexParts& parts) {
+  // Each point counts for the first hull that contains it, so overlaps count once.
+  const std::vector<HalfSpaces> hulls = half_spaces_of(parts);
+  double volume = 0.0;
+  for (std::size_t i = 0; i < hulls.size(); ++i)
+    volume += sample(hulls[i], std::vector<HalfSpaces>(hulls.begin(), hulls.begin() + i)).uncovered;
+  return volume;
+}
+
+ConvexParts merge_hulls(const ConvexParts& parts, const HullMergeOptions& options) {
+  std::vector<HalfSpaces> hulls = half_spaces_of(parts);
+  const double volume = union_volume(parts);
+  double added_total = 0.0;
+  while (hulls.size() > 1) {
+    double least = std::numeric_limits<double>::infinity();
+    std::size_t best_i = 0, best_j = 0;
+    HalfSpaces best;
+    for (std::size_t i = 0; i < hulls.size(); ++i)
+      for (std::size_t j = i + 1; j < hulls.size(); ++j) {
+        if (!boxes_touch(hulls[i], hulls[j])) continue;  // far apart: the gap would be filled
+        std::vector<Eigen::Vector3f> both = hulls[i].vertices;
+        both.insert(both.end(), hulls[j].vertices.begin(), hulls[j].vertices.end());
+        HalfSpaces merged = half_spaces(both);
+        const double added = sample(merged, hulls).uncovered;
+        if (added < least) {
+          least = added;
+          best_i = i;
+          best_j = j;
+          best = std::move(merged);
+        }
+      }
+    if (!(least <= options.max_added_per_merge * volume) ||
+        added_total + least > options.max_added_total * volume)
+      break;
+    added_total += least;
+    hulls[best_i] = std::move(best);
+    hulls.erase(hulls.begin() + static_cast<std::ptrdiff_t>(best_j));
+  }
+  ConvexParts merged;
+  for (auto& h : hulls) merged.hulls.push_back(ConvexHull{std::move(h.vertices)});
+  return merged;
+}
+
+}  // namespace binpick
