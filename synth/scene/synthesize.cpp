@@ -28,11 +28,17 @@ using Clock = std::chrono::steady_clock;
 
 double since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
 
+// Bumped whenever the same options make different bins (drop, decomposition, rendering), so a
+// dataset is never resumed or extended with bins of another kind. 2: merged hulls, the
+// sliding-window rest test and the final all-dynamic second.
+constexpr int kSynthVersion = 2;
+
 // Everything that shapes a bin except how many bins there are: a resumed or extended run must
 // match it, or bins made with different settings would mix in one dataset.
 json manifest(const SynthOptions& o, const std::string& model, double diameter) {
   const auto& d = o.drop;
-  return {{"model", model},
+  return {{"synth_version", kSynthVersion},
+          {"model", model},
           {"diameter_mm", diameter},
           {"seed", o.seed},
           {"noise", o.noise},

@@ -1,0 +1,99 @@
+// `binpick synth` as a user runs it: --help, bad options refused before anything is written,
+// and a dataset that resumes, extends, replaces a bin left half-written, and refuses to mix in
+// bins made with other settings or by another version of the generator.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+
+#include "tests/support/cli_run.hpp"
+
+namespace binpick {
+namespace {
+
+namespace fs = std::filesystem;
+
+struct TempDir {
+  fs::path path;
+  explicit TempDir(const std::string& name) : path(test::fresh_temp_dir(name)) {}
+  ~TempDir() { fs::remove_all(path); }
+};
+
+// One small wave and a tiny image: seconds a bin.
+std::string synth_args(const fs::path& out, const fs::path& cache, const std::string& extra) {
+  return fmt::format(
+      "synth --model builtin:bracket --out '{}' --objects 8 --width 64 --height 36 --no-cloud "
+      "--cache-dir '{}' {}",
+      out.string(), cache.string(), extra);
+}
+
+TEST(SynthCli, HelpNamesTheOptions) {
+  const auto r = test::run_binpick("synth --help");
+  ASSERT_EQ(r.status, 0) << r.err;
+  for (const char* option : {"--model", "--out", "--bins", "--objects", "--seed", "--noise",
+                             "--bin-size", "--grid", "--final-settle", "--max-wall-seconds"})
+    EXPECT_NE(r.out.find(option), std::string::npos) << option;
+}
+
+TEST(SynthCli, BadOptionsFailWithOneMessageAndWriteNothing) {
+  const TempDir dir("synth_bad");
+  const fs::path out = dir.path / "data";
+  for (const std::string extra : {"--bins 0", "--objects 0", "--noise -1", "--noise nan",
+                                  "--width 5", "--bin-size 1,2", "--seed x", "--drop-height -5",
+                                  "--camera-height 10", "--grid 0,5"}) {
+    const auto r = test::run_binpick(synth_args(out, dir.path / "cache", extra));
+    EXPECT_NE(r.status, 0) << extra;
+    EXPECT_NE(r.status, -1) << extra << ": crashed";
+    EXPECT_FALSE(r.err.empty()) << extra;
+    EXPECT_LE(std::count(r.err.begin(), r.err.end(), '\n'), 2) << extra << ": " << r.err;
+    EXPECT_FALSE(fs::exists(out / "test" / "000000")) << extra;
+  }
+  const auto missing = test::run_binpick(
+      fmt::format("synth --model '{}' --out '{}'", (dir.path / "nope.ply").string(), out.string()));
+  EXPECT_EQ(missing.status, 2);
+  EXPECT_NE(missing.err.find("nope.ply"), std::string::npos) << missing.err;
+}
+
+TEST(SynthCli, ResumesExtendsAndRefusesOtherSettings) {
+  const TempDir dir("synth_resume");
+  const fs::path out = dir.path / "data", cache = dir.path / "cache";
+  auto r = test::run_binpick(synth_args(out, cache, "--bins 1"));
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.out.find("1 bins made, 0 already there"), std::string::npos) << r.out;
+  const std::string first = test::slurp(out / "test" / "000000" / "scene_gt.json");
+
+  // An interrupted run leaves its bin in a hidden staging directory; the next run replaces it.
+  fs::create_directories(out / "test" / ".000001.partial");
+  std::ofstream(out / "test" / ".000001.partial" / "scene_gt.json") << "{ half";
+  r = test::run_binpick(synth_args(out, cache, "--bins 2"));
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.out.find("1 bins made, 1 already there"), std::string::npos) << r.out;
+  EXPECT_EQ(test::slurp(out / "test" / "000000" / "scene_gt.json"), first);  // kept as it was
+  EXPECT_TRUE(fs::exists(out / "test" / "000001" / "scene_gt.json"));
+  EXPECT_FALSE(fs::exists(out / "test" / ".000001.partial"));
+  EXPECT_NO_THROW(nlohmann::json::parse(test::slurp(out / "test" / "000001" / "scene_gt.json")));
+
+  // Other settings would mix two kinds of bins in one dataset.
+  r = test::run_binpick(synth_args(out, cache, "--bins 3 --seed 2"));
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.err.find("seed"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("another --out"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(out / "test" / "000002"));
+
+  // So would bins made by an older generator (its synth.json has no or another version).
+  auto manifest = nlohmann::json::parse(test::slurp(out / "synth.json"));
+  ASSERT_TRUE(manifest.contains("synth_version"));
+  manifest.erase("synth_version");
+  std::ofstream(out / "synth.json") << manifest.dump(1);
+  r = test::run_binpick(synth_args(out, cache, "--bins 3"));
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.err.find("synth_version"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(out / "test" / "000002"));
+}
+
+}  // namespace
+}  // namespace binpick
