@@ -1,13 +1,14 @@
 // Merging HACD's hulls (synth/decompose/hull_merge.hpp): pieces of one convex solid become one
-// hull; hulls whose merged hull would fill real concavities stay apart; the limits hold.
+// hull; hulls whose merged hull would fill real concavities stay apart; the limits hold. And
+// growing them until they cover the mesh (hull_cover.hpp).
 #include <gtest/gtest.h>
 
-#include <LinearMath/btConvexHullComputer.h>
-
 #include <Eigen/Geometry>
+#include <cmath>
 
 #include "host/mesh/load_model.hpp"
 #include "synth/decompose/decompose.hpp"
+#include "synth/decompose/hull_cover.hpp"
 #include "synth/decompose/hull_merge.hpp"
 #include "tests/support/test_meshes.hpp"
 
@@ -22,47 +23,11 @@ ConvexHull box_hull(const Eigen::Vector3f& lo, const Eigen::Vector3f& hi) {
   return h;
 }
 
-// How far the mesh vertex farthest outside every hull lies outside (mm); 0 if all are inside.
-double farthest_outside(const Mesh& mesh, const ConvexParts& parts) {
-  std::vector<std::vector<Eigen::Vector4d>> planes;
-  for (const auto& hull : parts.hulls) {
-    std::vector<double> xyz;
-    for (const auto& v : hull.vertices) xyz.insert(xyz.end(), {v.x(), v.y(), v.z()});
-    btConvexHullComputer c;
-    c.compute(xyz.data(), 3 * sizeof(double), static_cast<int>(hull.vertices.size()), 0, 0);
-    auto& hp = planes.emplace_back();
-    for (int f = 0; f < c.faces.size(); ++f) {
-      const auto* first = &c.edges[c.faces[f]];
-      const auto* e = first;
-      std::vector<Eigen::Vector3d> poly;
-      do {
-        const btVector3& v = c.vertices[e->getSourceVertex()];
-        poly.emplace_back(v.x(), v.y(), v.z());
-        e = e->getNextEdgeOfFace();
-      } while (e != first);
-      Eigen::Vector3d n = Eigen::Vector3d::Zero();
-      for (std::size_t i = 0; i < poly.size(); ++i) n += poly[i].cross(poly[(i + 1) % poly.size()]);
-      n.normalize();
-      hp.emplace_back(n.x(), n.y(), n.z(), -n.dot(poly[0]));
-    }
-  }
-  double worst = 0;
-  for (const auto& p : mesh.positions) {
-    double best = INFINITY;
-    for (const auto& hp : planes) {
-      double out = -INFINITY;
-      for (const auto& q : hp) out = std::max(out, q.head<3>().dot(p.cast<double>()) + q.w());
-      best = std::min(best, out);
-    }
-    worst = std::max(worst, best);
-  }
-  return worst;
-}
-
 DecomposeOptions hacd_only() {
   DecomposeOptions o;
   o.use_cache = false;
   o.merge.max_added_per_merge = 0;
+  o.max_uncovered = 0;
   return o;
 }
 
@@ -114,7 +79,7 @@ TEST(HullMerge, BuiltinBracketBecomesItsTwoPlatesAndStaysCovered) {
   ASSERT_GT(hacd.hulls.size(), 4u) << "HACD no longer splits the bracket: the test lost its case";
   const ConvexParts merged = merge_hulls(hacd, {});
   EXPECT_EQ(merged.hulls.size(), 2u);
-  EXPECT_LT(farthest_outside(bracket, merged), 0.01);  // merging only adds volume
+  EXPECT_LT(farthest_outside_mm(merged, bracket), 0.01);  // merging only adds volume
   EXPECT_LE(union_volume(merged), 1.03 * union_volume(hacd));
   // The default decomposition merges.
   DecomposeOptions defaults;
@@ -125,6 +90,35 @@ TEST(HullMerge, BuiltinBracketBecomesItsTwoPlatesAndStaysCovered) {
 TEST(HullMerge, TorusKeepsItsHulls) {
   const ConvexParts hacd = decompose_convex(test::torus(), hacd_only());
   EXPECT_EQ(merge_hulls(hacd, {}).hulls.size(), hacd.hulls.size());
+}
+
+TEST(HullCover, HullsGrowUntilTheMeshIsCovered) {
+  const Mesh torus = test::torus();
+  const ConvexParts hacd = decompose_convex(torus, hacd_only());
+  ASSERT_GT(farthest_outside_mm(hacd, torus), 1.0) << "HACD's hulls cover the torus now: the "
+                                                      "test lost its case";
+  const ConvexParts covered = cover_mesh(hacd, torus, 0.3);
+  EXPECT_LE(farthest_outside_mm(covered, torus), 0.3);
+  ASSERT_EQ(covered.hulls.size(), hacd.hulls.size());
+  for (const auto& hull : covered.hulls)  // grown, not rebuilt from the ~60 vertices of a segment
+    EXPECT_LT(hull.vertices.size(), 48u);
+  // The default decomposition covers it to 1 % of the diagonal: sqrt(52^2 + 52^2 + 12^2) mm.
+  DecomposeOptions defaults;
+  defaults.use_cache = false;
+  EXPECT_LE(farthest_outside_mm(decompose_convex(torus, defaults), torus),
+            0.01 * std::sqrt(52.0 * 52 * 2 + 12 * 12));
+}
+
+TEST(HullCover, CoveringHullsAreKeptAsTheyAre) {
+  const Mesh l = test::l_bracket();
+  const ConvexParts hacd = decompose_convex(l, hacd_only());
+  EXPECT_LT(farthest_outside_mm(hacd, l), 1e-4);
+  const ConvexParts covered = cover_mesh(hacd, l, 0.1);
+  ASSERT_EQ(covered.hulls.size(), hacd.hulls.size());
+  for (std::size_t h = 0; h < hacd.hulls.size(); ++h)
+    EXPECT_EQ(covered.hulls[h].vertices.size(), hacd.hulls[h].vertices.size());
+  EXPECT_TRUE(cover_mesh(ConvexParts{}, l, 0.1).hulls.empty());
+  EXPECT_EQ(farthest_outside_mm(ConvexParts{}, Mesh{}), 0.0);
 }
 
 }  // namespace

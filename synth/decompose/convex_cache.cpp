@@ -23,7 +23,7 @@ namespace {
 constexpr char kMagic[8] = {'B', 'P', 'H', 'U', 'L', 'L', 'S', '\0'};
 // Also hashed into every key: bumped when the decomposition itself changes, so entries made
 // by an older one are not served (2: flat hulls left out).
-constexpr std::uint32_t kVersion = 3;  // 3: hulls merged (hull_merge.hpp)
+constexpr std::uint32_t kVersion = 3;  // 3: hulls merged and grown to cover the mesh
 // A larger file is not one of ours; refusing it keeps a corrupt size from exhausting memory.
 constexpr std::uintmax_t kMaxFileBytes = std::uintmax_t{1} << 30;
 
@@ -90,6 +90,7 @@ std::uint64_t decomposition_key(const Mesh& part, const DecomposeOptions& option
   h.value(static_cast<std::uint64_t>(options.max_hulls));
   h.value(options.merge.max_added_per_merge);
   h.value(options.merge.max_added_total);
+  h.value(options.max_uncovered);
   h.value(static_cast<std::uint8_t>(options.add_extra_dist_points));
   h.value(static_cast<std::uint8_t>(options.add_neighbours_dist_points));
   h.value(static_cast<std::uint8_t>(options.add_faces_points));

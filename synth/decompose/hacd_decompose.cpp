@@ -20,6 +20,7 @@
 
 #include "host/core/error.hpp"
 #include "synth/decompose/decompose.hpp"
+#include "synth/decompose/hull_cover.hpp"
 
 namespace binpick {
 namespace {
@@ -163,7 +164,8 @@ ConvexParts decompose_convex_uncached(const Mesh& part, const DecomposeOptions& 
       parts.hulls.push_back(std::move(hull));
   }
   if (parts.hulls.empty()) throw InputError("HACD produced no convex hull with volume");
-  if (options.merge.max_added_per_merge > 0.0) return merge_hulls(parts, options.merge);
+  if (options.merge.max_added_per_merge > 0.0) parts = merge_hulls(parts, options.merge);
+  if (options.max_uncovered > 0.0) parts = cover_mesh(parts, part, options.max_uncovered * diagonal);
   return parts;
 }
 

@@ -1,6 +1,6 @@
 #include "synth/decompose/hull_merge.hpp"
 
-#include <LinearMath/btConvexHullComputer.h>
+#include "synth/decompose/half_spaces.hpp"
 
 #include <Eigen/Geometry>
 #include <limits>
@@ -12,56 +12,6 @@ namespace {
 // Samples per axis of a hull's bounding box: 20^3 = 8000 points resolve 0.1 % of a hull's
 // volume, and a decomposition takes well under a second.
 constexpr int kGrid = 20;
-
-// A convex hull as half-spaces n.p + d <= 0, with its bounding box for quick rejection.
-struct HalfSpaces {
-  std::vector<Eigen::Vector4d> planes;
-  Eigen::Vector3d lo, hi;
-  std::vector<Eigen::Vector3f> vertices;  // the extreme points only
-};
-
-HalfSpaces half_spaces(const std::vector<Eigen::Vector3f>& points) {
-  std::vector<Eigen::Vector3d> in;
-  in.reserve(points.size());
-  for (const auto& p : points) in.push_back(p.cast<double>());
-  btConvexHullComputer hull;
-  hull.compute(in.data()->data(), sizeof(Eigen::Vector3d), static_cast<int>(in.size()), 0, 0);
-  HalfSpaces h;
-  h.lo = Eigen::Vector3d::Constant(std::numeric_limits<double>::infinity());
-  h.hi = -h.lo;
-  for (int i = 0; i < hull.vertices.size(); ++i) {
-    const btVector3& v = hull.vertices[i];
-    const Eigen::Vector3d p(v.x(), v.y(), v.z());
-    h.lo = h.lo.cwiseMin(p);
-    h.hi = h.hi.cwiseMax(p);
-    h.vertices.push_back(p.cast<float>());
-  }
-  for (int f = 0; f < hull.faces.size(); ++f) {
-    // Newell's normal of the face polygon: robust for faces with many vertices.
-    const btConvexHullComputer::Edge* first = &hull.edges[hull.faces[f]];
-    const btConvexHullComputer::Edge* e = first;
-    std::vector<Eigen::Vector3d> polygon;
-    do {
-      const btVector3& v = hull.vertices[e->getSourceVertex()];
-      polygon.emplace_back(v.x(), v.y(), v.z());
-      e = e->getNextEdgeOfFace();
-    } while (e != first);
-    Eigen::Vector3d normal = Eigen::Vector3d::Zero();
-    for (std::size_t i = 0; i < polygon.size(); ++i)
-      normal += polygon[i].cross(polygon[(i + 1) % polygon.size()]);
-    if (normal.norm() == 0.0) continue;
-    normal.normalize();
-    h.planes.emplace_back(normal.x(), normal.y(), normal.z(), -normal.dot(polygon.front()));
-  }
-  return h;
-}
-
-bool contains(const HalfSpaces& h, const Eigen::Vector3d& p) {
-  if ((p.array() < h.lo.array()).any() || (p.array() > h.hi.array()).any()) return false;
-  for (const auto& plane : h.planes)
-    if (plane.head<3>().dot(p) + plane.w() > 1e-9) return false;
-  return true;
-}
 
 // Volume of `region` (mm^3) and of the part of it that none of `covered` contains.
 struct Sampled {

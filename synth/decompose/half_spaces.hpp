@@ -1,0 +1,25 @@
+// A convex hull as the intersection of half-spaces: inside tests and distances for merging
+// hulls (hull_merge.hpp) and checking that they cover the mesh (hull_cover.hpp).
+#pragma once
+
+#include <Eigen/Core>
+#include <vector>
+
+namespace binpick {
+
+struct HalfSpaces {
+  std::vector<Eigen::Vector4d> planes;    // n.p + d <= 0 inside, |n| = 1
+  Eigen::Vector3d lo, hi;                 // bounding box, for quick rejection
+  std::vector<Eigen::Vector3f> vertices;  // the hull's extreme points only
+};
+
+// The convex hull of `points` (Bullet's btConvexHullComputer).
+HalfSpaces half_spaces(const std::vector<Eigen::Vector3f>& points);
+
+bool contains(const HalfSpaces& hull, const Eigen::Vector3d& p);
+
+// Largest signed plane distance: how far p lies outside (> 0; exact near faces, a lower bound
+// near edges and corners), or minus its depth inside.
+double outside_distance(const HalfSpaces& hull, const Eigen::Vector3d& p);
+
+}  // namespace binpick
