@@ -43,6 +43,12 @@ HalfSpaces half_spaces(const std::vector<Eigen::Vector3f>& points) {
   return h;
 }
 
+std::vector<HalfSpaces> half_spaces_of(const ConvexParts& parts) {
+  std::vector<HalfSpaces> hulls;
+  for (const auto& hull : parts.hulls) hulls.push_back(half_spaces(hull.vertices));
+  return hulls;
+}
+
 bool contains(const HalfSpaces& hull, const Eigen::Vector3d& p) {
   if ((p.array() < hull.lo.array()).any() || (p.array() > hull.hi.array()).any()) return false;
   for (const auto& plane : hull.planes)

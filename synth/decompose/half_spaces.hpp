@@ -5,6 +5,8 @@
 #include <Eigen/Core>
 #include <vector>
 
+#include "synth/decompose/convex_parts.hpp"
+
 namespace binpick {
 
 struct HalfSpaces {
@@ -15,6 +17,9 @@ struct HalfSpaces {
 
 // The convex hull of `points` (Bullet's btConvexHullComputer).
 HalfSpaces half_spaces(const std::vector<Eigen::Vector3f>& points);
+
+// One per hull, in order.
+std::vector<HalfSpaces> half_spaces_of(const ConvexParts& parts);
 
 bool contains(const HalfSpaces& hull, const Eigen::Vector3d& p);
 

@@ -9,12 +9,6 @@
 namespace binpick {
 namespace {
 
-std::vector<HalfSpaces> half_spaces_of(const ConvexParts& parts) {
-  std::vector<HalfSpaces> hulls;
-  for (const auto& hull : parts.hulls) hulls.push_back(half_spaces(hull.vertices));
-  return hulls;
-}
-
 // The hull `p` lies least outside of, and by how much.
 std::pair<std::size_t, double> nearest_hull(const std::vector<HalfSpaces>& hulls,
                                             const Eigen::Vector3d& p) {

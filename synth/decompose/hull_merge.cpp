@@ -13,39 +13,27 @@ namespace {
 // volume, and a decomposition takes well under a second.
 constexpr int kGrid = 20;
 
-// Volume of `region` (mm^3) and of the part of it that none of `covered` contains.
-struct Sampled {
-  double volume = 0.0;
-  double uncovered = 0.0;
-};
-
-Sampled sample(const HalfSpaces& region, const std::vector<HalfSpaces>& covered) {
+// The volume (mm^3) of the part of `region` that none of `covered` contains.
+double uncovered_volume(const HalfSpaces& region, const std::vector<HalfSpaces>& covered) {
   const Eigen::Vector3d size = region.hi - region.lo;
   const double cell = size.prod() / (kGrid * kGrid * kGrid);
-  Sampled s;
+  double uncovered = 0.0;
   for (int a = 0; a < kGrid; ++a)
     for (int b = 0; b < kGrid; ++b)
       for (int c = 0; c < kGrid; ++c) {
         const Eigen::Vector3d p =
             region.lo + Eigen::Vector3d(a + 0.5, b + 0.5, c + 0.5).cwiseProduct(size) / kGrid;
         if (!contains(region, p)) continue;
-        s.volume += cell;
         bool inside = false;
         for (const auto& h : covered)
           if ((inside = contains(h, p))) break;
-        if (!inside) s.uncovered += cell;
+        if (!inside) uncovered += cell;
       }
-  return s;
+  return uncovered;
 }
 
 bool boxes_touch(const HalfSpaces& a, const HalfSpaces& b) {
   return (a.lo.array() <= b.hi.array()).all() && (b.lo.array() <= a.hi.array()).all();
-}
-
-std::vector<HalfSpaces> half_spaces_of(const ConvexParts& parts) {
-  std::vector<HalfSpaces> hulls;
-  for (const auto& hull : parts.hulls) hulls.push_back(half_spaces(hull.vertices));
-  return hulls;
 }
 
 }  // namespace
@@ -55,7 +43,7 @@ double union_volume(const ConvexParts& parts) {
   const std::vector<HalfSpaces> hulls = half_spaces_of(parts);
   double volume = 0.0;
   for (std::size_t i = 0; i < hulls.size(); ++i)
-    volume += sample(hulls[i], std::vector<HalfSpaces>(hulls.begin(), hulls.begin() + i)).uncovered;
+    volume += uncovered_volume(hulls[i], std::vector<HalfSpaces>(hulls.begin(), hulls.begin() + i));
   return volume;
 }
 
@@ -73,7 +61,7 @@ ConvexParts merge_hulls(const ConvexParts& parts, const HullMergeOptions& option
         std::vector<Eigen::Vector3f> both = hulls[i].vertices;
         both.insert(both.end(), hulls[j].vertices.begin(), hulls[j].vertices.end());
         HalfSpaces merged = half_spaces(both);
-        const double added = sample(merged, hulls).uncovered;
+        const double added = uncovered_volume(merged, hulls);
         if (added < least) {
           least = added;
           best_i = i;
