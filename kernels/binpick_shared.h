@@ -100,7 +100,7 @@ BP_FN float bp_ppf_wrap_alpha(float alpha) {
 
 #ifdef __OPENCL_VERSION__
 /* Device side of the point pair feature, shared by training and detection so that model and
- * scene use one convention. The C++ reference (host/model/ppf_features.cpp) is written
+ * scene use one convention. The C++ reference (host/train/ppf_features.cpp) is written
  * independently with Eigen. */
 
 /* atan2(y, x) in [-pi, pi] to about 2e-7 rad: PoCL's built-in atan2 costs ~150 ns on a CPU,

@@ -1,6 +1,6 @@
 /* What the device can do at best: plain kernels each bound by one resource, so that every
  * detection stage's throughput can be reported as a fraction of it (issue 7;
- * host/bench/machine_peak.cpp times them, tests/test_machine_peak.cpp checks them against
+ * bench/lib/machine_peak.cpp times them, tests/bench/test_machine_peak.cpp checks them against
  * plain C++ with the same arithmetic).
  *
  * peak_stream_triad  memory bandwidth: STREAM's triad a = b + s c over float4.
@@ -12,7 +12,7 @@
  * Every kernel writes a result per work item that depends on all of its work, so the compiler
  * cannot drop any of it, and guards its tail (the host rounds the global size up to a whole
  * work group). The chain shapes (8 chains of 16 lanes) are repeated in
- * host/bench/machine_peak.hpp (kPeakFmaLanes, kPeakIntLanes) and in the C++ references. */
+ * bench/lib/machine_peak.hpp (kPeakFmaLanes, kPeakIntLanes) and in the C++ references. */
 #pragma OPENCL FP_CONTRACT OFF /* only the explicit fma()s fuse: the C++ reference matches bit for bit */
 
 /* a = b + s c, element i a float4. n = elements. fma() rather than b + s * c so that the

@@ -4,7 +4,7 @@
  * Deterministic without atomics or sorting: the reference points are split into `groups`
  * consecutive blocks of rows, one work item each, and every group counts its pairs per key in
  * its own histogram (counts[g * n_keys + key]). The totals per key give the CSR offsets (an
- * exclusive scan, ppf_scan.cl); each group's slots in a bucket start after those of the groups
+ * exclusive scan, device_scan.cl); each group's slots in a bucket start after those of the groups
  * before it. A group then recomputes its features (cheaper than storing n^2 of them) and fills
  * its slots in row order, so entries within a bucket are ordered by (m_r, m_i), run to run. */
 #pragma OPENCL FP_CONTRACT OFF

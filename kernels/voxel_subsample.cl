@@ -3,7 +3,7 @@
  * Voxels are counted from `origin` (the cloud's minimum corner) in a dense grid of
  * dims.x * dims.y * dims.z cells. Four passes: best distance per voxel (atomic_min on the bits
  * of a non-negative float, which order like the floats), best index among the points at that
- * distance, keep flags, then compaction after a prefix sum of the flags (ppf_scan.cl), which
+ * distance, keep flags, then compaction after a prefix sum of the flags (device_scan.cl), which
  * keeps the survivors in input order.
  *
  * No contraction into fused multiply-adds: the C++ reference must compute the same bits. */

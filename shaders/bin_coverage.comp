@@ -4,7 +4,7 @@
 // Unoccluded pixel counts (BOP's px_count_all) from the part-id atlas in which every part was
 // drawn alone into its own tile: each covered atlas pixel adds one to its part's count and
 // grows its bounding box, mapped back to image pixels by the tile's shift.
-// C++ reference: coverage_counts_reference (host/render/bin_coverage.cpp).
+// C++ reference: coverage_counts_reference (synth/render/bin_coverage.cpp).
 layout(local_size_x = 16, local_size_y = 16) in;
 
 layout(std430, binding = 0) readonly buffer Atlas { uint atlas[]; };   // part + 1, 0 none

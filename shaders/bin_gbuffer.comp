@@ -5,8 +5,8 @@
 // z-buffer -> depth (paper, equation 1) with optional Gaussian noise along the viewing ray,
 // camera-frame points, unit normals facing the camera, Lambert intensity with the light at the
 // camera, the part index, and per part its visible pixel count and bounding box (atomics).
-// C++ reference: bin_gbuffer_reference (host/render/bin_gbuffer.cpp); the noise hash repeats
-// host/render/bin_noise.hpp word for word.
+// C++ reference: bin_gbuffer_reference (synth/render/bin_gbuffer.cpp); the noise hash repeats
+// synth/render/bin_noise.hpp word for word.
 layout(local_size_x = 16, local_size_y = 16) in;
 
 layout(std430, binding = 0) readonly buffer ZBuffer { float zbuffer[]; };

@@ -90,8 +90,8 @@
 #include <opencv2/surface_matching.hpp>
 
 #include "host/core/error.hpp"
-#include "host/io/atomic_file.hpp"
-#include "host/io/point_cloud_ply.hpp"
+#include "host/core/atomic_file.hpp"
+#include "host/formats/mesh/point_cloud_ply.hpp"
 
 namespace fs = std::filesystem;
 using binpick::InputError;

@@ -7,13 +7,13 @@
 
 #include <fmt/format.h>
 
-#include "host/bop/bop_files.hpp"
-#include "host/bop/png_image.hpp"
+#include "host/formats/bop/bop_files.hpp"
+#include "host/formats/bop/png_image.hpp"
 #include "host/core/error.hpp"
 #include "host/core/progress.hpp"
 #include "host/detect/detect_params_file.hpp"
-#include "host/io/atomic_file.hpp"
-#include "host/io/read_file.hpp"
+#include "host/core/atomic_file.hpp"
+#include "host/core/read_file.hpp"
 
 namespace binpick {
 namespace fs = std::filesystem;

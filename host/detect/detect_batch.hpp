@@ -12,9 +12,9 @@
 #include <string>
 #include <vector>
 
-#include "host/bop/results_csv.hpp"
+#include "host/formats/bop/results_csv.hpp"
 #include "host/detect/detector.hpp"
-#include "host/scene/depth_image.hpp"
+#include "host/detect/depth_to_points.hpp"
 
 namespace binpick {
 

@@ -8,7 +8,7 @@
 #include <nlohmann/json.hpp>
 
 #include "host/core/error.hpp"
-#include "host/io/read_file.hpp"
+#include "host/core/read_file.hpp"
 
 namespace binpick {
 namespace {

@@ -11,7 +11,7 @@
 #include "host/detect/scene_crop.hpp"
 #include "host/detect/scene_neighbourhood.hpp"
 #include "host/detect/scene_prepare.hpp"
-#include "host/model/voxel_subsample.hpp"
+#include "host/train/voxel_subsample.hpp"
 
 namespace binpick {
 namespace {

@@ -13,10 +13,10 @@
 #include "host/detect/hypotheses.hpp"
 #include "host/detect/ppf_vote.hpp"
 #include "host/detect/pose_cluster.hpp"
-#include "host/detect/scene_timing.hpp"
-#include "host/mesh/mesh.hpp"
-#include "host/model/ppf_model.hpp"
-#include "host/scene/depth_image.hpp"
+#include "host/core/timing.hpp"
+#include "host/core/mesh.hpp"
+#include "host/train/ppf_model.hpp"
+#include "host/detect/depth_to_points.hpp"
 
 namespace binpick {
 

@@ -44,9 +44,9 @@ std::vector<Hypothesis> find_hypotheses(ocl::Device& dev, const ocl::Buffer<floa
   ocl::Buffer<float> part_depth(dev, ch.count);
   ocl::Buffer<cl_uint> part_pixel(dev, ch.count);
   ocl::Buffer<bp_hypothesis> hyps(dev, opt.count);
-  cl::Kernel argmin = dev.kernel("scene_hypotheses.cl", "hyp_chunk_argmin");
-  cl::Kernel select = dev.kernel("scene_hypotheses.cl", "hyp_select");
-  cl::Kernel exclude = dev.kernel("scene_hypotheses.cl", "hyp_exclude");
+  cl::Kernel argmin = dev.kernel("hypotheses.cl", "hyp_chunk_argmin");
+  cl::Kernel select = dev.kernel("hypotheses.cl", "hyp_select");
+  cl::Kernel exclude = dev.kernel("hypotheses.cl", "hyp_exclude");
   const float radius2 = opt.exclusion_radius * opt.exclusion_radius;
   for (cl_uint k = 0; k < opt.count; ++k) {
     ocl::launch(dev, argmin, ch.count, filtered, excluded, cl_uint(n), cl_uint(ch.size),

@@ -1,6 +1,6 @@
 // The highest-point heuristic (paper section III-C): the `count` highest points (nearest the
 // camera) of the low-pass filtered range image, each excluding its neighbourhood (radius
-// slightly larger than the part diameter) from the next (kernels/scene_hypotheses.cl).
+// slightly larger than the part diameter) from the next (kernels/hypotheses.cl).
 #pragma once
 
 #include <cstdint>
@@ -8,10 +8,10 @@
 
 #include <Eigen/Core>
 
-#include "host/cl/cl_buffer.hpp"
+#include "host/runtime/cl/cl_buffer.hpp"
 #include "host/detect/scene_prepare.hpp"
-#include "host/detect/scene_timing.hpp"
-#include "host/scene/depth_image.hpp"
+#include "host/core/timing.hpp"
+#include "host/detect/depth_to_points.hpp"
 
 namespace binpick {
 

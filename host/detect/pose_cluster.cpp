@@ -57,7 +57,7 @@ PoseCompatibility pose_compatibility(ocl::Device& dev, const std::vector<PoseCan
   ocl::Buffer<std::uint32_t> vb(dev, std::span<const std::uint32_t>(votes), CL_MEM_READ_ONLY);
   ocl::Buffer<std::uint8_t> compatible(dev, n * n);
   ocl::Buffer<std::uint32_t> scores(dev, n);
-  cl::Kernel kernel = dev.kernel("ppf_cluster.cl", "pose_compatibility");
+  cl::Kernel kernel = dev.kernel("pose_cluster.cl", "pose_compatibility");
   ocl::launch(dev, kernel, n, qb, tb, vb, static_cast<std::uint32_t>(n), max_dist2(opt),
               min_cos_half(opt), compatible, scores);
   out.compatible = compatible.read(dev);

@@ -3,7 +3,7 @@
 // are grouped, the group's votes summed and its poses averaged.
 //
 // The pairwise compatibility matrix and each pose's neighbourhood score (the votes of all poses
-// compatible with it) are a kernel (kernels/ppf_cluster.cl). The grouping is greedy on the host,
+// compatible with it) are a kernel (kernels/pose_cluster.cl). The grouping is greedy on the host,
 // which is sequential by nature and cheap (n^2 bytes read once): poses in order of score, then
 // votes, then index; each pose not yet grouped starts a cluster and takes every ungrouped pose
 // compatible with it. Unlike Drost's first-come grouping this centres clusters on the densest
@@ -18,7 +18,7 @@
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 
-#include "host/cl/cl_buffer.hpp"
+#include "host/runtime/cl/cl_buffer.hpp"
 #include "host/detect/ppf_pose.hpp"
 
 namespace binpick {

@@ -14,8 +14,8 @@
 #include <Eigen/Geometry>
 
 #include "host/detect/ppf_vote.hpp"
-#include "host/mesh/mesh.hpp"
-#include "host/model/ppf_model.hpp"
+#include "host/core/mesh.hpp"
+#include "host/train/ppf_model.hpp"
 
 namespace binpick {
 

@@ -9,8 +9,8 @@
 #include <fmt/format.h>
 
 #include "host/core/error.hpp"
-#include "host/model/cloud_input.hpp"
-#include "host/model/ppf_features.hpp"
+#include "host/core/cloud_input.hpp"
+#include "host/train/ppf_features.hpp"
 
 namespace binpick {
 namespace {

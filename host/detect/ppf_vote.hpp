@@ -7,10 +7,10 @@
 #include <cstdint>
 #include <vector>
 
-#include "host/cl/cl_buffer.hpp"
-#include "host/detect/scene_timing.hpp"
-#include "host/mesh/mesh.hpp"
-#include "host/model/ppf_model.hpp"
+#include "host/runtime/cl/cl_buffer.hpp"
+#include "host/core/timing.hpp"
+#include "host/core/mesh.hpp"
+#include "host/train/ppf_model.hpp"
 
 namespace binpick {
 

@@ -13,7 +13,7 @@
 
 #include "host/detect/hypotheses.hpp"
 #include "host/detect/scene_crop.hpp"
-#include "host/mesh/mesh.hpp"
+#include "host/core/mesh.hpp"
 
 namespace binpick {
 

@@ -8,10 +8,10 @@
 
 #include <Eigen/Core>
 
-#include "host/cl/cl_buffer.hpp"
+#include "host/runtime/cl/cl_buffer.hpp"
 #include "host/detect/scene_prepare.hpp"
-#include "host/mesh/mesh.hpp"
-#include "host/scene/depth_image.hpp"
+#include "host/core/mesh.hpp"
+#include "host/detect/depth_to_points.hpp"
 
 namespace binpick {
 

@@ -5,8 +5,8 @@
 #include <cstdint>
 #include <vector>
 
-#include "host/cl/cl_buffer.hpp"
-#include "host/scene/depth_image.hpp"
+#include "host/runtime/cl/cl_buffer.hpp"
+#include "host/detect/depth_to_points.hpp"
 
 namespace binpick {
 

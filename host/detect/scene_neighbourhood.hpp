@@ -19,8 +19,8 @@
 #include "host/detect/scene_crop.hpp"
 #include "host/detect/scene_normals.hpp"
 #include "host/detect/scene_prepare.hpp"
-#include "host/detect/scene_timing.hpp"
-#include "host/model/voxel_subsample.hpp"
+#include "host/core/timing.hpp"
+#include "host/train/voxel_subsample.hpp"
 
 namespace binpick {
 

@@ -7,10 +7,10 @@
 #include <memory>
 #include <vector>
 
-#include "host/cl/cl_buffer.hpp"
+#include "host/runtime/cl/cl_buffer.hpp"
 #include "host/detect/scene_normals.hpp"
-#include "host/detect/scene_timing.hpp"
-#include "host/scene/depth_image.hpp"
+#include "host/core/timing.hpp"
+#include "host/detect/depth_to_points.hpp"
 
 namespace binpick {
 

@@ -5,13 +5,13 @@
 
 #include <fmt/format.h>
 
-#include "host/bop/results_csv.hpp"
+#include "host/formats/bop/results_csv.hpp"
 #include "host/core/error.hpp"
-#include "host/eval/gnuplot.hpp"
-#include "host/eval/precision_plot.hpp"
-#include "host/eval/report_pictures.hpp"
-#include "host/eval/report_tables.hpp"
-#include "host/eval/report_html.hpp"
+#include "host/eval/report/gnuplot.hpp"
+#include "host/eval/report/precision_plot.hpp"
+#include "host/eval/report/report_pictures.hpp"
+#include "host/eval/report/report_tables.hpp"
+#include "host/eval/report/report_html.hpp"
 
 namespace binpick::eval {
 

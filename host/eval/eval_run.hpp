@@ -8,8 +8,8 @@
 #include <string>
 #include <vector>
 
-#include "host/eval/evaluate.hpp"
-#include "host/eval/precision_curves.hpp"
+#include "host/eval/metrics/evaluate.hpp"
+#include "host/eval/metrics/precision_curves.hpp"
 
 namespace binpick::eval {
 

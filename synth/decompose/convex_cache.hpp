@@ -6,7 +6,7 @@
 #include <filesystem>
 #include <optional>
 
-#include "host/mesh/mesh.hpp"
+#include "host/core/mesh.hpp"
 #include "synth/decompose/convex_parts.hpp"
 #include "synth/decompose/decompose.hpp"
 

@@ -4,7 +4,7 @@
 #include <cstddef>
 #include <filesystem>
 
-#include "host/mesh/mesh.hpp"
+#include "host/core/mesh.hpp"
 #include "synth/decompose/convex_parts.hpp"
 #include "synth/decompose/hull_merge.hpp"
 

@@ -4,7 +4,7 @@
 // up to 1.7 mm. Bullet only sees the hulls, so two rendered parts could then overlap by the sum.
 #pragma once
 
-#include "host/mesh/mesh.hpp"
+#include "host/core/mesh.hpp"
 #include "synth/decompose/convex_parts.hpp"
 
 namespace binpick {

@@ -1,8 +1,8 @@
 #include "synth/parts/builtin_parts.hpp"
 
 #include "host/core/error.hpp"
-#include "host/mesh/diameter.hpp"
-#include "host/mesh/mesh_geometry.hpp"
+#include "host/core/diameter.hpp"
+#include "host/core/mesh_geometry.hpp"
 #include "synth/parts/part_shapes.hpp"
 
 namespace binpick {

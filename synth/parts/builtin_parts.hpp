@@ -6,8 +6,8 @@
 #include <string>
 #include <vector>
 
-#include "host/mesh/mesh.hpp"
-#include "host/mesh/symmetry.hpp"
+#include "host/core/mesh.hpp"
+#include "host/core/symmetry.hpp"
 
 namespace binpick {
 

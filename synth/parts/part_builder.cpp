@@ -4,7 +4,7 @@
 #include <cmath>
 #include <numbers>
 
-#include "host/mesh/mesh_topology.hpp"
+#include "host/core/mesh_topology.hpp"
 
 namespace binpick {
 

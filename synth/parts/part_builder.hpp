@@ -9,7 +9,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "host/mesh/mesh.hpp"
+#include "host/core/mesh.hpp"
 
 namespace binpick {
 

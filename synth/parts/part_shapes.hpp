@@ -2,8 +2,8 @@
 // them and scales them to the nominal diameter), with the symmetries they have in that frame.
 #pragma once
 
-#include "host/mesh/mesh.hpp"
-#include "host/mesh/symmetry.hpp"
+#include "host/core/mesh.hpp"
+#include "host/core/symmetry.hpp"
 
 namespace binpick {
 

@@ -10,13 +10,13 @@
 #include <string>
 #include <vector>
 
-#include "host/mesh/mesh.hpp"
+#include "host/core/mesh.hpp"
 #include "synth/decompose/convex_parts.hpp"
 
 namespace binpick {
 
 // Defaults are the paper's scene (DESIGN.md 4) and settings measured to settle a 350-part bin
-// quickly (bench/bench_synth_physics.cpp).
+// quickly (bench/programs/bench_synth_physics.cpp).
 struct DropOptions {
   Eigen::Vector3d bin_size_mm{600.0, 400.0, 300.0};  // interior: x width, y depth, z wall height
   int objects = 350;

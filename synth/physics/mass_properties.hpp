@@ -6,7 +6,7 @@
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 
-#include "host/mesh/mesh.hpp"
+#include "host/core/mesh.hpp"
 
 namespace binpick {
 

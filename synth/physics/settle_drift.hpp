@@ -7,7 +7,7 @@
 #include <Eigen/Geometry>
 #include <vector>
 
-#include "host/mesh/mesh.hpp"
+#include "host/core/mesh.hpp"
 #include "synth/decompose/convex_parts.hpp"
 #include "synth/physics/drop.hpp"
 

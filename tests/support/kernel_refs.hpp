@@ -21,10 +21,10 @@
 #include <Eigen/Core>
 #include <Eigen/Eigenvalues>
 
-#include "host/cl/cl_buffer.hpp"
-#include "host/model/ppf_features.hpp"
-#include "host/model/voxel_subsample.hpp"
-#include "host/scene/depth_image.hpp"
+#include "host/runtime/cl/cl_buffer.hpp"
+#include "host/train/ppf_features.hpp"
+#include "host/train/voxel_subsample.hpp"
+#include "host/detect/depth_to_points.hpp"
 #include "kernels/binpick_shared.h"
 #include "kernels/scene_shared.h"
 
@@ -51,7 +51,7 @@ ocl::Buffer<T> upload(ocl::Device& dev, const std::vector<T>& data) {
 // Bit equality of floats (a -0 is not a +0, NaN equals itself).
 inline bool same_bits(float a, float b) { return std::memcmp(&a, &b, sizeof a) == 0; }
 
-// ---- ppf_scan.cl ------------------------------------------------------------------------------
+// ---- device_scan.cl ------------------------------------------------------------------------------
 
 // scan_chunks: out[i] = sum of in[begin(i's chunk) .. i), sums[b] = total of chunk b (0 for a
 // chunk that starts at or after n). out has n values, sums `blocks`.
@@ -332,7 +332,7 @@ inline std::vector<u32> exclusive_offsets(const std::vector<u32>& counts, u32* t
   return out;
 }
 
-// ---- scene_hypotheses.cl ----------------------------------------------------------------------
+// ---- hypotheses.cl ----------------------------------------------------------------------
 
 // hyp_chunk_argmin: per chunk the valid (> 0), not excluded pixel of smallest filtered depth
 // (first in pixel order among equals): (INFINITY, BP_NO_PIXEL) if none.

@@ -4,7 +4,7 @@
 
 #include <Eigen/Core>
 
-#include "host/mesh/mesh.hpp"
+#include "host/core/mesh.hpp"
 
 namespace binpick::test {
 

@@ -1,0 +1,22 @@
+// `binpick bench`: every measurement of issue 7 in one run, in the order a reader needs them:
+// the machine's peaks, the paper's scenes (synth, timed per bin), the model (training timed),
+// detection per stage at each reference ratio, the scaling sweeps, OpenCV side by side; then
+// the report. Progress lines go to `log`; the scenes are reused by a rerun.
+#pragma once
+
+#include <iosfwd>
+
+#include "bench/lib/bench_options.hpp"
+#include "bench/lib/bench_report.hpp"
+#include "bench/lib/bench_result.hpp"
+
+namespace binpick::bench {
+
+struct BenchRun {
+  BenchResult result;
+  BenchFiles files;
+};
+
+BenchRun run_bench(const BenchOptions& options, std::ostream& log);
+
+}  // namespace binpick::bench

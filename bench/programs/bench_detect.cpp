@@ -1,0 +1,105 @@
+// Detection time per hypothesis on the paper's image size (paper section IV: 726 ms at 20 %
+// reference points, 70 ms at 2 %): a 1600 x 900 bin of the built-in bracket made by the synth
+// pipeline (70 parts, so the physics stays seconds), the model trained once, then the whole
+// Detector on the depth image. Counters are ms per hypothesis by stage: preparation (scene
+// preparation, highest points, crop, subsampling), voting (features, votes, peaks) and
+// clustering (poses, compatibility kernel, grouping). Argument: reference points in per mille.
+// With BINPICK_BENCH_SMOKE set: a 160 x 90 bin of 10 parts, one repetition.
+#include <benchmark/benchmark.h>
+
+#include <cstdlib>
+#include <filesystem>
+
+#include <sys/resource.h>
+#include <unistd.h>
+
+#include "host/formats/bop/bop_files.hpp"
+#include "host/formats/bop/png_image.hpp"
+#include "host/detect/detect_batch.hpp"
+#include "host/detect/detector.hpp"
+#include "host/formats/mesh/load_model.hpp"
+#include "host/train/ppf_model.hpp"
+#include "synth/synthesize.hpp"
+
+using namespace binpick;
+namespace fs = std::filesystem;
+
+namespace {
+
+bool smoke() { return std::getenv("BINPICK_BENCH_SMOKE") != nullptr; }
+
+double process_cpu_ms() {
+  rusage u{};
+  getrusage(RUSAGE_SELF, &u);
+  return (u.ru_utime.tv_sec + u.ru_stime.tv_sec) * 1e3 + (u.ru_utime.tv_usec + u.ru_stime.tv_usec) * 1e-3;
+}
+
+struct Bench {
+  Model part;
+  PpfModel model;
+  DepthImage depth;
+  bp_camera cam{};
+};
+
+const Bench& bench() {
+  static const Bench b = [] {
+    Bench b;
+    b.part = load_model_with_symmetries("builtin:bracket", {});
+    b.model = train_ppf_model(b.part.mesh, {});
+    const fs::path dir = fs::temp_directory_path() /
+                         ("binpick_bench_detect_" + std::to_string(::getpid()));
+    SynthOptions opt;
+    opt.out = dir;
+    opt.bins = 1;
+    opt.write_cloud = false;
+    opt.drop.objects = smoke() ? 10 : 70;
+    if (smoke()) opt.width = 160, opt.height = 90;
+    synthesize(b.part, "builtin:bracket", opt);
+    const fs::path scene = dir / "test" / "000000";
+    const auto png = read_png16(scene / "depth" / "000000.png");
+    const auto cam = bop::read_scene_cameras(scene / "scene_camera.json").at(0);
+    b.depth = {png.width, png.height, png.pixels};
+    b.cam = image_camera(cam.K, cam.depth_scale, png.width, png.height);
+    std::error_code ec;
+    fs::remove_all(dir, ec);
+    return b;
+  }();
+  return b;
+}
+
+void BM_DetectPerHypothesis(benchmark::State& state) {
+  const Bench& b = bench();
+  DetectParams params;
+  params.ref_ratio = double(state.range(0)) / 1000.0;
+  Detector detector(b.model, params);
+  (void)detector.detect(b.depth, b.cam);  // builds the programs outside the timing
+  DetectTimes total;
+  std::uint64_t best = 0;
+  const double cpu_start = process_cpu_ms();
+  for (auto _ : state) {
+    DetectTimes t;
+    const auto found = detector.detect(b.depth, b.cam, &t);
+    best = found.empty() ? 0 : found.front().votes;
+    total += t;
+  }
+  using C = benchmark::Counter;
+  const double h = double(std::max<std::size_t>(total.hypotheses, 1));
+  state.counters["prepare_ms_per_hyp"] = total.prepare_ms / h;
+  state.counters["vote_ms_per_hyp"] = total.vote_ms / h;
+  state.counters["cluster_ms_per_hyp"] = total.cluster_ms / h;
+  state.counters["total_ms_per_hyp"] = (total.prepare_ms + total.vote_ms + total.cluster_ms) / h;
+  state.counters["process_cpu_ms"] = C(process_cpu_ms() - cpu_start, C::kAvgIterations);
+  state.counters["best_votes"] = double(best);
+  state.counters["pixels"] = double(b.depth.raw.size());
+}
+
+}  // namespace
+
+// Argument: reference points per mille of the subsampled scene points (200 = the paper's 20 %).
+BENCHMARK(BM_DetectPerHypothesis)
+    ->Arg(200)->Arg(20)
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime()
+    ->Iterations(std::getenv("BINPICK_BENCH_SMOKE") ? 1 : 3);
+
+BENCHMARK_MAIN();

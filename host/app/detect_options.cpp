@@ -1,0 +1,75 @@
+#include "host/app/detect_options.hpp"
+
+#include <set>
+
+#include <fmt/format.h>
+
+#include "host/core/error.hpp"
+#include "host/detect/detect_params_file.hpp"
+
+namespace binpick::pipeline {
+namespace {
+
+std::uint32_t narrow(std::int64_t v, const char* option) {
+  if (v < 0 || v > 1000000) throw InputError(fmt::format("{} {} is out of range", option, v));
+  return static_cast<std::uint32_t>(v);
+}
+
+}  // namespace
+
+void add_detect_cli_options(CLI::App* verb, DetectCliOptions& a, const std::string& what) {
+  verb->add_option("--params", a.params_file,
+                   "JSON file of " + what + " parameters (from `binpick tune`); options given "
+                   "here win");
+  auto& p = a.params;
+  auto& o = a.options;
+  const auto help = [&](const std::string& text) { return what + ": " + text; };
+  o["ref-ratio"] = verb->add_option("--ref-ratio", p.ref_ratio,
+                                    help("reference points / subsampled scene points, in (0, 1]"))
+                       ->capture_default_str();
+  o["hypotheses"] = verb->add_option("--hypotheses", a.hypotheses, help("highest points tried per image"))
+                        ->capture_default_str();
+  o["exclusion-ratio"] =
+      verb->add_option("--exclusion-ratio", p.exclusion_ratio,
+                       help("radius excluded around a highest point, fraction of the diameter"))
+          ->capture_default_str();
+  o["crop-ratio"] =
+      verb->add_option("--crop-ratio", p.crop_ratio,
+                       help("radius of the neighbourhood voted on, fraction of the diameter"))
+          ->capture_default_str();
+  o["cluster-distance"] =
+      verb->add_option("--cluster-distance", p.cluster_distance,
+                       help("pose clustering translation threshold, fraction of the diameter"))
+          ->capture_default_str();
+  o["cluster-angle"] = verb->add_option("--cluster-angle", p.cluster_angle,
+                                        help("pose clustering rotation threshold, degrees"))
+                           ->capture_default_str();
+  o["peaks-per-ref"] =
+      verb->add_option("--peaks-per-ref", a.peaks_per_ref,
+                       help("accumulator peaks kept per reference point, in [1, 16]"))
+          ->capture_default_str();
+  o["peak-ratio"] =
+      verb->add_option("--peak-ratio", p.peak_ratio,
+                       help("a peak needs this fraction of its reference point's best votes"))
+          ->capture_default_str();
+  o["normal-ratio"] =
+      verb->add_option("--normal-ratio", p.normal_ratio,
+                       help("depth normals: neighbours within this fraction of the diameter"))
+          ->capture_default_str();
+}
+
+DetectParams resolve(const DetectCliOptions& a) {
+  DetectParams p = a.params;
+  p.hypotheses = narrow(a.hypotheses, "--hypotheses");
+  p.peaks_per_ref = narrow(a.peaks_per_ref, "--peaks-per-ref");
+  if (!a.params_file.empty()) {
+    std::set<std::string> given;
+    for (const auto& [name, option] : a.options)
+      if (option->count() > 0) given.insert(name);
+    apply_params_file(a.params_file, p, given);
+  }
+  check(p);
+  return p;
+}
+
+}  // namespace binpick::pipeline

@@ -1,0 +1,76 @@
+// `binpick bench`: how fast, and faster than what (issue 7). Measures the paper's scene stage by
+// stage, the device's peaks, the scaling sweeps and OpenCV's PPF3DDetector on the same crops,
+// and writes bench.md and bench.json (bench/lib/bench_run.hpp). `./run.sh bench` runs it.
+#include <iostream>
+#include <memory>
+
+#include <fmt/format.h>
+
+#include "bench/lib/bench_run.hpp"
+#include "host/app/model_options.hpp"
+#include "host/app/verbs.hpp"
+#include "host/core/error.hpp"
+#include "host/tune/experiment.hpp"
+
+namespace binpick::cli {
+namespace {
+
+ModelArgs default_model() {
+  ModelArgs m;
+  m.model = "builtin:bracket";
+  return m;
+}
+
+struct BenchArgs {
+  ModelArgs model = default_model();
+  bench::BenchOptions options;
+  std::string ref_ratios = "0.2,0.02";
+  bool quick = false;
+};
+
+void run_bench_verb(const BenchArgs& a) {
+  bench::BenchOptions o = a.quick ? bench::quick_options(a.options) : a.options;
+  o.part = {a.model.model, model_options_of(a.model)};
+  o.ref_ratios = pipeline::parse_number_list(a.ref_ratios, "--ref-ratios", "0.2,0.02");
+  bench::check(o);  // before the slow stages
+  const auto run = bench::run_bench(o, std::cout);
+  std::cout << "\n" << bench::bench_markdown(run.result) << "\n"
+            << fmt::format("report: {}\n        {}\n", run.files.markdown.string(),
+                           run.files.json.string());
+  if (!run.files.plot.empty()) std::cout << fmt::format("        {}\n", run.files.plot.string());
+}
+
+}  // namespace
+
+void add_bench_verb(CLI::App& app) {
+  auto a = std::make_shared<BenchArgs>();
+  auto* verb = app.add_subcommand(
+      "bench",
+      "Benchmark on the paper's scene (1600 x 900, 350 parts): detection per stage at 20 % and "
+      "2 % reference points, throughput against the device's measured peaks, scaling, synth "
+      "and training times, and OpenCV's PPF3DDetector side by side when its runner was built. "
+      "Writes bench.md and bench.json; a rerun reuses the scenes.");
+  add_model_options(verb, a->model, false);
+  auto& o = a->options;
+  verb->add_option("--out", o.out, "directory for the report, the scenes and the crops")
+      ->capture_default_str();
+  verb->add_option("--bins", o.bins, "scenes measured")->capture_default_str();
+  verb->add_option("--objects", o.objects, "parts per bin")->capture_default_str();
+  verb->add_option("--width", o.width, "image width (pixels)")->capture_default_str();
+  verb->add_option("--height", o.height, "image height (pixels)")->capture_default_str();
+  verb->add_option("--seed", o.seed, "random seed of the scenes")->capture_default_str();
+  verb->add_option("--repeats", o.repeats, "timed runs per measurement (medians reported)")
+      ->capture_default_str();
+  verb->add_option("--ref-ratios", a->ref_ratios,
+                   "reference point ratios measured, comma separated (the paper's 20 % and 2 %)")
+      ->capture_default_str();
+  verb->add_option("--opencv", o.opencv,
+                   "OpenCV's runner: auto (opencv_ppf3d next to binpick, if built), off, or a "
+                   "path")
+      ->capture_default_str();
+  verb->add_flag("--quick", a->quick,
+                 "a small scene, one repetition, short sweeps: seconds, to check the bench runs");
+  verb->callback([a] { run_bench_verb(*a); });
+}
+
+}  // namespace binpick::cli

@@ -1,0 +1,103 @@
+// `binpick eval`: compares detection results (BOP results CSV) with a dataset's ground truth and
+// writes a report directory: report.html, report.json, curves.csv, hypotheses.csv, the
+// precision figure and pictures of the first scenes (DESIGN.md section 1, step 4).
+#include <filesystem>
+#include <iostream>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <fmt/format.h>
+
+#include "host/app/verbs.hpp"
+#include "host/core/error.hpp"
+#include "host/eval/eval_run.hpp"
+#include "host/eval/report/report_tables.hpp"
+
+namespace binpick::cli {
+namespace {
+
+struct EvalArgs {
+  std::vector<std::string> datasets, results;
+  std::string out;
+  std::int64_t pictures = 3;  // wide, so a negative value reaches our range check
+  bool json = false;
+};
+
+std::vector<eval::EvalInput> inputs_of(const EvalArgs& a) {
+  if (a.datasets.empty()) throw InputError("--dataset DIR is required (with its --results CSV)");
+  if (a.datasets.size() != a.results.size())
+    throw InputError(fmt::format(
+        "{} --dataset but {} --results: give them in pairs, each dataset followed by its "
+        "results CSV (--dataset A --results A.csv --dataset B --results B.csv)",
+        a.datasets.size(), a.results.size()));
+  std::vector<eval::EvalInput> inputs;
+  for (std::size_t i = 0; i < a.datasets.size(); ++i) inputs.push_back({a.datasets[i], a.results[i]});
+  return inputs;
+}
+
+void print_summary(const std::vector<eval::DatasetEvaluation>& evaluations,
+                   const eval::EvalOptions& o) {
+  std::cout << fmt::format("{:<24} {:>7} {:>10} {:>9} {:>9} {:>9} {:>9} {:>9} {:>9} {:>10}\n",
+                           "dataset", "images", "hypotheses",
+                           fmt::format("top{:g}/{:g}", o.loose.translation_pct, o.loose.rotation_deg),
+                           fmt::format("all{:g}/{:g}", o.loose.translation_pct, o.loose.rotation_deg),
+                           fmt::format("top{:g}/{:g}", o.strict.translation_pct, o.strict.rotation_deg),
+                           fmt::format("all{:g}/{:g}", o.strict.translation_pct, o.strict.rotation_deg),
+                           "med.te%", "med.re", "ms/hyp");
+  for (const auto& e : evaluations) {
+    const auto& s = e.summary;
+    std::cout << fmt::format(
+        "{:<24} {:>7} {:>10} {:>8.1f}% {:>8.1f}% {:>8.1f}% {:>8.1f}% {:>9.2f} {:>9.2f} {:>10.1f}\n",
+        e.dataset.label, s.images, s.hypotheses, 100 * s.loose.top, 100 * s.loose.all,
+        100 * s.strict.top, 100 * s.strict.all, s.median_translation_pct_all,
+        s.median_rotation_deg_all, s.ms_per_hypothesis);
+  }
+}
+
+void run_eval(const EvalArgs& args) {
+  const auto inputs = inputs_of(args);
+  if (args.pictures < 0 || args.pictures > 1000)
+    throw InputError(fmt::format("--pictures {} must be in [0, 1000]", args.pictures));
+  const std::filesystem::path out = args.out;
+  if (std::filesystem::exists(out) && !std::filesystem::is_directory(out))
+    throw InputError("--out " + out.string() + " exists and is not a directory");
+
+  eval::ReportOptions options;
+  options.out = out;
+  options.pictures = int(args.pictures);
+  // Everything is read and checked here, before the first file of the report is written.
+  const auto evaluations = eval::evaluate_inputs(inputs, options.eval);
+  const eval::ReportFiles files = eval::write_report(evaluations, options);
+  for (const auto& w : files.warnings) std::cerr << "binpick: warning: " << w << "\n";
+  if (args.json) {
+    std::cout << eval::report_json(evaluations, options.eval).dump(2) << "\n";
+    return;
+  }
+  print_summary(evaluations, options.eval);
+  std::cout << "wrote " << files.html.string() << "\n";
+}
+
+}  // namespace
+
+void add_eval_verb(CLI::App& app) {
+  auto args = std::make_shared<EvalArgs>();
+  auto* verb = app.add_subcommand(
+      "eval",
+      "Evaluate detection results against a dataset's ground truth: translation and rotation "
+      "errors, precision curves (all hypotheses and top-voted per image), pictures; writes "
+      "report.html, report.json, curves.csv, hypotheses.csv and PNGs into --out");
+  verb->add_option("--dataset", args->datasets,
+                   "BOP dataset directory (repeat, each followed by its --results, for one curve "
+                   "per noise level)");
+  verb->add_option("--results", args->results,
+                   "BOP results CSV of the preceding --dataset (scene_id,im_id,obj_id,score,R,t,time)");
+  verb->add_option("--out", args->out, "report directory (created if missing)")->required();
+  verb->add_option("--pictures", args->pictures, "images pictured per dataset, in [0, 1000]")
+      ->capture_default_str();
+  verb->add_flag("--json", args->json,
+                 "print the summary as JSON (the content of report.json) instead of a table");
+  verb->callback([args] { run_eval(*args); });
+}
+
+}  // namespace binpick::cli

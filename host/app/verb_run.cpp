@@ -1,0 +1,85 @@
+// `binpick run`: the paper's experiment in one command (section IV): a dataset per noise level,
+// the model trained once, detection and evaluation of each, one report with a curve per noise
+// level, and a final table. Every stage resumes, so the same command again finishes an
+// interrupted run (host/tune/experiment.hpp).
+#include <iostream>
+#include <memory>
+#include <vector>
+
+#include <fmt/format.h>
+
+#include "host/app/model_options.hpp"
+#include "host/app/verbs.hpp"
+#include "host/core/error.hpp"
+#include "host/app/detect_options.hpp"
+#include "host/tune/experiment.hpp"
+
+namespace binpick::cli {
+namespace {
+
+struct RunArgs {
+  ModelArgs model;
+  pipeline::ExperimentOptions experiment;
+  std::string noise = "0";
+  pipeline::DetectCliOptions detect;
+};
+
+void run_run(RunArgs& a) {
+  pipeline::ExperimentOptions o = a.experiment;
+  // Parsed here rather than by CLI11, which would quietly keep the default for "--noise ''".
+  o.noise = pipeline::parse_noise_list(a.noise);
+  o.part = {a.model.model, model_options_of(a.model)};
+  o.detect = pipeline::resolve(a.detect);
+  pipeline::check(o);  // before the slow stages: bad options fail fast
+  const auto r = pipeline::run_experiment(o, std::cout);
+  std::cout << "\n" << pipeline::results_table(r.evaluations);
+  for (const auto& w : r.report.warnings) std::cerr << "binpick: warning: " << w << "\n";
+  std::cout << fmt::format(
+      "\ntime: synth {:.1f} s, train {:.1f} s{}, detect {:.1f} s, eval {:.1f} s\n"
+      "report: {}\n",
+      r.synth_s, r.train_s, r.model_reused ? " (reused)" : "", r.detect_s, r.eval_s,
+      r.report.html.string());
+}
+
+}  // namespace
+
+void add_run_verb(CLI::App& app) {
+  auto a = std::make_shared<RunArgs>();
+  auto* verb = app.add_subcommand(
+      "run",
+      "The paper's experiment in one command: synthesise a dataset per noise level, train the "
+      "model once, detect and evaluate each dataset, write one report (a curve per noise level) "
+      "and print a table. Rerunning the same command resumes.");
+  add_model_options(verb, a->model);
+  auto& o = a->experiment;
+  verb->add_option("--out", o.out,
+                   "working directory: noise_S/ datasets, model.ppfm, results/, report/")
+      ->required();
+  verb->add_option("--bins", o.bins, "bins per noise level")->capture_default_str();
+  verb->add_option("--objects", o.objects, "parts per bin")->capture_default_str();
+  verb->add_option("--noise", a->noise,
+                   "noise levels, comma separated: Gaussian depth noise sigma as a fraction of the "
+                   "diameter (the paper: 0,0.01,0.02,0.03,0.04,0.05)")
+      ->capture_default_str();
+  verb->add_option("--seed", o.seed, "random seed of the bins")->capture_default_str();
+  verb->add_option("--width", o.width, "image width, pixels")->capture_default_str();
+  verb->add_option("--height", o.height, "image height, pixels")->capture_default_str();
+  verb->add_option("--max-wall-seconds", o.max_wall_seconds,
+                   "wall-clock limit of one bin's physics (0: none)")
+      ->capture_default_str();
+  verb->add_option("--voxel-ratio", o.train.voxel_ratio,
+                   "training: subsampling voxel as a fraction of the diameter")
+      ->capture_default_str();
+  verb->add_option("--distance-steps", o.train.distance_steps,
+                   "training: distance bins up to the diameter")
+      ->capture_default_str();
+  verb->add_option("--angle-steps", o.train.angle_steps,
+                   "training: angle bins of a full turn (30 = 12 degrees)")
+      ->capture_default_str();
+  verb->add_option("--pictures", o.pictures, "images pictured per noise level in the report")
+      ->capture_default_str();
+  pipeline::add_detect_cli_options(verb, a->detect, "detection");
+  verb->callback([a] { run_run(*a); });
+}
+
+}  // namespace binpick::cli

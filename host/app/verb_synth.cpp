@@ -1,0 +1,93 @@
+// `binpick synth`: synthetic bins as a BOP dataset (DESIGN.md sections 1 and 4).
+#include <iostream>
+#include <memory>
+
+#include <fmt/format.h>
+
+#include "host/app/model_options.hpp"
+#include "host/app/verbs.hpp"
+#include "synth/synthesize.hpp"
+
+namespace binpick::cli {
+namespace {
+
+struct SynthArgs {
+  ModelArgs model;
+  SynthOptions options;
+  std::vector<double> bin_size{600.0, 400.0, 300.0};
+  std::vector<int> grid{7, 5};
+  std::string cache_dir;
+};
+
+void run_synth(const SynthArgs& args) {
+  SynthOptions o = args.options;
+  o.drop.bin_size_mm = Eigen::Vector3d(args.bin_size[0], args.bin_size[1], args.bin_size[2]);
+  o.drop.grid_x = args.grid[0];
+  o.drop.grid_y = args.grid[1];
+  o.decompose.cache_dir = args.cache_dir;
+  validate_synth_options(o);  // before loading: bad options fail fast
+  const Model model = load_model_with_symmetries(args.model);
+  const SynthSummary s = synthesize(model, args.model.model, o);
+  std::cout << fmt::format(
+      "{}: {} bins made, {} already there; decomposition {:.1f} s, physics {:.1f} s, "
+      "rendering {:.2f} s, writing {:.2f} s\n",
+      o.out.string(), s.bins_made, s.bins_skipped, s.seconds_decompose, s.seconds_physics,
+      s.seconds_render, s.seconds_write);
+}
+
+}  // namespace
+
+void add_synth_verb(CLI::App& app) {
+  auto args = std::make_shared<SynthArgs>();
+  auto* verb = app.add_subcommand(
+      "synth",
+      "Make synthetic bins as a BOP dataset: drop parts into a bin with Bullet (convex pieces "
+      "from HACD), render depth, intensity and the scene cloud with Vulkan. Rerunning the same "
+      "command resumes; a larger --bins extends the dataset.");
+  add_model_options(verb, args->model);
+  SynthOptions& o = args->options;
+  verb->add_option("--out", o.out, "dataset directory (created)")->required();
+  verb->add_option("--bins", o.bins, "number of bins (BOP scenes)")->capture_default_str();
+  verb->add_option("--objects", o.drop.objects, "parts per bin")->capture_default_str();
+  verb->add_option("--seed", o.seed, "random seed: the same seed gives the same bins")
+      ->capture_default_str();
+  verb->add_option("--noise", o.noise,
+                   "Gaussian depth noise along the ray, sigma as a fraction of the part diameter "
+                   "(the paper: 0 to 0.05)")
+      ->capture_default_str();
+  verb->add_option("--bin-size", args->bin_size, "bin interior W,D,H in mm")
+      ->delimiter(',')
+      ->expected(3)
+      ->capture_default_str();
+  verb->add_option("--grid", args->grid, "parts per wave as X,Y drop positions (paper: 7 x 5)")
+      ->delimiter(',')
+      ->expected(2)
+      ->capture_default_str();
+  verb->add_option("--drop-height", o.drop.drop_height_mm, "release height above the floor, mm")
+      ->capture_default_str();
+  verb->add_option("--camera-height", o.camera_height_mm, "camera height above the floor, mm")
+      ->capture_default_str();
+  verb->add_option("--width", o.width, "image width, pixels")->capture_default_str();
+  verb->add_option("--height", o.height, "image height, pixels")->capture_default_str();
+  verb->add_option("--max-wave-seconds", o.drop.max_wave_seconds,
+                   "simulated seconds a wave may take to come to rest before the next is released")
+      ->capture_default_str();
+  verb->add_option("--max-wall-seconds", o.drop.max_wall_seconds,
+                   "wall-clock limit of one bin's physics (0: none); a bin cut short says so")
+      ->capture_default_str();
+  verb->add_flag("--final-settle", o.drop.final_settle_all_dynamic,
+                 "after the last wave, keep the whole pile dynamic until all of it is at rest. "
+                 "Parts at rest are frozen while later waves land, so they never feel all the "
+                 "weight of the parts above them. By default the pile is made dynamic for one "
+                 "simulated second at the end, then settles frozen again as in the waves: a "
+                 "few parts of a finished bin would still shift by some mm if it were "
+                 "released. This option removes most of those shifts at 2.2 to 2.4 times the "
+                 "physics time");
+  verb->add_flag("--masks", o.write_masks, "also write mask_visib/ (one PNG per part)");
+  verb->add_flag("!--no-cloud", o.write_cloud, "do not write cloud/000000.ply");
+  verb->add_option("--cache-dir", args->cache_dir,
+                   "convex decomposition cache (default $BINPICK_CACHE_DIR or ~/.cache/binpick)");
+  verb->callback([args] { run_synth(*args); });
+}
+
+}  // namespace binpick::cli

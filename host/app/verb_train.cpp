@@ -1,0 +1,118 @@
+// `binpick train`: samples the part's surface, voxel-subsamples it, builds the point pair
+// feature hash table on the OpenCL device and writes the .ppfm model file.
+#include <chrono>
+#include <cmath>
+#include <cstdint>
+#include <filesystem>
+#include <iostream>
+#include <memory>
+#include <string>
+
+#include <fmt/format.h>
+
+#include "host/app/model_options.hpp"
+#include "host/app/verbs.hpp"
+#include "host/core/error.hpp"
+#include "host/train/ppf_model.hpp"
+#include "host/train/ppf_model_file.hpp"
+
+namespace binpick::cli {
+namespace {
+
+struct TrainArgs {
+  ModelArgs model;
+  std::string out;
+  double voxel_ratio = 0.05;
+  // Wide types, so that a negative or huge value reaches our range check (an InputError that
+  // says what is allowed) instead of a conversion error.
+  std::int64_t distance_steps = BP_PPF_DEFAULT_DIST_STEPS;
+  std::int64_t angle_steps = BP_PPF_DEFAULT_ANGLE_STEPS;
+};
+
+std::uint32_t steps(std::int64_t value, const char* option, std::int64_t lo, std::int64_t hi) {
+  if (value < lo || value > hi)
+    throw InputError(fmt::format("{} {} must be in [{}, {}]", option, value, lo, hi));
+  return static_cast<std::uint32_t>(value);
+}
+
+PpfTrainParams params_of(const TrainArgs& a) {
+  PpfTrainParams p;
+  p.voxel_ratio = a.voxel_ratio;
+  if (!(std::isfinite(a.voxel_ratio) && a.voxel_ratio > 0 && a.voxel_ratio <= 1))
+    throw InputError(fmt::format("--voxel-ratio {} must be in (0, 1] (a fraction of the diameter)",
+                                 a.voxel_ratio));
+  p.distance_steps = steps(a.distance_steps, "--distance-steps", 1, 1000);
+  p.angle_steps = steps(a.angle_steps, "--angle-steps", 4, 360);
+  check_train_params(p);
+  return p;
+}
+
+void check_output(const std::filesystem::path& out) {
+  const auto dir = out.has_parent_path() ? out.parent_path() : std::filesystem::path(".");
+  if (!std::filesystem::is_directory(dir))
+    throw InputError("--out " + out.string() + ": directory " + dir.string() + " does not exist");
+  if (std::filesystem::is_directory(out))
+    throw InputError("--out " + out.string() + " is a directory");
+}
+
+double ms(double s) { return s * 1e3; }
+
+void run_train(const TrainArgs& args) {
+  const PpfTrainParams params = params_of(args);  // before the (slow) load: fail fast
+  check_output(args.out);
+  const auto start = std::chrono::steady_clock::now();
+  const Mesh mesh = load_model(args.model);
+  const double load_s =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  PpfTrainStats st;
+  const PpfModel model = train_ppf_model(mesh, params, &st);
+  const auto write_start = std::chrono::steady_clock::now();
+  write_ppf_model(args.out, model);
+  const auto end = std::chrono::steady_clock::now();
+  const double write_s = std::chrono::duration<double>(end - write_start).count();
+  const double total_s = std::chrono::duration<double>(end - start).count();
+
+  const auto& t = st.table;
+  std::cout << fmt::format(
+      "model {}: diameter {:.3f} mm, voxel {:.3f} mm ({} of the diameter)\n"
+      "  surface samples  {:>12}\n"
+      "  model points     {:>12}\n"
+      "  pairs            {:>12}   (ordered, points x (points - 1))\n"
+      "  table entries    {:>12}\n"
+      "  distinct keys    {:>12}   of {} ({} distance x {}^3 angle bins; alpha in {} bins)\n"
+      "  time (ms): load {:.1f}, diameter {:.1f}, sampling {:.1f}, subsampling {:.1f}, "
+      "table count {:.1f}, offsets {:.1f}, scatter {:.1f}, read back {:.1f}, "
+      "write {:.1f}; total {:.1f}\n"
+      "wrote {} ({:.2f} MB)\n",
+      args.model.model, model.diameter, model.voxel_size, params.voxel_ratio, st.surface_samples,
+      st.points, st.pairs, st.entries, st.distinct_keys, model.table.offsets.size() - 1,
+      model.quant.n_dist, model.quant.n_angle, model.quant.n_alpha, ms(load_s), ms(st.diameter_s),
+      ms(st.sample_s), ms(st.subsample_s), ms(t.count_s), ms(t.scan_s), ms(t.scatter_s),
+      ms(t.read_s), ms(write_s), ms(total_s), args.out,
+      double(std::filesystem::file_size(args.out)) / 1e6);
+}
+
+}  // namespace
+
+void add_train_verb(CLI::App& app) {
+  auto args = std::make_shared<TrainArgs>();
+  auto* verb = app.add_subcommand(
+      "train",
+      "Build the point pair feature model of a part: sample its surface uniformly, voxel "
+      "subsample, hash all point pair features on the OpenCL device, write a .ppfm file");
+  add_model_options(verb, args->model);
+  verb->add_option("--out", args->out, "model file to write (.ppfm)")->required();
+  verb->add_option("--voxel-ratio", args->voxel_ratio,
+                   "subsampling voxel size as a fraction of the diameter, in (0, 1]")
+      ->capture_default_str();
+  verb->add_option("--distance-steps", args->distance_steps,
+                   "distance bins up to the diameter, in [1, 1000]")
+      ->capture_default_str();
+  verb->add_option("--angle-steps", args->angle_steps,
+                   "angle bins of a full turn (30 = 12 degrees), in [4, 360]; feature angles in "
+                   "[0, pi] get half as many")
+      ->capture_default_str();
+  verb->callback([args] { run_train(*args); });
+}
+
+}  // namespace binpick::cli

@@ -1,0 +1,75 @@
+#include "host/core/atomic_file.hpp"
+
+#include <unistd.h>
+
+#include <atomic>
+#include <cerrno>
+#include <cstring>
+#include <fstream>
+#include <string>
+#include <system_error>
+
+#include "host/core/error.hpp"
+
+namespace binpick {
+namespace {
+
+// Unique within the process (counter) and across processes (pid), so concurrent writers of the
+// same target never share a temporary file.
+std::filesystem::path temporary_path_for(const std::filesystem::path& path) {
+  static std::atomic<unsigned> counter{0};
+  std::string name = ".";
+  name += path.filename().string();
+  name += ".tmp" + std::to_string(::getpid()) + "_" + std::to_string(counter++);
+  return path.parent_path() / name;
+}
+
+// Removes the temporary file unless the rename succeeded.
+class TemporaryFile {
+ public:
+  explicit TemporaryFile(std::filesystem::path path) : path_(std::move(path)) {}
+  TemporaryFile(const TemporaryFile&) = delete;
+  TemporaryFile& operator=(const TemporaryFile&) = delete;
+  ~TemporaryFile() {
+    if (!committed_) {
+      std::error_code ignored;
+      std::filesystem::remove(path_, ignored);
+    }
+  }
+  const std::filesystem::path& path() const { return path_; }
+  void commit_as(const std::filesystem::path& target) {
+    std::error_code ec;
+    std::filesystem::rename(path_, target, ec);
+    if (ec) throw InputError("cannot write " + target.string() + ": " + ec.message());
+    committed_ = true;
+  }
+
+ private:
+  std::filesystem::path path_;
+  bool committed_ = false;
+};
+
+}  // namespace
+
+void write_file_atomically(const std::filesystem::path& path,
+                           const std::function<void(std::ostream&)>& write) {
+  if (path.filename().empty())
+    throw InputError("cannot write '" + path.string() + "': not a file name");
+  if (std::filesystem::is_directory(path))
+    throw InputError("cannot write " + path.string() + ": it is a directory");
+  TemporaryFile temporary(temporary_path_for(path));
+  {
+    std::ofstream stream(temporary.path(), std::ios::binary | std::ios::trunc);
+    if (!stream) {
+      throw InputError("cannot write " + path.string() + ": " + std::strerror(errno));
+    }
+    write(stream);
+    stream.flush();
+    if (!stream) throw InputError("cannot write " + path.string() + ": write failed (disk full?)");
+    stream.close();
+    if (!stream) throw InputError("cannot write " + path.string() + ": closing the file failed");
+  }
+  temporary.commit_as(path);
+}
+
+}  // namespace binpick

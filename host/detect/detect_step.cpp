@@ -1,0 +1,21 @@
+#include "host/detect/detect_step.hpp"
+
+#include "host/core/error.hpp"
+
+namespace binpick::pipeline {
+
+BatchSummary detect_to_csv(Detector& detector, const TrainedModel& model,
+                           const std::filesystem::path& dataset, const std::filesystem::path& csv) {
+  if (&detector.model() != &model.model)
+    throw std::logic_error("detect_to_csv: the detector was not made from this model");
+  std::error_code ec;
+  if (csv.has_parent_path()) std::filesystem::create_directories(csv.parent_path(), ec);
+  if (ec) throw InputError("cannot create " + csv.parent_path().string() + ": " + ec.message());
+  BatchOptions opt;
+  opt.dataset = dataset;
+  opt.out = csv;
+  opt.model_checksum = model.checksum;
+  return detect_dataset(detector, opt, nullptr);
+}
+
+}  // namespace binpick::pipeline

@@ -1,0 +1,18 @@
+// Detection of one dataset into one results CSV, as `binpick detect --dataset` does it
+// (detect_batch: resumable per scene, fingerprinted by the model's checksum and the parameters).
+#pragma once
+
+#include <filesystem>
+
+#include "host/detect/detect_batch.hpp"
+#include "host/detect/detector.hpp"
+#include "host/train/model_store.hpp"
+
+namespace binpick::pipeline {
+
+// Every scene of DATASET/test with `detector`, whose model is `model`, into csv (its directory
+// is created). Progress on stderr.
+BatchSummary detect_to_csv(Detector& detector, const TrainedModel& model,
+                           const std::filesystem::path& dataset, const std::filesystem::path& csv);
+
+}  // namespace binpick::pipeline

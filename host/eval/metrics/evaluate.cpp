@@ -1,0 +1,136 @@
+#include "host/eval/metrics/evaluate.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <map>
+
+#include <fmt/format.h>
+
+#include "host/core/error.hpp"
+#include "host/eval/metrics/pose_error.hpp"
+
+namespace binpick::eval {
+namespace {
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+// Median of values (+inf counts: a hypothesis that matched nothing is as wrong as can be).
+double median(std::vector<double> values) {
+  if (values.empty()) return std::numeric_limits<double>::quiet_NaN();
+  const std::size_t mid = values.size() / 2;
+  std::nth_element(values.begin(), values.begin() + mid, values.end());
+  const double upper = values[mid];
+  if (values.size() % 2) return upper;
+  const double lower = *std::max_element(values.begin(), values.begin() + mid);
+  return (lower + upper) / 2;
+}
+
+double fraction(std::size_t part, std::size_t whole) {
+  return whole ? double(part) / double(whole) : 0.0;
+}
+
+// Matches r to the instance of its obj_id nearest in translation and measures its errors.
+void measure(HypothesisResult& r, const EvalImage& image, const bop::ModelInfo& model) {
+  double nearest = kInf;
+  for (std::size_t i = 0; i < image.gt.size(); ++i) {
+    const auto& g = image.gt[i];
+    if (g.obj_id != r.obj_id) continue;
+    const double d = (g.model_to_camera.t - r.row.t).norm();
+    if (d < nearest) nearest = d, r.gt_index = int(i);
+  }
+  if (r.gt_index < 0) {
+    r.translation_mm = r.translation_pct = r.rotation_deg = kInf;
+    return;
+  }
+  const auto& gt = image.gt[std::size_t(r.gt_index)].model_to_camera;
+  const PoseError e = symmetric_pose_error(gt.R, gt.t, r.row.R, r.row.t, model.symmetries);
+  r.translation_mm = e.translation_mm;
+  r.translation_pct = 100.0 * e.translation_mm / model.diameter;
+  r.rotation_deg = e.rotation_deg;
+}
+
+PrecisionAt precision_at(const std::vector<HypothesisResult>& results, const OperatingPoint& at) {
+  std::size_t all = 0, top = 0, tops = 0;
+  for (const auto& r : results) {
+    const bool ok = correct_at(r, at);
+    all += ok;
+    if (r.top) ++tops, top += ok;
+  }
+  return {at, fraction(all, results.size()), fraction(top, tops)};
+}
+
+}  // namespace
+
+bool correct_at(const HypothesisResult& r, const OperatingPoint& at) {
+  return r.translation_pct <= at.translation_pct + kThresholdSlack &&
+         r.rotation_deg <= at.rotation_deg + kThresholdSlack;
+}
+
+void check(const EvalOptions& o) {
+  for (const OperatingPoint* p : {&o.loose, &o.strict})
+    if (!(p->translation_pct >= 0 && p->rotation_deg >= 0 && std::isfinite(p->translation_pct) &&
+          std::isfinite(p->rotation_deg)))
+      throw InputError("operating point thresholds must be finite and non-negative");
+}
+
+EvalSummary evaluate(const Dataset& dataset, const std::vector<bop::ResultRow>& rows,
+                     const EvalOptions& options) {
+  check(options);
+  EvalSummary s;
+  s.images = dataset.images.size();
+  s.results.reserve(rows.size());
+  std::map<ImageKey, std::vector<std::size_t>> by_image;  // indices into s.results
+  for (std::size_t i = 0; i < rows.size(); ++i) {
+    const auto& row = rows[i];
+    const ImageKey key{row.scene_id, row.im_id};
+    const auto image = dataset.images.find(key);
+    if (image == dataset.images.end())
+      throw InputError(fmt::format(
+          "results row {} is for scene {} image {}, which dataset {} does not have", i + 1,
+          row.scene_id, row.im_id, dataset.root.string()));
+    const auto model = dataset.models.find(row.obj_id);
+    if (model == dataset.models.end())
+      throw InputError(fmt::format("results row {} has obj_id {}, which {} lacks", i + 1,
+                                   row.obj_id, (dataset.root / "models/models_info.json").string()));
+    HypothesisResult r;
+    r.scene_id = row.scene_id, r.im_id = row.im_id, r.obj_id = row.obj_id;
+    r.score = row.score;
+    r.row = row;
+    measure(r, image->second, model->second);
+    auto& list = by_image[key];
+    r.rank = int(list.size());
+    list.push_back(s.results.size());
+    s.results.push_back(r);
+  }
+
+  double total_ms = 0;
+  for (const auto& [key, list] : by_image) {
+    std::size_t best = list.front();
+    for (std::size_t i : list)
+      if (s.results[i].score > s.results[best].score) best = i;
+    s.results[best].top = true;
+    // The time column is per image (the same on each of its rows); rows may disagree if
+    // concatenated from several runs: take the first.
+    const double image_ms = 1e3 * s.results[list.front()].row.time;
+    for (std::size_t i : list) s.results[i].ms = image_ms / double(list.size());
+    total_ms += image_ms;
+  }
+  s.images_with_results = by_image.size();
+  s.hypotheses = s.results.size();
+
+  std::vector<double> te_all, re_all, te_top, re_top;
+  for (const auto& r : s.results) {
+    s.unmatched += r.gt_index < 0;
+    te_all.push_back(r.translation_pct), re_all.push_back(r.rotation_deg);
+    if (r.top) te_top.push_back(r.translation_pct), re_top.push_back(r.rotation_deg);
+  }
+  s.loose = precision_at(s.results, options.loose);
+  s.strict = precision_at(s.results, options.strict);
+  s.median_translation_pct_all = median(te_all), s.median_rotation_deg_all = median(re_all);
+  s.median_translation_pct_top = median(te_top), s.median_rotation_deg_top = median(re_top);
+  s.ms_per_hypothesis = s.hypotheses ? total_ms / double(s.hypotheses) : 0.0;
+  return s;
+}
+
+}  // namespace binpick::eval

@@ -1,0 +1,68 @@
+// Evaluation of detection results against a dataset's ground truth (paper section III-D,
+// issue 6): each hypothesis is matched to the ground-truth part nearest in translation, its
+// errors are measured, and precision is counted for all hypotheses and for the top-voted one
+// of each image. The numbers `binpick tune` optimises come from here.
+#pragma once
+
+#include <cstddef>
+#include <vector>
+
+#include "host/formats/bop/results_csv.hpp"
+#include "host/eval/metrics/eval_dataset.hpp"
+
+namespace binpick::eval {
+
+// A hypothesis is correct at an operating point when both errors are within its thresholds.
+struct OperatingPoint {
+  double translation_pct = 10;  // % of the diameter
+  double rotation_deg = 15;
+};
+
+struct EvalOptions {
+  OperatingPoint loose{10, 15};
+  OperatingPoint strict{5, 5};
+};
+
+struct HypothesisResult {
+  int scene_id = 0, im_id = 0, obj_id = 1;
+  int rank = 0;          // 0 = the first row of its image in the file
+  double score = 0;
+  bool top = false;      // the highest score of its image (the first such row on ties)
+  int gt_index = -1;     // the matched instance of scene_gt.json, -1 if the image has none of obj_id
+  double translation_mm = 0, translation_pct = 0, rotation_deg = 0;  // +inf if unmatched
+  double ms = 0;         // the image's time divided by its number of hypotheses
+  bop::ResultRow row;    // as read
+};
+
+struct PrecisionAt {
+  OperatingPoint at;
+  double all = 0, top = 0;  // fraction of hypotheses / of top-voted ones correct at `at`
+};
+
+struct EvalSummary {
+  std::size_t images = 0;               // images of the dataset
+  std::size_t images_with_results = 0;  // of them, images with at least one hypothesis
+  std::size_t hypotheses = 0;
+  std::size_t unmatched = 0;            // hypotheses of an obj_id absent from their image
+  PrecisionAt loose, strict;
+  double median_translation_pct_all = 0, median_rotation_deg_all = 0;
+  double median_translation_pct_top = 0, median_rotation_deg_top = 0;
+  double ms_per_hypothesis = 0;
+  std::vector<HypothesisResult> results;  // in file order
+};
+
+void check(const EvalOptions& options);
+
+// Throws InputError for a row of a scene or image the dataset does not have, or of an obj_id
+// its models_info.json lacks, naming the row (1-based data row number, as in the file).
+EvalSummary evaluate(const Dataset& dataset, const std::vector<bop::ResultRow>& rows,
+                     const EvalOptions& options = {});
+
+// Errors exactly at a threshold count as within it, whatever the last bit of their arithmetic
+// (5.2 mm of a 52 mm part is 10 % of it).
+inline constexpr double kThresholdSlack = 1e-9;
+
+// True if r is within both thresholds of at (plus kThresholdSlack).
+bool correct_at(const HypothesisResult& r, const OperatingPoint& at);
+
+}  // namespace binpick::eval

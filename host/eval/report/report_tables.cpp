@@ -1,0 +1,80 @@
+#include "host/eval/report/report_tables.hpp"
+
+#include <cmath>
+
+#include <fmt/format.h>
+
+#include "host/core/atomic_file.hpp"
+
+namespace binpick::eval {
+namespace {
+
+using nlohmann::json;
+
+json number(double v) { return std::isfinite(v) ? json(v) : json(nullptr); }
+
+json operating_point(const PrecisionAt& p) {
+  return {{"translation_pct", p.at.translation_pct}, {"rotation_deg", p.at.rotation_deg},
+          {"all", p.all}, {"top", p.top}};
+}
+
+json summary_json(const DatasetEvaluation& e) {
+  const EvalSummary& s = e.summary;
+  return {{"label", e.dataset.label},
+          {"dataset", e.dataset.root.string()},
+          {"results", e.results.string()},
+          {"noise", e.dataset.noise >= 0 ? json(e.dataset.noise) : json(nullptr)},
+          {"images", s.images},
+          {"images_with_results", s.images_with_results},
+          {"hypotheses", s.hypotheses},
+          {"unmatched", s.unmatched},
+          {"precision", {{"loose", operating_point(s.loose)}, {"strict", operating_point(s.strict)}}},
+          {"median",
+           {{"translation_pct_all", number(s.median_translation_pct_all)},
+            {"rotation_deg_all", number(s.median_rotation_deg_all)},
+            {"translation_pct_top", number(s.median_translation_pct_top)},
+            {"rotation_deg_top", number(s.median_rotation_deg_top)}}},
+          {"ms_per_hypothesis", number(s.ms_per_hypothesis)}};
+}
+
+std::string csv_quoted(const std::string& s) {
+  std::string out = "\"";
+  for (char c : s) out += c == '"' ? std::string("\"\"") : std::string(1, c);
+  return out + "\"";
+}
+
+}  // namespace
+
+json report_json(const std::vector<DatasetEvaluation>& evaluations, const EvalOptions& options) {
+  json datasets = json::array();
+  for (const auto& e : evaluations) datasets.push_back(summary_json(e));
+  return {{"operating_points",
+           {{"loose", {{"translation_pct", options.loose.translation_pct},
+                       {"rotation_deg", options.loose.rotation_deg}}},
+            {"strict", {{"translation_pct", options.strict.translation_pct},
+                        {"rotation_deg", options.strict.rotation_deg}}}}},
+          {"datasets", datasets}};
+}
+
+void write_report_json(const std::filesystem::path& path,
+                       const std::vector<DatasetEvaluation>& evaluations, const EvalOptions& options) {
+  const std::string text = report_json(evaluations, options).dump(2) + "\n";
+  write_file_atomically(path, [&](std::ostream& out) { out << text; });
+}
+
+void write_hypotheses_csv(const std::filesystem::path& path,
+                          const std::vector<DatasetEvaluation>& evaluations) {
+  write_file_atomically(path, [&](std::ostream& out) {
+    out << "label,scene_id,im_id,rank,obj_id,score,top,gt_index,translation_mm,translation_pct,"
+           "rotation_deg,ms\n";
+    for (const auto& e : evaluations) {
+      const std::string label = csv_quoted(e.dataset.label);
+      for (const auto& r : e.summary.results)
+        out << fmt::format("{},{},{},{},{},{:g},{},{},{:.4f},{:.4f},{:.4f},{:.3f}\n", label,
+                           r.scene_id, r.im_id, r.rank, r.obj_id, r.score, r.top ? 1 : 0,
+                           r.gt_index, r.translation_mm, r.translation_pct, r.rotation_deg, r.ms);
+    }
+  });
+}
+
+}  // namespace binpick::eval

@@ -1,0 +1,148 @@
+#include "host/formats/mesh/load_model.hpp"
+
+#include <spdlog/spdlog.h>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <new>
+
+#include "host/core/error.hpp"
+#include "host/core/read_file.hpp"
+#include "host/core/diameter.hpp"
+#include "host/core/mesh_geometry.hpp"
+#include "host/core/mesh_normals.hpp"
+#include "host/formats/mesh/mesh_readers.hpp"
+#include "host/core/mesh_topology.hpp"
+#include "synth/parts/builtin_parts.hpp"
+
+namespace binpick {
+namespace {
+
+constexpr std::string_view builtin_prefix = "builtin:";
+
+void check_options(const std::string& spec, const ModelOptions& options) {
+  if (!(std::isfinite(options.unit_scale) && options.unit_scale > 0))
+    throw InputError(spec + ": unit scale must be a positive number, not " +
+                     std::to_string(options.unit_scale));
+  if (options.diameter && !(std::isfinite(*options.diameter) && *options.diameter > 0))
+    throw InputError(spec + ": diameter must be a positive number of mm, not " +
+                     std::to_string(*options.diameter));
+}
+
+std::string lowercase(std::string_view text) {
+  std::string result(text);
+  std::transform(result.begin(), result.end(), result.begin(),
+                 [](unsigned char c) { return std::tolower(c); });
+  return result;
+}
+
+Mesh read_model(std::string_view bytes, std::string_view format, const ModelOptions& options,
+                const std::filesystem::path& directory) {
+  const std::string kind = lowercase(format);
+  const bool gltf = kind == "gltf" || kind == "glb";
+  if (!options.mesh_name.empty() && !gltf)
+    throw InputError("--mesh selects a node of a glTF file; this is a ." + kind + " file");
+  if (kind == "ply") return read_ply(bytes);
+  if (kind == "stl") return read_stl(bytes);
+  if (kind == "obj") return read_obj(bytes, directory);
+  if (gltf) return read_gltf(bytes, directory, options.mesh_name);
+  throw InputError("unsupported model format '." + kind +
+                   "' (expected .gltf .glb .ply .stl .obj, or builtin:NAME)");
+}
+
+// The checks and repairs every format needs, in file units.
+void check_and_complete(Mesh& mesh) {
+  for (const auto& t : mesh.triangles) {
+    for (auto v : t) {
+      if (v >= mesh.positions.size())
+        throw InputError("face refers to vertex " + std::to_string(v) + " but there are only " +
+                         std::to_string(mesh.positions.size()) + " vertices");
+    }
+  }
+  remove_collapsed_triangles(mesh);
+  if (mesh.triangles.empty()) throw InputError("the model has no triangles");
+  remove_unreferenced_vertices(mesh);
+  for (const auto& p : mesh.positions) {
+    if (!p.allFinite())
+      throw InputError("the model has a vertex with a NaN or infinite coordinate");
+  }
+  if (!mesh.normals.empty() && !normalize_normals(mesh)) {
+    spdlog::warn("some normals in the file are zero or not finite; computing normals instead");
+    mesh.normals.clear();
+  }
+  if (mesh.normals.empty()) {
+    merge_duplicate_vertices(mesh);
+    remove_collapsed_triangles(mesh);
+    if (mesh.triangles.empty())
+      throw InputError("the model has no triangles with distinct corners");
+    compute_crease_normals(mesh);
+  }
+}
+
+// Applies the unit scale, then the diameter; returns the total factor applied.
+double scale_to_millimetres(Mesh& mesh, const ModelOptions& options) {
+  double factor = options.unit_scale;
+  if (options.diameter) {
+    // Scaling is uniform about the origin, so the unit scale cancels out.
+    const double file_diameter = exact_diameter(mesh.positions);
+    if (!(file_diameter > 0)) throw InputError("all vertices coincide; the model has no size");
+    factor = *options.diameter / file_diameter;
+  }
+  if (factor != 1.0) scale_mesh(mesh, factor);
+  for (const auto& p : mesh.positions) {
+    if (!p.allFinite()) throw InputError("scaled coordinates overflow; check --unit-scale");
+  }
+  return factor;
+}
+
+}  // namespace
+
+Model load_model_with_symmetries(const std::string& spec, const ModelOptions& options) {
+  check_options(spec, options);
+  try {
+    Model model;
+    if (spec.starts_with(builtin_prefix)) {
+      const std::string name = spec.substr(builtin_prefix.size());
+      if (!options.mesh_name.empty())
+        throw InputError("--mesh selects a node of a glTF file, not of a built-in part");
+      model.mesh = make_builtin_part(name);
+      model.symmetries = builtin_part_symmetries(name);
+    } else {
+      const std::filesystem::path path = spec;
+      const std::string bytes = read_file_bytes(path);
+      const std::string extension = path.extension().string();  // with its dot, or empty
+      model.mesh = read_model(bytes, std::string_view(extension).substr(extension.empty() ? 0 : 1),
+                              options, path.parent_path());
+    }
+    check_and_complete(model.mesh);
+    model.symmetries = model.symmetries.scaled(scale_to_millimetres(model.mesh, options));
+    return model;
+  } catch (const InputError& e) {
+    const std::string message = e.what();
+    // Messages from read_file_bytes already start with the path.
+    if (message.starts_with(spec)) throw;
+    throw InputError(spec + ": " + message);
+  } catch (const std::bad_alloc&) {
+    throw InputError(spec + ": out of memory while reading (is the file corrupt?)");
+  }
+}
+
+Mesh load_model(const std::string& spec, const ModelOptions& options) {
+  return load_model_with_symmetries(spec, options).mesh;
+}
+
+Mesh parse_model(std::string_view bytes, std::string_view format, const ModelOptions& options,
+                 const std::filesystem::path& directory) {
+  check_options("model", options);
+  try {
+    Mesh mesh = read_model(bytes, format, options, directory);
+    check_and_complete(mesh);
+    scale_to_millimetres(mesh, options);
+    return mesh;
+  } catch (const std::bad_alloc&) {
+    throw InputError("out of memory while reading the model (is it corrupt?)");
+  }
+}
+
+}  // namespace binpick

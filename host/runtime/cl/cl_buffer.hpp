@@ -1,0 +1,105 @@
+// A typed device buffer and a kernel launch whose argument index is the argument's position.
+#pragma once
+
+#include <cstddef>
+#include <span>
+#include <string>
+#include <vector>
+
+#include <CL/opencl.hpp>
+
+#include "host/runtime/cl/cl_device.hpp"
+#include "host/runtime/cl/cl_error.hpp"
+
+namespace binpick::ocl {
+
+template <class T>
+class Buffer {
+ public:
+  Buffer() = default;
+  // OpenCL forbids zero-sized buffers; an empty buffer still holds one element of storage.
+  Buffer(Device& dev, std::size_t count, cl_mem_flags flags = CL_MEM_READ_WRITE)
+      : count_(count) {
+    buffer_ = guarded("allocating a buffer of " + std::to_string(count) + " elements", [&] {
+      return cl::Buffer(dev.context(), flags, sizeof(T) * std::max<std::size_t>(count, 1));
+    });
+  }
+  Buffer(Device& dev, std::span<const T> host, cl_mem_flags flags = CL_MEM_READ_WRITE)
+      : Buffer(dev, host.size(), flags) {
+    write(dev, host);
+  }
+
+  void write(Device& dev, std::span<const T> host) {
+    if (host.empty()) return;
+    guarded("writing a buffer", [&] {
+      dev.queue().enqueueWriteBuffer(buffer_, CL_TRUE, 0, sizeof(T) * host.size(), host.data());
+    });
+  }
+  void fill(Device& dev, const T& value) {
+    guarded("filling a buffer", [&] {
+      dev.queue().enqueueFillBuffer(buffer_, value, 0, sizeof(T) * std::max<std::size_t>(count_, 1));
+    });
+  }
+  std::vector<T> read(Device& dev, std::size_t count) const {
+    std::vector<T> host(count);
+    if (count == 0) return host;
+    guarded("reading a buffer", [&] {
+      dev.queue().enqueueReadBuffer(buffer_, CL_TRUE, 0, sizeof(T) * count, host.data());
+    });
+    return host;
+  }
+  std::vector<T> read(Device& dev) const { return read(dev, count_); }
+
+  std::size_t size() const { return count_; }
+  const cl::Buffer& get() const { return buffer_; }
+
+ private:
+  cl::Buffer buffer_;
+  std::size_t count_ = 0;
+};
+
+namespace detail {
+template <class T>
+const cl::Buffer& arg(const Buffer<T>& b) { return b.get(); }
+template <class T>
+const T& arg(const T& v) { return v; }
+}  // namespace detail
+
+// Binds args to kernel parameters 0, 1, 2, ... and runs `global` work items (none if 0).
+// Kernels guard their tail themselves (`if (i >= n) return;`), so no rounding is needed.
+template <class... Args>
+void launch(Device& dev, cl::Kernel& kernel, std::size_t global, const Args&... args) {
+  if (global == 0) return;
+  const std::string name = kernel.getInfo<CL_KERNEL_FUNCTION_NAME>();
+  guarded("launching kernel " + name, [&] {
+    cl_uint index = 0;
+    (kernel.setArg(index++, detail::arg(args)), ...);
+    dev.queue().enqueueNDRangeKernel(kernel, cl::NullRange, cl::NDRange(global), cl::NullRange);
+  });
+}
+
+// Like launch, with work groups of `local` work items: the global size is rounded up to a
+// multiple of it (kernels guard their tail). PoCL compiles a kernel once per work-group size;
+// left to choose (cl::NullRange) it derives the size from the global size, so a kernel launched
+// on sizes that change every call (a list of pixels) may be compiled again and again (~100 ms
+// each for the normals kernel). A fixed local size compiles once.
+template <class... Args>
+void launch_local(Device& dev, cl::Kernel& kernel, std::size_t global, std::size_t local,
+                  const Args&... args) {
+  if (global == 0) return;
+  if (local == 0) local = 1;
+  const std::size_t padded = (global + local - 1) / local * local;
+  const std::string name = kernel.getInfo<CL_KERNEL_FUNCTION_NAME>();
+  guarded("launching kernel " + name, [&] {
+    cl_uint index = 0;
+    (kernel.setArg(index++, detail::arg(args)), ...);
+    dev.queue().enqueueNDRangeKernel(kernel, cl::NullRange, cl::NDRange(padded),
+                                     cl::NDRange(local));
+  });
+}
+
+inline void finish(Device& dev) {
+  guarded("waiting for the OpenCL queue", [&] { dev.queue().finish(); });
+}
+
+}  // namespace binpick::ocl

@@ -1,0 +1,51 @@
+// The trained PPF model of a part: its subsampled surface points with normals, the feature
+// discretisation and the hash table, everything detection needs (Drost 2010; paper IV).
+#pragma once
+
+#include <cstdint>
+
+#include "host/core/mesh.hpp"
+#include "host/train/ppf_table.hpp"
+#include "kernels/binpick_shared.h"
+
+namespace binpick {
+
+struct PpfModel {
+  float diameter = 0;    // exact diameter of the mesh; quant.max_distance
+  float voxel_size = 0;  // subsampling resolution (mm)
+  bp_ppf_quant quant{};
+  PointCloud cloud;      // model points m_i with unit normals; entries' `point` indexes them
+  PpfTable table;        // key -> entries (m_r, alpha_m), CSR
+};
+
+struct PpfTrainParams {
+  double voxel_ratio = 0.05;  // voxel size / diameter
+  std::uint32_t distance_steps = BP_PPF_DEFAULT_DIST_STEPS;
+  std::uint32_t angle_steps = BP_PPF_DEFAULT_ANGLE_STEPS;
+};
+
+struct PpfTrainStats {
+  std::size_t surface_samples = 0;
+  std::size_t points = 0;       // after voxel subsampling
+  std::size_t pairs = 0;        // ordered pairs considered, points * (points - 1)
+  std::size_t entries = 0;      // pairs in the table
+  std::size_t distinct_keys = 0;
+  double diameter_s = 0, sample_s = 0, subsample_s = 0;
+  PpfTableTimes table;
+};
+
+// Surface samples per voxel face area before subsampling: enough that nearly every voxel the
+// surface crosses gets a sample close to its centre.
+inline constexpr double kSamplesPerVoxelArea = 16.0;
+
+// Throws InputError unless voxel_ratio is finite in (0, 1] and the steps are in range
+// (make_ppf_quant).
+void check_train_params(const PpfTrainParams& params);
+
+// Samples the surface, voxel-subsamples it and builds the table on the device. Throws
+// InputError for bad parameters, a degenerate mesh, or a voxel so small that the model would
+// exceed kMaxPpfModelPoints points.
+PpfModel train_ppf_model(const Mesh& mesh, const PpfTrainParams& params,
+                         PpfTrainStats* stats = nullptr);
+
+}  // namespace binpick

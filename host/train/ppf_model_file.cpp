@@ -1,0 +1,164 @@
+#include "host/train/ppf_model_file.hpp"
+
+#include <bit>
+#include <cmath>
+#include <cstring>
+#include <ostream>
+
+#include "host/core/error.hpp"
+#include "host/core/atomic_file.hpp"
+#include "host/core/read_file.hpp"
+#include "host/train/ppf_features.hpp"
+
+namespace binpick {
+namespace {
+
+static_assert(std::endian::native == std::endian::little, "the .ppfm format is little-endian");
+static_assert(sizeof(bp_ppf_quant) == 32 && sizeof(bp_ppf_entry) == 8);
+
+constexpr char kMagic[8] = {'B', 'I', 'N', 'P', 'K', 'P', 'P', 'F'};
+
+struct Header {
+  char magic[8];
+  std::uint32_t version;
+  std::uint32_t header_bytes;
+  float diameter;
+  float voxel_size;
+  bp_ppf_quant quant;
+  std::uint32_t point_count;
+  std::uint32_t key_count;
+  std::uint64_t entry_count;
+  std::uint64_t checksum;
+};
+static_assert(sizeof(Header) == 80);
+
+// A fast 64-bit hash of the payload, to tell a corrupt file from a valid one.
+std::uint64_t checksum(std::string_view bytes) {
+  std::uint64_t h = 0x243f6a8885a308d3ull ^ bytes.size();
+  std::size_t i = 0;
+  for (; i + 8 <= bytes.size(); i += 8) {
+    std::uint64_t w;
+    std::memcpy(&w, bytes.data() + i, 8);
+    h = (h ^ w) * 0x9e3779b97f4a7c15ull;
+    h ^= h >> 29;
+  }
+  for (; i < bytes.size(); ++i) h = (h ^ static_cast<unsigned char>(bytes[i])) * 0x100000001b3ull;
+  return h;
+}
+
+template <class T>
+void append(std::string& out, const T* data, std::size_t count) {
+  out.append(reinterpret_cast<const char*>(data), sizeof(T) * count);
+}
+
+template <class T>
+void take(std::string_view& in, T* data, std::size_t count) {
+  std::memcpy(data, in.data(), sizeof(T) * count);
+  in.remove_prefix(sizeof(T) * count);
+}
+
+std::uint64_t payload_size(std::uint64_t points, std::uint64_t keys, std::uint64_t entries) {
+  return points * 24 + (keys + 1) * 4 + entries * 8;
+}
+
+}  // namespace
+
+std::string serialize_ppf_model(const PpfModel& m) {
+  const std::size_t n = m.cloud.points.size();
+  std::string payload;
+  payload.reserve(payload_size(n, m.table.offsets.size(), m.table.entries.size()));
+  for (const auto& p : m.cloud.points) append(payload, p.data(), 3);
+  for (const auto& v : m.cloud.normals) append(payload, v.data(), 3);
+  append(payload, m.table.offsets.data(), m.table.offsets.size());
+  append(payload, m.table.entries.data(), m.table.entries.size());
+
+  Header h{};
+  std::memcpy(h.magic, kMagic, 8);
+  h.version = kPpfModelFormatVersion;
+  h.header_bytes = sizeof(Header);
+  h.diameter = m.diameter;
+  h.voxel_size = m.voxel_size;
+  h.quant = m.quant;
+  h.point_count = static_cast<std::uint32_t>(n);
+  h.key_count = static_cast<std::uint32_t>(m.table.offsets.size() - 1);
+  h.entry_count = m.table.entries.size();
+  h.checksum = checksum(payload);
+  std::string out;
+  append(out, &h, 1);
+  return out + payload;
+}
+
+PpfModel parse_ppf_model(std::string_view bytes, const std::string& name) {
+  const std::string file = "model file " + name;
+  auto corrupt = [&](const std::string& why) { return InputError(file + " is corrupt (" + why + ")"); };
+  const std::size_t magic_len = std::min<std::size_t>(bytes.size(), 8);
+  if (std::memcmp(bytes.data(), kMagic, magic_len) != 0)
+    throw InputError(file + " is not a binpick PPF model (wrong magic); train one with `binpick train`");
+  if (bytes.size() < sizeof(Header))
+    throw InputError(file + " is truncated (" + std::to_string(bytes.size()) + " bytes)");
+  Header h;
+  std::memcpy(&h, bytes.data(), sizeof(Header));
+  if (h.version != kPpfModelFormatVersion)
+    throw InputError(file + " was written by format version " + std::to_string(h.version) +
+                     ", this binpick reads " + std::to_string(kPpfModelFormatVersion) + ": retrain");
+  if (h.header_bytes != sizeof(Header)) throw corrupt("header size " + std::to_string(h.header_bytes));
+
+  bp_ppf_quant q;
+  try {
+    q = make_ppf_quant(h.quant.max_distance, h.quant.n_dist, h.quant.n_alpha);
+  } catch (const InputError& e) {
+    throw corrupt(e.what());
+  }
+  if (std::memcmp(&q, &h.quant, sizeof q) != 0 || h.diameter != q.max_distance ||
+      !(h.voxel_size > 0 && std::isfinite(h.voxel_size)))
+    throw corrupt("inconsistent parameters");
+  if (h.key_count != bp_ppf_key_count(q)) throw corrupt("key count");
+  if (h.point_count > kMaxPpfModelPoints ||
+      h.entry_count > std::uint64_t(h.point_count) * h.point_count)
+    throw corrupt("point or entry count");
+  const std::uint64_t expected = sizeof(Header) + payload_size(h.point_count, h.key_count, h.entry_count);
+  if (bytes.size() < expected)
+    throw InputError(file + " is truncated (" + std::to_string(bytes.size()) + " of " +
+                     std::to_string(expected) + " bytes)");
+  if (bytes.size() > expected)
+    throw corrupt(std::to_string(bytes.size() - expected) + " bytes after the end");
+  std::string_view payload = bytes.substr(sizeof(Header));
+  if (checksum(payload) != h.checksum) throw corrupt("checksum mismatch");
+
+  PpfModel m;
+  m.diameter = h.diameter;
+  m.voxel_size = h.voxel_size;
+  m.quant = q;
+  m.cloud.points.resize(h.point_count);
+  m.cloud.normals.resize(h.point_count);
+  for (auto& p : m.cloud.points) take(payload, p.data(), 3);
+  for (auto& v : m.cloud.normals) take(payload, v.data(), 3);
+  m.table.offsets.resize(std::size_t(h.key_count) + 1);
+  m.table.entries.resize(h.entry_count);
+  take(payload, m.table.offsets.data(), m.table.offsets.size());
+  take(payload, m.table.entries.data(), m.table.entries.size());
+
+  // A consistent table, so that detection can index it without checks.
+  if (m.table.offsets.front() != 0 || m.table.offsets.back() != h.entry_count)
+    throw corrupt("table offsets");
+  for (std::size_t k = 0; k + 1 < m.table.offsets.size(); ++k)
+    if (m.table.offsets[k] > m.table.offsets[k + 1]) throw corrupt("table offsets");
+  for (const auto& e : m.table.entries)
+    if (e.point >= h.point_count || !(e.alpha >= -BP_PI_F && e.alpha < BP_PI_F))
+      throw corrupt("table entry");
+  for (std::size_t i = 0; i < h.point_count; ++i)
+    if (!m.cloud.points[i].allFinite() || !m.cloud.normals[i].allFinite())
+      throw corrupt("point " + std::to_string(i));
+  return m;
+}
+
+void write_ppf_model(const std::filesystem::path& path, const PpfModel& model) {
+  const std::string bytes = serialize_ppf_model(model);
+  write_file_atomically(path, [&](std::ostream& out) { out.write(bytes.data(), bytes.size()); });
+}
+
+PpfModel read_ppf_model(const std::filesystem::path& path) {
+  return parse_ppf_model(read_file_bytes(path), path.string());
+}
+
+}  // namespace binpick

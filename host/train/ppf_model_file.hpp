@@ -1,0 +1,37 @@
+// The .ppfm model file: a trained PpfModel, so detection does not retrain.
+//
+// Layout (little-endian, 4-byte fields unless noted):
+//   magic "BINPKPPF" (8 bytes), format version, header size in bytes,
+//   diameter, voxel size, bp_ppf_quant (32 bytes: max_distance, dist_step, angle_step, n_dist,
+//   n_angle, n_alpha, 2 reserved), point count, key count, entry count (8 bytes),
+//   checksum of the payload (8 bytes);
+//   payload: points (3 floats each), normals (3 floats each), offsets (key count + 1 uint32),
+//   entries (uint32 point, float alpha).
+// Readers refuse other versions: a changed format or feature convention needs a retrain.
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <string>
+#include <string_view>
+
+#include "host/train/ppf_model.hpp"
+
+namespace binpick {
+
+inline constexpr std::uint32_t kPpfModelFormatVersion = 1;
+
+// The file's bytes; identical for identical models.
+std::string serialize_ppf_model(const PpfModel& model);
+
+// Parses bytes read from `name` (used in messages). Throws InputError: "model file NAME is
+// truncated", "... is not a binpick PPF model", "... was written by format version N, this
+// binpick reads M: retrain", "... is corrupt (...)".
+PpfModel parse_ppf_model(std::string_view bytes, const std::string& name);
+
+// Writes through write_file_atomically (no partial file on error).
+void write_ppf_model(const std::filesystem::path& path, const PpfModel& model);
+
+PpfModel read_ppf_model(const std::filesystem::path& path);
+
+}  // namespace binpick

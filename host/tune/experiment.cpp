@@ -1,0 +1,164 @@
+#include "host/tune/experiment.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <ostream>
+#include <set>
+
+#include <fmt/format.h>
+
+#include "host/core/error.hpp"
+#include "host/detect/detect_step.hpp"
+#include "synth/synthesize.hpp"
+
+namespace binpick::pipeline {
+namespace fs = std::filesystem;
+namespace {
+
+double since(std::chrono::steady_clock::time_point t) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
+}
+
+fs::path dataset_dir(const ExperimentOptions& o, double noise) { return o.out / noise_dir_name(noise); }
+fs::path results_csv(const ExperimentOptions& o, double noise) {
+  return o.out / "results" / (noise_dir_name(noise) + ".csv");
+}
+
+SynthOptions synth_options(const ExperimentOptions& o, double noise) {
+  SynthOptions s;
+  s.out = dataset_dir(o, noise);
+  s.bins = o.bins;
+  s.seed = o.seed;
+  s.noise = noise;
+  s.width = o.width;
+  s.height = o.height;
+  s.drop.objects = o.objects;
+  s.drop.max_wall_seconds = o.max_wall_seconds;
+  return s;
+}
+
+}  // namespace
+
+std::vector<double> parse_number_list(const std::string& text, const std::string& option,
+                                      const std::string& example) {
+  if (text.empty()) throw InputError(option + " is empty: give at least one value, e.g. " + example);
+  std::vector<double> values;
+  std::size_t start = 0;
+  while (start <= text.size()) {
+    const std::size_t comma = std::min(text.find(',', start), text.size());
+    const std::string item = text.substr(start, comma - start);
+    std::size_t used = 0;
+    double value = 0;
+    try {
+      value = std::stod(item, &used);
+    } catch (const std::exception&) {
+      used = 0;
+    }
+    if (item.empty() || used != item.size())
+      throw InputError(option + " '" + text + "': '" + item + "' is not a number; e.g. " + option +
+                       " " + example);
+    values.push_back(value);
+    start = comma + 1;
+  }
+  return values;
+}
+
+std::vector<double> parse_noise_list(const std::string& text) {
+  return parse_number_list(text, "--noise", "0,0.01,0.02");
+}
+
+std::string noise_dir_name(double noise) {
+  int decimals = 2;
+  while (decimals < 9 && std::abs(std::round(noise * std::pow(10.0, decimals)) -
+                                  noise * std::pow(10.0, decimals)) > 1e-6)
+    ++decimals;
+  return fmt::format("noise_{:.{}f}", noise, decimals);
+}
+
+void check(const ExperimentOptions& o) {
+  if (o.noise.empty()) throw InputError("--noise: give at least one noise level, e.g. 0,0.01,0.02");
+  std::set<std::string> names;
+  for (double n : o.noise) {
+    if (!(std::isfinite(n) && n >= 0 && n <= 1))
+      throw InputError(fmt::format("--noise {} must be a fraction of the diameter in [0, 1]", n));
+    if (!names.insert(noise_dir_name(n)).second)
+      throw InputError(fmt::format("--noise lists {} twice", n));
+  }
+  if (o.out.empty()) throw InputError("--out: a working directory is required");
+  if (fs::exists(o.out) && !fs::is_directory(o.out))
+    throw InputError("--out " + o.out.string() + " exists and is not a directory");
+  if (o.pictures < 0 || o.pictures > 1000)
+    throw InputError(fmt::format("--pictures {} must be in [0, 1000]", o.pictures));
+  for (double n : o.noise) validate_synth_options(synth_options(o, n));
+  check_train_params(o.train);
+  binpick::check(o.detect);
+}
+
+ExperimentResult run_experiment(const ExperimentOptions& o, std::ostream& log) {
+  check(o);
+  ExperimentResult r;
+  const Model part = load_model_with_symmetries(o.part.spec, o.part.options);
+  const std::string description = describe(o.part);
+
+  auto start = std::chrono::steady_clock::now();
+  for (double noise : o.noise) {
+    const SynthOptions s = synth_options(o, noise);
+    const SynthSummary made = synthesize(part, description, s);
+    r.bins_made += made.bins_made;
+    r.bins_reused += made.bins_skipped;
+    log << fmt::format("synth  {}: {} bins made, {} already there\n", s.out.string(),
+                       made.bins_made, made.bins_skipped) << std::flush;
+  }
+  r.synth_s = since(start);
+
+  const TrainedModel model = train_or_reuse(part.mesh, description, o.train, o.out / "model.ppfm");
+  r.model = model.path;
+  r.model_reused = model.reused;
+  r.train_s = model.seconds;
+  log << fmt::format("train  {}: {} ({} points, {:.1f} s)\n", model.path.string(),
+                     model.reused ? "reused" : "trained", model.model.cloud.points.size(),
+                     model.seconds) << std::flush;
+
+  start = std::chrono::steady_clock::now();
+  Detector detector(model.model, o.detect);
+  std::vector<eval::EvalInput> inputs;
+  for (double noise : o.noise) {
+    const BatchSummary b = detect_to_csv(detector, model, dataset_dir(o, noise), results_csv(o, noise));
+    log << fmt::format("detect {}: {}\n", results_csv(o, noise).string(), summary_line(b)) << std::flush;
+    inputs.push_back({dataset_dir(o, noise), results_csv(o, noise)});
+  }
+  r.detect_s = since(start);
+
+  start = std::chrono::steady_clock::now();
+  eval::ReportOptions report;
+  report.out = o.out / "report";
+  report.pictures = o.pictures;
+  r.evaluations = eval::evaluate_inputs(inputs, report.eval);
+  r.report = eval::write_report(r.evaluations, report);
+  r.eval_s = since(start);
+  log << fmt::format("eval   {}\n", r.report.html.string()) << std::flush;
+  return r;
+}
+
+std::string results_table(const std::vector<eval::DatasetEvaluation>& evaluations,
+                          const eval::EvalOptions& at) {
+  const auto point = [](const char* which, const eval::OperatingPoint& p) {
+    return fmt::format("{} {:g}%/{:g}deg", which, p.translation_pct, p.rotation_deg);
+  };
+  std::string t = fmt::format("{:>7} {:>5} {:>6}  {:^17}  {:^17}  {:>8}\n", "", "", "",
+                              point("loose", at.loose), point("strict", at.strict), "");
+  t += fmt::format("{:>7} {:>5} {:>6}  {:>8} {:>8}  {:>8} {:>8}  {:>8}\n", "noise", "bins",
+                   "hyps", "top", "all", "top", "all", "ms/hyp");
+  for (const auto& e : evaluations) {
+    const auto& s = e.summary;
+    const std::string noise = e.dataset.noise >= 0 ? fmt::format("{:.3g}", e.dataset.noise)
+                                                   : e.dataset.label;
+    t += fmt::format("{:>7} {:>5} {:>6}  {:>7.1f}% {:>7.1f}%  {:>7.1f}% {:>7.1f}%  {:>8.1f}\n",
+                     noise, s.images, s.hypotheses, 100 * s.loose.top, 100 * s.loose.all,
+                     100 * s.strict.top, 100 * s.strict.all, s.ms_per_hypothesis);
+  }
+  return t;
+}
+
+}  // namespace binpick::pipeline

@@ -1,0 +1,73 @@
+// The paper's experiment as one call (`binpick run`, `binpick demo`): for each noise level a
+// synthetic dataset, one model trained once, detection of every dataset and one report with a
+// curve per noise level. Every stage resumes: synth keeps whole bins, the model is reused when
+// its inputs match (model_store), detection keeps finished scenes; the report is rewritten.
+//
+//   OUT/noise_0.00/            dataset (BOP) per noise level
+//   OUT/model.ppfm (+ .json)   the trained model and what it was trained from
+//   OUT/results/noise_0.00.csv detection results (BOP results CSV)
+//   OUT/report/                report.html, report.json, curves.csv, precision.png, pictures/
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <iosfwd>
+#include <string>
+#include <vector>
+
+#include "host/detect/detector.hpp"
+#include "host/eval/eval_run.hpp"
+#include "host/train/ppf_model.hpp"
+#include "host/train/model_store.hpp"
+
+namespace binpick::pipeline {
+
+struct ExperimentOptions {
+  PartSpec part;
+  std::filesystem::path out;
+  std::vector<double> noise{0.0};  // sigma as a fraction of the diameter, one dataset each
+  int bins = 30;
+  int objects = 350;
+  std::uint64_t seed = 1;
+  std::uint32_t width = 1600, height = 900;
+  double max_wall_seconds = 0;     // per bin's physics, 0 = unlimited
+  PpfTrainParams train;
+  DetectParams detect;
+  int pictures = 3;                // images pictured per dataset in the report
+};
+
+// Throws InputError (naming the option) for an empty or out-of-range noise list, two noise
+// levels that would share a directory, bad counts, or bad train/detect parameters.
+void check(const ExperimentOptions& options);
+
+// "0,0.01,0.02" -> the levels. InputError for an empty list or item, or an item that is not a
+// number (range checks are check(ExperimentOptions)).
+std::vector<double> parse_noise_list(const std::string& text);
+
+// The same for any comma-separated list of numbers given to `option` (messages name it and
+// show `example`).
+std::vector<double> parse_number_list(const std::string& text, const std::string& option,
+                                      const std::string& example);
+
+// "noise_0.00": two decimals, more when the level needs them (0.005 -> noise_0.005).
+std::string noise_dir_name(double noise);
+
+struct ExperimentResult {
+  std::vector<eval::DatasetEvaluation> evaluations;  // by noise
+  eval::ReportFiles report;
+  std::filesystem::path model;
+  int bins_made = 0, bins_reused = 0;
+  bool model_reused = false;
+  double synth_s = 0, train_s = 0, detect_s = 0, eval_s = 0;
+};
+
+// Runs every stage, writing one line per stage and dataset to `log` (the stages' progress bars
+// go to stderr).
+ExperimentResult run_experiment(const ExperimentOptions& options, std::ostream& log);
+
+// The final table: noise, bins, hypotheses, precision top/all at both operating points, ms per
+// hypothesis; one row per evaluation.
+std::string results_table(const std::vector<eval::DatasetEvaluation>& evaluations,
+                          const eval::EvalOptions& at = {});
+
+}  // namespace binpick::pipeline

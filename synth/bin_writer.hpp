@@ -1,0 +1,28 @@
+// Writes one synthetic bin as one BOP scene (image id 0): depth, gray, cloud, masks and the
+// scene JSON files (DESIGN.md section 4).
+#pragma once
+
+#include <filesystem>
+#include <vector>
+
+#include <Eigen/Geometry>
+
+#include "synth/render/bin_renderer.hpp"
+
+namespace binpick {
+
+struct BinRecord {
+  const RenderedBin& render;
+  const RenderCamera& camera;
+  const Eigen::Isometry3d& world_to_camera;
+  const std::vector<Eigen::Isometry3d>& part_to_camera;  // mm, one per part, same order as render
+  double depth_scale = 0.1;                              // mm per depth PNG unit
+  bool write_cloud = true;
+  bool write_masks = false;
+};
+
+// Writes into scene_dir (which must exist and is expected to be a temporary directory that the
+// caller renames into place once everything is written).
+void write_bop_scene(const std::filesystem::path& scene_dir, const BinRecord& bin);
+
+}  // namespace binpick

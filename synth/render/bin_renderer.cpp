@@ -1,0 +1,128 @@
+#include "synth/render/bin_renderer.hpp"
+
+#include <chrono>
+#include <cmath>
+#include <string>
+
+#include "host/core/error.hpp"
+#include "synth/render/bin_atlas.hpp"
+#include "synth/render/bin_coverage.hpp"
+#include "synth/render/bin_gbuffer.hpp"
+#include "synth/render/bin_raster.hpp"
+
+namespace binpick {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double ms_since(Clock::time_point start) {
+  return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
+}
+
+Mesh checked_part(const Mesh& part) {
+  if (part.triangles.empty()) throw InputError("cannot render a part mesh without triangles");
+  for (const auto& t : part.triangles)
+    for (std::uint32_t i : t)
+      if (i >= part.positions.size()) throw InputError("part mesh has a triangle index out of range");
+  if (part.normals.size() != part.positions.size())
+    throw InputError("part mesh has " + std::to_string(part.normals.size()) + " normals for " +
+                     std::to_string(part.positions.size()) +
+                     " vertices (compute_crease_normals gives a mesh its normals)");
+  return part;
+}
+
+void check_poses(const std::vector<Eigen::Isometry3d>& poses) {
+  for (std::size_t i = 0; i < poses.size(); ++i)
+    if (!poses[i].matrix().allFinite())
+      throw InputError("pose of part " + std::to_string(i) + " is not finite");
+}
+
+std::vector<std::array<int, 4>> bop_bboxes(const PartPixels& parts) {
+  std::vector<std::array<int, 4>> out;
+  out.reserve(parts.box.size());
+  for (const PixelBox& b : parts.box) out.push_back(bop_bbox(b));
+  return out;
+}
+
+}  // namespace
+
+struct BinRenderer::Device {
+  vkrt::Context& ctx;
+  BinRaster raster;
+  GBufferStage gbuffer;
+  CoverageStage coverage;
+  Device(vkrt::Context& c, const Mesh& part, const RenderCamera& camera, bool cull)
+      : ctx(c), raster(c, part, camera, cull), gbuffer(c, camera.width, camera.height), coverage(c) {}
+};
+
+BinRenderer::BinRenderer(const Mesh& part, const RenderCamera& camera, bool cull_back_faces)
+    : BinRenderer(part, camera, cull_back_faces, vkrt::Context::shared()) {}
+
+BinRenderer::BinRenderer(const Mesh& part, const RenderCamera& camera, bool cull_back_faces,
+                         vkrt::Context& ctx)
+    : camera_(camera), part_(checked_part(part)) {
+  check_camera(camera);
+  device_ = std::make_unique<Device>(ctx, part_, camera_, cull_back_faces);
+}
+
+BinRenderer::~BinRenderer() = default;
+
+RenderedBin BinRenderer::render(const std::vector<Eigen::Isometry3d>& part_to_camera,
+                                const RenderOptions& options) {
+  check_poses(part_to_camera);
+  const auto parts = std::uint32_t(part_to_camera.size());
+  Device& d = *device_;
+  timings_ = {};
+
+  auto start = Clock::now();
+  const vkrt::Buffer instances = d.raster.instance_buffer(part_to_camera);
+  d.raster.draw_scene(instances, parts);
+  timings_.raster_ms = ms_since(start);
+
+  start = Clock::now();
+  PartPixelBuffers visible(d.ctx, parts);
+  d.gbuffer.run(d.raster.zbuffer(), d.raster.ids(), d.raster.raster_normals(), visible,
+                gbuffer_params(camera_, options.noise_sigma_mm, options.seed, parts));
+  timings_.compute_ms = ms_since(start);
+
+  start = Clock::now();
+  GBufferOutput images = d.gbuffer.read();
+  const PartPixels seen = visible.read();
+  RenderedBin out{.width = camera_.width,
+                  .height = camera_.height,
+                  .depth_mm = std::move(images.depth_mm),
+                  .gray = std::move(images.gray),
+                  .points = std::move(images.points),
+                  .normals = std::move(images.normals),
+                  .instance = std::move(images.instance),
+                  .px_visible = seen.count,
+                  .px_all = {},
+                  .bbox_visible = bop_bboxes(seen),
+                  .bbox_all = {}};
+  timings_.readback_ms = ms_since(start);
+
+  if (!options.count_unoccluded) return out;
+  start = Clock::now();
+  std::vector<PixelRect> rects(parts);
+  for (std::uint32_t i = 0; i < parts; ++i) rects[i] = projected_rect(part_, part_to_camera[i], camera_);
+  PartPixelBuffers alone(d.ctx, parts);
+  std::vector<std::array<int, 2>> shifts(parts, {0, 0});
+  for (const AtlasBatch& batch : pack_atlas(rects, d.raster.atlas_width(), d.raster.atlas_height())) {
+    d.raster.draw_atlas(instances, batch);
+    for (const AtlasTile& t : batch.tiles) shifts[t.part] = {t.image.x - t.atlas_x, t.image.y - t.atlas_y};
+    const auto shift_buffer = vkrt::Buffer::from(d.ctx, std::span<const std::array<int, 2>>(shifts));
+    d.coverage.run(d.raster.atlas_ids(), shift_buffer, alone,
+                   {std::uint32_t(batch.width), std::uint32_t(batch.height), parts});
+  }
+  const PartPixels all = alone.read();
+  out.px_all = all.count;
+  out.bbox_all = bop_bboxes(all);
+  timings_.coverage_ms = ms_since(start);
+  return out;
+}
+
+RenderedBin render_bin(const Mesh& part, const std::vector<Eigen::Isometry3d>& part_to_camera,
+                       const RenderCamera& camera, const RenderOptions& options) {
+  return BinRenderer(part, camera).render(part_to_camera, options);
+}
+
+}  // namespace binpick

@@ -1,0 +1,188 @@
+// Drost voting (kernels/ppf_vote.cl): the scene features against the Eigen reference, the votes
+// and peaks of the device against the C++ reference given the same features (exactly, with and
+// without batching), reference point selection, and the model-to-scene alpha convention proved
+// on a scene made by moving the model by a known pose.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+#include <random>
+
+#include <Eigen/Geometry>
+
+#include "host/core/error.hpp"
+#include "host/detect/ppf_pose.hpp"
+#include "host/detect/ppf_vote.hpp"
+#include "host/train/ppf_features.hpp"
+#include "host/train/ppf_table.hpp"
+
+using namespace binpick;
+
+namespace {
+
+// Points in a ball of radius 25 with random unit normals.
+PointCloud random_cloud(std::size_t n, std::mt19937& rng, float radius = 25.0f) {
+  std::normal_distribution<float> N(0.0f, 1.0f);
+  std::uniform_real_distribution<float> U(0.0f, 1.0f);
+  PointCloud c;
+  for (std::size_t i = 0; i < n; ++i) {
+    Eigen::Vector3f d(N(rng), N(rng), N(rng));
+    c.points.push_back(d.normalized() * radius * std::cbrt(U(rng)));
+    c.normals.push_back(Eigen::Vector3f(N(rng), N(rng), N(rng)).normalized());
+  }
+  return c;
+}
+
+PpfModel random_model(std::size_t n, std::mt19937& rng) {
+  PpfModel m;
+  m.diameter = 50.0f;
+  m.voxel_size = 2.5f;
+  m.quant = make_ppf_quant(m.diameter, 20, 30);
+  m.cloud = random_cloud(n, rng);
+  m.table = build_ppf_table(m.cloud, m.quant);
+  return m;
+}
+
+Eigen::Isometry3f known_pose() {
+  Eigen::Isometry3f T = Eigen::Isometry3f::Identity();
+  T.linear() = Eigen::AngleAxisf(2.1f, Eigen::Vector3f(0.3f, -0.8f, 0.5f).normalized())
+                   .toRotationMatrix();
+  T.translation() = Eigen::Vector3f(40.0f, -25.0f, 700.0f);
+  return T;
+}
+
+}  // namespace
+
+TEST(PpfVote, ReferencePointsAreEvenlySpreadAndDeterministic) {
+  EXPECT_TRUE(select_reference_points(0, 0.2).empty());
+  EXPECT_EQ(select_reference_points(10, 0.2), (std::vector<std::uint32_t>{0, 5}));
+  EXPECT_EQ(select_reference_points(3, 0.01), (std::vector<std::uint32_t>{0}));
+  EXPECT_EQ(select_reference_points(4, 1.0), (std::vector<std::uint32_t>{0, 1, 2, 3}));
+  EXPECT_EQ(select_reference_points(1000, 0.02).size(), 20u);
+  EXPECT_THROW(select_reference_points(10, 0.0), InputError);
+  EXPECT_THROW(select_reference_points(10, 1.5), InputError);
+  EXPECT_THROW(select_reference_points(10, NAN), InputError);
+}
+
+TEST(PpfVote, SceneFeaturesMatchReference) {
+  std::mt19937 rng(5);
+  const PpfModel model = random_model(150, rng);
+  const PointCloud scene = random_cloud(300, rng, 30.0f);
+  const auto refs = select_reference_points(scene.points.size(), 0.2);
+  auto& dev = ocl::Device::shared();
+  const DeviceModel dm = upload_model(dev, model);
+  ScenePairs got;
+  vote_peaks(dev, dm, scene, refs, {}, nullptr, &got);
+  const ScenePairs want = scene_pair_features_reference(scene, refs, model.quant);
+  ASSERT_EQ(got.keys.size(), want.keys.size());
+  std::size_t differ = 0, valid = 0;
+  for (std::size_t i = 0; i < got.keys.size(); ++i) {
+    if (want.keys[i] != BP_PPF_NO_KEY) ++valid;
+    if (got.keys[i] != want.keys[i]) {
+      ++differ;  // a value within rounding of a bin edge (bp_atan2 vs std::atan2)
+      continue;
+    }
+    if (got.keys[i] == BP_PPF_NO_KEY) continue;
+    float d = std::fabs(got.alphas[i] - want.alphas[i]);
+    d = std::min(d, 2 * std::numbers::pi_v<float> - d);
+    EXPECT_LT(d, 1e-4f) << i;
+  }
+  EXPECT_GT(valid, got.keys.size() / 4);
+  EXPECT_LE(differ, valid / 500 + 1);
+}
+
+TEST(PpfVote, VotesAndPeaksMatchReferenceExactly) {
+  std::mt19937 rng(7);
+  const PpfModel model = random_model(200, rng);
+  // Part of the scene is the model itself (so some cells collect many votes), part clutter.
+  PointCloud scene = random_cloud(150, rng, 30.0f);
+  const Eigen::Isometry3f T = known_pose();
+  for (std::size_t i = 0; i < model.cloud.points.size(); i += 2) {
+    scene.points.push_back(T * model.cloud.points[i]);
+    scene.normals.push_back(T.linear() * model.cloud.normals[i]);
+  }
+  for (auto& p : scene.points) p -= T.translation();  // near the origin, like the model
+  const auto refs = select_reference_points(scene.points.size(), 0.3);
+  auto& dev = ocl::Device::shared();
+  const DeviceModel dm = upload_model(dev, model);
+  for (VoteOptions opt : {VoteOptions{16, 0.0f}, VoteOptions{3, 0.9f}, VoteOptions{1, 1.0f}}) {
+    ScenePairs pairs;
+    const auto got = vote_peaks(dev, dm, scene, refs, opt, nullptr, &pairs);
+    const auto want = vote_peaks_reference(pairs, model, opt);
+    ASSERT_EQ(got.size(), want.size()) << opt.peaks_per_ref;
+    for (std::size_t i = 0; i < got.size(); ++i) EXPECT_EQ(got[i], want[i]) << i;
+    // Batches of a few reference points give the same peaks.
+    VoteOptions small = opt;
+    small.max_accumulator_cells = 7 * model.cloud.points.size() * model.quant.n_alpha;
+    EXPECT_EQ(vote_peaks(dev, dm, scene, refs, small), got);
+  }
+  // Every vote lands: the accumulator total is the number of matching table entries.
+  ScenePairs pairs;
+  vote_peaks(dev, dm, scene, refs, {}, nullptr, &pairs);
+  std::uint64_t entries = 0, votes = 0;
+  for (std::size_t i = 0; i < pairs.keys.size(); ++i)
+    if (pairs.keys[i] != BP_PPF_NO_KEY)
+      entries += model.table.offsets[pairs.keys[i] + 1] - model.table.offsets[pairs.keys[i]];
+  for (std::size_t r = 0; r < refs.size(); ++r)
+    for (std::uint32_t v : vote_accumulator_reference(pairs, r, model)) votes += v;
+  EXPECT_EQ(votes, entries);
+  EXPECT_GT(votes, 0u);
+}
+
+TEST(PpfVote, AlphaBinWrapsAroundTheFullTurn) {
+  const bp_ppf_quant q = make_ppf_quant(50.0f, 20, 30);
+  const float pi = std::numbers::pi_v<float>;
+  EXPECT_EQ(ppf_vote_alpha_bin(0.0f, 0.0f, q), 15u);
+  EXPECT_EQ(ppf_vote_alpha_bin(3.0f, -3.0f, q), ppf_vote_alpha_bin(6.0f - 2 * pi, 0.0f, q));
+  EXPECT_EQ(ppf_vote_alpha_bin(-3.0f, 3.0f, q), ppf_vote_alpha_bin(2 * pi - 6.0f, 0.0f, q));
+  EXPECT_EQ(ppf_vote_alpha_bin(-pi, 0.0f, q), 0u);
+  for (float a = -pi; a < pi; a += 0.01f)
+    for (float b = -pi; b < pi; b += 0.37f) EXPECT_LT(ppf_vote_alpha_bin(a, b, q), 30u);
+}
+
+// The convention proof: moving the model by a known pose, every reference point's best peak
+// must be its own model point with an alpha bin whose pose is the known one (to half a bin).
+TEST(PpfVote, PeaksOfAMovedModelGiveTheKnownPose) {
+  std::mt19937 rng(11);
+  const PpfModel model = random_model(250, rng);
+  const Eigen::Isometry3f T = known_pose();
+  PointCloud scene;
+  for (std::size_t i = 0; i < model.cloud.points.size(); ++i) {
+    scene.points.push_back(T * model.cloud.points[i]);
+    scene.normals.push_back(T.linear() * model.cloud.normals[i]);
+  }
+  const auto refs = select_reference_points(scene.points.size(), 1.0);
+  auto& dev = ocl::Device::shared();
+  const DeviceModel dm = upload_model(dev, model);
+  const auto peaks = vote_peaks(dev, dm, scene, refs, {1, 1.0f});
+  const auto poses = poses_from_peaks(peaks, scene, refs, model);
+  ASSERT_EQ(poses.size(), peaks.size());
+  std::size_t right = 0;
+  const Eigen::Quaternionf qt(T.linear());
+  for (std::size_t i = 0; i < peaks.size(); ++i) {
+    const float angle = 2 * std::acos(std::min(1.0f, std::fabs(poses[i].q.dot(qt))));
+    const float dt = (poses[i].t - T.translation()).norm();
+    // half a 12-degree bin, plus rounding; the translation error is that rotation at <= 25 mm
+    if (peaks[i].model_point == refs[peaks[i].ref] && angle < 6.2f * std::numbers::pi_v<float> / 180 &&
+        dt < 0.11f * 25.0f + 1e-3f)
+      ++right;
+  }
+  EXPECT_GT(right, peaks.size() * 9 / 10) << right << " of " << peaks.size();
+}
+
+TEST(PpfVote, BadInputIsAnInputError) {
+  std::mt19937 rng(3);
+  const PpfModel model = random_model(50, rng);
+  auto& dev = ocl::Device::shared();
+  const DeviceModel dm = upload_model(dev, model);
+  PointCloud scene = random_cloud(20, rng);
+  EXPECT_THROW(vote_peaks(dev, dm, scene, {25}, {}), InputError);
+  EXPECT_THROW(vote_peaks(dev, dm, scene, {0}, {0, 0.5f}), InputError);
+  EXPECT_THROW(vote_peaks(dev, dm, scene, {0}, {17, 0.5f}), InputError);
+  scene.points[3].x() = NAN;
+  EXPECT_THROW(vote_peaks(dev, dm, scene, {0}, {}), InputError);
+  scene = random_cloud(20, rng);
+  scene.normals.pop_back();
+  EXPECT_THROW(vote_peaks(dev, dm, scene, {0}, {}), InputError);
+  EXPECT_TRUE(vote_peaks(dev, dm, PointCloud{}, {}, {}).empty());
+}

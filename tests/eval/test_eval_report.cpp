@@ -1,0 +1,173 @@
+// The report of `binpick eval`: files written and non-empty, pictures that show what they say,
+// datasets ordered and labelled by noise, on a small hand-made dataset (no rendering needed).
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <fstream>
+
+#include <Eigen/Geometry>
+#include <nlohmann/json.hpp>
+
+#include "host/formats/bop/bop_files.hpp"
+#include "host/formats/bop/png_image.hpp"
+#include "host/formats/bop/results_csv.hpp"
+#include "host/eval/eval_run.hpp"
+#include "host/eval/report/gnuplot.hpp"
+#include "host/eval/report/precision_plot.hpp"
+#include "host/eval/report/scene_pictures.hpp"
+#include "host/formats/bop/bop_models.hpp"
+#include "host/formats/mesh/load_model.hpp"
+#include "tests/support/cli_run.hpp"
+
+namespace binpick::eval {
+namespace {
+
+namespace fs = std::filesystem;
+
+constexpr std::uint32_t kW = 320, kH = 240;
+constexpr double kF = 400, kScale = 0.1;  // focal (px), depth scale (mm per unit)
+
+std::vector<bop::GroundTruth> toy_parts() {
+  return {{1, {Eigen::Matrix3d::Identity(), {-60, 0, 800}}},
+          {1, {Eigen::AngleAxisd(1.0, Eigen::Vector3d::UnitY()).toRotationMatrix(), {60, 20, 820}}}};
+}
+
+// One bin of two parts over a floor at 900 mm: a bump of depth around each part, no data in a
+// corner, an intensity gradient. noise < 0 writes no synth.json.
+void write_toy_dataset(const fs::path& root, double noise) {
+  fs::create_directories(root / "test/000000/depth");
+  fs::create_directories(root / "test/000000/gray");
+  bop::write_camera(root / "camera.json", {kF, kF, kW / 2.0, kH / 2.0, kW, kH, kScale});
+  write_bop_models(root, load_model("builtin:bracket", {}), 1, {});
+  const auto parts = toy_parts();
+  bop::write_scene_gt(root / "test/000000/scene_gt.json", {{0, parts}});
+  bop::SceneCamera cam;
+  cam.K << kF, 0, kW / 2.0, 0, kF, kH / 2.0, 0, 0, 1;
+  cam.depth_scale = kScale;
+  bop::write_scene_cameras(root / "test/000000/scene_camera.json", {{0, cam}});
+  GrayImage<std::uint16_t> depth{kW, kH, std::vector<std::uint16_t>(kW * kH)};
+  GrayImage<std::uint8_t> gray{kW, kH, std::vector<std::uint8_t>(kW * kH)};
+  for (std::uint32_t y = 0; y < kH; ++y)
+    for (std::uint32_t x = 0; x < kW; ++x) {
+      double z = 900;
+      for (const auto& p : parts) {
+        const double u = kF * p.model_to_camera.t.x() / p.model_to_camera.t.z() + kW / 2.0;
+        const double v = kF * p.model_to_camera.t.y() / p.model_to_camera.t.z() + kH / 2.0;
+        const double r2 = (x - u) * (x - u) + (y - v) * (y - v);
+        z = std::min(z, p.model_to_camera.t.z() + 80 * (1 - std::exp(-r2 / 800.0)));
+      }
+      const bool hole = x < 20 && y < 20;
+      depth.pixels[y * kW + x] = hole ? 0 : std::uint16_t(z / kScale);
+      gray.pixels[y * kW + x] = std::uint8_t(60 + (x * 120) / kW + (hole ? 0 : 40 * (z < 880)));
+    }
+  write_png(root / "test/000000/depth/000000.png", depth);
+  write_png(root / "test/000000/gray/000000.png", gray);
+  if (noise >= 0) {
+    std::ofstream(root / "synth.json") << nlohmann::json{{"noise", noise}}.dump() << "\n";
+  }
+}
+
+// A correct top hypothesis, one 20 degrees off and one 15 mm off.
+std::vector<bop::ResultRow> toy_results() {
+  const auto parts = toy_parts();
+  std::vector<bop::ResultRow> rows(3);
+  rows[0].score = 900, rows[0].R = parts[0].model_to_camera.R, rows[0].t = parts[0].model_to_camera.t;
+  rows[1].score = 500;
+  rows[1].R = parts[1].model_to_camera.R * Eigen::AngleAxisd(0.35, Eigen::Vector3d::UnitX()).toRotationMatrix();
+  rows[1].t = parts[1].model_to_camera.t;
+  rows[2].score = 300, rows[2].t = parts[1].model_to_camera.t + Eigen::Vector3d(15, 0, 0);
+  rows[2].R = parts[1].model_to_camera.R;
+  for (auto& r : rows) r.time = 0.3;
+  return rows;
+}
+
+bool non_empty(const fs::path& p) { return fs::is_regular_file(p) && fs::file_size(p) > 0; }
+
+TEST(EvalReport, WritesEveryFileAndReferencesThem) {
+  const fs::path dir = test::fresh_temp_dir("eval_report");
+  write_toy_dataset(dir / "ds", -1);
+  bop::write_results_csv(dir / "ds.csv", toy_results());
+  ReportOptions options;
+  options.out = dir / "report";
+  options.pictures = 1;
+  const auto evaluations = evaluate_inputs({{dir / "ds", dir / "ds.csv"}}, options.eval);
+  ASSERT_EQ(evaluations.size(), 1u);
+  EXPECT_EQ(evaluations[0].dataset.label, "ds");
+  EXPECT_NEAR(evaluations[0].summary.loose.top, 1.0, 1e-12);
+  EXPECT_NEAR(evaluations[0].summary.loose.all, 1.0 / 3.0, 1e-12);
+  EXPECT_NEAR(evaluations[0].summary.ms_per_hypothesis, 100.0, 1e-9);
+
+  const ReportFiles files = write_report(evaluations, options);
+  for (const auto& f : {files.html, files.json, files.curves_csv, files.hypotheses_csv})
+    EXPECT_TRUE(non_empty(f)) << f;
+  const std::string html = test::slurp(files.html);
+  const bool have_gnuplot = find_gnuplot().has_value();
+  EXPECT_TRUE(have_gnuplot) << "gnuplot (Debian gnuplot-nox) draws the precision plot";
+  if (have_gnuplot) {
+    EXPECT_TRUE(non_empty(options.out / "precision.png"));
+    EXPECT_NE(html.find("src=\"precision.png\""), std::string::npos);
+  }
+  for (const char* kind : {"depth", "intensity", "hypotheses", "detections", "closeup"}) {
+    const std::string rel = std::string("pictures/d0_000000_000000_") + kind + ".png";
+    EXPECT_TRUE(non_empty(options.out / rel)) << rel;
+    EXPECT_NE(html.find("src=\"" + rel + "\""), std::string::npos) << rel;
+  }
+  const auto json = nlohmann::json::parse(test::slurp(files.json));
+  EXPECT_DOUBLE_EQ(json["datasets"][0]["precision"]["loose"]["top"].get<double>(), 1.0);
+  EXPECT_EQ(json["datasets"][0]["hypotheses"].get<int>(), 3);
+  EXPECT_DOUBLE_EQ(json["operating_points"]["strict"]["rotation_deg"].get<double>(), 5.0);
+  const std::string curves = test::slurp(files.curves_csv);
+  EXPECT_EQ(curves.rfind("label,set,error,threshold,precision\n", 0), 0u);
+  EXPECT_NE(curves.find("\"ds\",top,rotation_deg,60,1\n"), std::string::npos);
+  // No temporary file of the atomic writes or of gnuplot is left behind.
+  for (const auto& entry : fs::recursive_directory_iterator(options.out))
+    EXPECT_EQ(entry.path().filename().string().find(".partial"), std::string::npos) << entry.path();
+}
+
+TEST(EvalReport, CurvesAreOrderedAndLabelledByNoise) {
+  const fs::path dir = test::fresh_temp_dir("eval_report_noise");
+  write_toy_dataset(dir / "noisy", 0.03);
+  write_toy_dataset(dir / "clean", 0.0);
+  bop::write_results_csv(dir / "r.csv", toy_results());
+  const auto evaluations =
+      evaluate_inputs({{dir / "noisy", dir / "r.csv"}, {dir / "clean", dir / "r.csv"}});
+  ASSERT_EQ(evaluations.size(), 2u);
+  EXPECT_EQ(evaluations[0].dataset.label, "sigma 0 % of d");
+  EXPECT_EQ(evaluations[1].dataset.label, "sigma 3 % of d");
+  std::vector<LabelledCurves> curves;
+  for (const auto& e : evaluations) curves.push_back({e.dataset.label, e.curves});
+  const std::string script = figure7_script(curves);
+  EXPECT_NE(script.find("'sigma 3 % of d'"), std::string::npos);
+  EXPECT_NE(script.find("multiplot layout 2,2"), std::string::npos);
+}
+
+TEST(EvalPictures, DepthIsDarkNearAndBlackWithoutData) {
+  const fs::path dir = test::fresh_temp_dir("eval_pictures");
+  write_toy_dataset(dir / "ds", -1);
+  const Dataset d = load_dataset(dir / "ds");
+  const SceneView view = load_scene_view(d, {0, 0});
+  DepthRange range;
+  const Canvas depth = depth_false_colour(view, &range);
+  EXPECT_LT(range.near_mm, range.far_mm);
+  auto brightness = [](Rgb c) { return int(c[0]) + c[1] + c[2]; };
+  EXPECT_EQ(brightness(depth.get(5, 5)), 0);  // the hole
+  // The first part's centre (near) is darker than the floor (far).
+  const auto centre = view.project({-60, 0, 800});
+  ASSERT_TRUE(centre);
+  EXPECT_LT(brightness(depth.get(int(centre->x()), int(centre->y()))), brightness(depth.get(300, 230)));
+
+  // The hypotheses picture colours the neighbourhood of the first hypothesis in its rank colour.
+  const auto rows = toy_results();
+  HypothesisResult h;
+  h.row = rows[0];
+  h.top = true;
+  const Canvas hyps = hypotheses_picture(view, {&h}, 40.0);
+  const Rgb near = hyps.get(int(centre->x()) + 12, int(centre->y()) + 2);
+  EXPECT_GT(near[0], near[2]) << "rank 1 is orange";
+  // Far away from it the picture is the dimmed intensity image: grey.
+  const Rgb far = hyps.get(300, 230);
+  EXPECT_EQ(far[0], far[2]);
+}
+
+}  // namespace
+}  // namespace binpick::eval

@@ -1,0 +1,123 @@
+// Voxel subsampling (kernels/voxel_subsample.cl) and the device prefix sum it uses
+// (kernels/device_scan.cl) against their C++ references.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+#include <set>
+#include <tuple>
+
+#include "host/runtime/cl/cl_buffer.hpp"
+#include "host/core/error.hpp"
+#include "host/train/device_scan.hpp"
+#include "host/train/voxel_subsample.hpp"
+
+using namespace binpick;
+
+namespace {
+
+PointCloud random_cloud(std::mt19937& rng, std::size_t n, float extent, bool normals = true) {
+  std::uniform_real_distribution<float> u(-extent / 2, extent / 2), c(-1, 1);
+  PointCloud cloud;
+  for (std::size_t i = 0; i < n; ++i) {
+    cloud.points.emplace_back(u(rng), u(rng), u(rng));
+    if (normals) cloud.normals.push_back(Eigen::Vector3f(c(rng), c(rng), c(rng)).normalized());
+  }
+  return cloud;
+}
+
+void expect_same(const VoxelSubsample& got, const VoxelSubsample& want) {
+  ASSERT_EQ(got.kept, want.kept);
+  ASSERT_EQ(got.cloud.points.size(), want.cloud.points.size());
+  ASSERT_EQ(got.cloud.normals.size(), want.cloud.normals.size());
+  for (std::size_t i = 0; i < got.cloud.points.size(); ++i) {
+    EXPECT_EQ(got.cloud.points[i], want.cloud.points[i]);
+    if (!got.cloud.normals.empty()) EXPECT_EQ(got.cloud.normals[i], want.cloud.normals[i]);
+  }
+}
+
+}  // namespace
+
+TEST(DeviceScan, MatchesReference) {
+  auto& dev = ocl::Device::shared();
+  std::mt19937 rng(11);
+  std::uniform_int_distribution<std::uint32_t> v(0, 1000);
+  for (std::size_t n : {0u, 1u, 7u, 4096u, 4097u, 100003u}) {
+    std::vector<std::uint32_t> in(n);
+    for (auto& x : in) x = v(rng);
+    ocl::Buffer<std::uint32_t> a(dev, std::span<const std::uint32_t>(in)), b(dev, n + 1);
+    const std::uint32_t total = exclusive_scan(dev, a, n, b);
+    const auto want = exclusive_scan_reference(in);
+    EXPECT_EQ(total, want.back()) << n;
+    EXPECT_EQ(b.read(dev), want) << n;
+  }
+}
+
+TEST(VoxelSubsample, MatchesReferenceOnRandomClouds) {
+  std::mt19937 rng(1);
+  for (auto [n, extent, voxel] : {std::tuple{1u, 10.0f, 1.0f}, {50u, 10.0f, 3.0f},
+                                  {5000u, 100.0f, 5.0f}, {20000u, 52.0f, 2.6f},
+                                  {20000u, 52.0f, 0.5f}}) {
+    const PointCloud cloud = random_cloud(rng, n, extent, n != 50);
+    const VoxelSubsample got = voxel_subsample(cloud, voxel);
+    expect_same(got, voxel_subsample_reference(cloud, voxel));
+    EXPECT_GT(got.kept.size(), 0u);
+    EXPECT_LE(got.kept.size(), n);
+  }
+}
+
+TEST(VoxelSubsample, KeepsOnePointPerVoxelNearestItsCentre) {
+  // Voxels of 1 from the minimum corner (0, 0, 0): voxel (0,0,0) holds points 0, 1, 2; point 2
+  // is nearest (0.5, 0.5, 0.5). Point 3 is alone in voxel (2, 0, 0).
+  PointCloud cloud;
+  cloud.points = {{0, 0, 0}, {0.9f, 0.9f, 0.9f}, {0.45f, 0.5f, 0.6f}, {2.2f, 0.1f, 0.1f}};
+  const VoxelSubsample got = voxel_subsample(cloud, 1.0f);
+  EXPECT_EQ(got.kept, (std::vector<std::uint32_t>{2, 3}));
+  EXPECT_TRUE(got.cloud.normals.empty());
+}
+
+TEST(VoxelSubsample, CoincidentPointsKeepTheLowestIndex) {
+  PointCloud cloud;
+  for (int i = 0; i < 100; ++i) {
+    cloud.points.emplace_back(1, 2, 3);
+    cloud.normals.emplace_back(0, 0, 1);
+  }
+  cloud.points.emplace_back(10, 2, 3);
+  cloud.normals.emplace_back(1, 0, 0);
+  const VoxelSubsample got = voxel_subsample(cloud, 0.5f);
+  EXPECT_EQ(got.kept, (std::vector<std::uint32_t>{0, 100}));
+  EXPECT_EQ(got.cloud.normals[1], Eigen::Vector3f(1, 0, 0));
+}
+
+TEST(VoxelSubsample, IsDeterministic) {
+  std::mt19937 rng(2);
+  const PointCloud cloud = random_cloud(rng, 30000, 50.0f);
+  const auto a = voxel_subsample(cloud, 1.0f), b = voxel_subsample(cloud, 1.0f);
+  EXPECT_EQ(a.kept, b.kept);
+}
+
+TEST(VoxelSubsample, EmptyAndSinglePointClouds) {
+  EXPECT_TRUE(voxel_subsample(PointCloud{}, 1.0f).kept.empty());
+  PointCloud one;
+  one.points = {{5, 5, 5}};
+  one.normals = {{0, 1, 0}};
+  const auto got = voxel_subsample(one, 1.0f);
+  EXPECT_EQ(got.kept, std::vector<std::uint32_t>{0});
+  EXPECT_EQ(got.cloud.normals.size(), 1u);
+}
+
+TEST(VoxelSubsample, BadInputIsAnInputError) {
+  PointCloud cloud;
+  cloud.points = {{0, 0, 0}, {1, NAN, 0}};
+  EXPECT_THROW(voxel_subsample(cloud, 1.0f), InputError);
+  EXPECT_THROW(voxel_subsample_reference(cloud, 1.0f), InputError);
+  cloud.points[1] = {1, 1, 0};
+  for (float v : {0.0f, -1.0f, NAN, INFINITY}) EXPECT_THROW(voxel_subsample(cloud, v), InputError);
+  cloud.normals = {{0, 0, 1}};  // one normal for two points
+  EXPECT_THROW(voxel_subsample(cloud, 1.0f), InputError);
+  cloud.normals = {{0, 0, 1}, {0, 0, NAN}};
+  EXPECT_THROW(voxel_subsample(cloud, 1.0f), InputError);
+  PointCloud far;
+  far.points = {{0, 0, 0}, {1e6f, 1e6f, 1e6f}};  // 10^18 voxels
+  EXPECT_THROW(voxel_subsample(far, 1.0f), InputError);
+}

@@ -1,0 +1,91 @@
+// `binpick run` as a user runs it: two noise levels of tiny bins give one report (report.html,
+// report.json, precision.png, curves.csv: one curve per noise level), the results and the final
+// table; the same command again resumes (bins, model and detections reused). Bad options exit 2
+// with one message and make nothing.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <set>
+
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+
+#include "host/formats/bop/results_csv.hpp"
+#include "tests/support/cli_run.hpp"
+
+using namespace binpick;
+namespace fs = std::filesystem;
+
+namespace {
+
+// The distinct labels (first column) of curves.csv.
+std::set<std::string> curve_labels(const std::string& csv) {
+  std::set<std::string> labels;
+  std::size_t start = csv.find('\n') + 1;  // after the header
+  while (start < csv.size()) {
+    const std::size_t end = csv.find('\n', start);
+    const std::string line = csv.substr(start, end - start);
+    if (!line.empty()) labels.insert(line.substr(0, line.find("\",") + 1));
+    if (end == std::string::npos) break;
+    start = end + 1;
+  }
+  return labels;
+}
+
+}  // namespace
+
+TEST(RunCli, MakesOneReportWithACurvePerNoiseLevelAndResumes) {
+  const fs::path dir = test::fresh_temp_dir("run_cli");
+  const fs::path out = dir / "exp";
+  const std::string cmd = fmt::format(
+      "run --model builtin:bracket --out {} --bins 2 --objects 20 --noise 0,0.02 --width 640 "
+      "--height 360 --pictures 1 --ref-ratio 0.05",
+      out.string());
+  auto r = test::run_binpick(cmd);
+  ASSERT_EQ(r.status, 0) << r.out << r.err;
+
+  for (const char* file : {"report.html", "report.json", "precision.png", "curves.csv"})
+    EXPECT_GT(fs::file_size(out / "report" / file), 0u) << file;
+  EXPECT_EQ(curve_labels(test::slurp(out / "report" / "curves.csv")).size(), 2u);
+  const auto json = nlohmann::json::parse(test::slurp(out / "report" / "report.json"));
+  ASSERT_EQ(json["datasets"].size(), 2u);
+  EXPECT_DOUBLE_EQ(json["datasets"][0]["noise"].get<double>(), 0.0);
+  EXPECT_DOUBLE_EQ(json["datasets"][1]["noise"].get<double>(), 0.02);
+  for (const char* noise : {"noise_0.00", "noise_0.02"}) {
+    EXPECT_TRUE(fs::is_directory(out / noise / "test" / "000001")) << noise;
+    EXPECT_FALSE(bop::read_results_csv(out / "results" / (std::string(noise) + ".csv")).empty());
+  }
+  EXPECT_TRUE(fs::is_regular_file(out / "model.ppfm"));
+  // The final table: a heading with both operating points and one row per noise level.
+  EXPECT_NE(r.out.find("loose 10%/15deg"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("strict 5%/5deg"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("ms/hyp"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("\n      0     2 "), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("\n   0.02     2 "), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find((out / "report" / "report.html").string()), std::string::npos) << r.out;
+
+  const std::string results = test::slurp(out / "results" / "noise_0.02.csv");
+  r = test::run_binpick(cmd);
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.out.find("0 bins made, 2 already there"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("reused"), std::string::npos) << r.out;
+  EXPECT_EQ(test::slurp(out / "results" / "noise_0.02.csv"), results);  // not detected again
+  fs::remove_all(dir);
+}
+
+TEST(RunCli, BadOptionsExit2WithOneMessage) {
+  const fs::path dir = test::fresh_temp_dir("run_bad");
+  const std::string out = (dir / "exp").string();
+  for (const std::string args :
+       {"--model builtin:bracket --noise ''", "--model builtin:bracket --noise 0,0",
+        "--model builtin:bracket --noise 0,-0.01", "--model builtin:nosuch",
+        "--model builtin:bracket --bins 0", "--model builtin:bracket --hypotheses -1",
+        "--model builtin:bracket --params /nonexistent.json"}) {
+    const auto r = test::run_binpick("run " + args + " --out " + out);
+    EXPECT_EQ(r.status, 2) << args << "\n" << r.err;
+    EXPECT_NE(r.err.find("binpick: error: "), std::string::npos) << args << "\n" << r.err;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << args << "\n" << r.err;
+  }
+  EXPECT_FALSE(fs::exists(out));
+  fs::remove_all(dir);
+}
