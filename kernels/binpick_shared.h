@@ -60,7 +60,7 @@ BP_FN bp_u32 bp_ppf_key(bp_u32 d, bp_u32 a1, bp_u32 a2, bp_u32 a3, bp_u32 n_angl
 
 BP_FN bp_u32 bp_ppf_key_count(bp_ppf_quant q) { return q.n_dist * q.n_angle * q.n_angle * q.n_angle; }
 
-/* ---- PPF model: table entries, skipped pairs, alpha (issue 4) ------------------------------ */
+/* ---- PPF model: table entries, skipped pairs, alpha ------------------------------ */
 
 /* One hash table entry: the model reference point m_r of a pair and its alpha_m in [-pi, pi). */
 typedef struct {

@@ -1,5 +1,5 @@
 /* What the device can do at best: plain kernels each bound by one resource, so that every
- * detection stage's throughput can be reported as a fraction of it (issue 7;
+ * detection stage's throughput can be reported as a fraction of it (
  * bench/lib/machine_peak.cpp times them, tests/bench/test_machine_peak.cpp checks them against
  * plain C++ with the same arithmetic).
  *

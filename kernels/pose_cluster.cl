@@ -1,4 +1,4 @@
-/* Pose clustering (paper section III-B; issue 5 step 4): which candidate poses are close enough
+/* Pose clustering (paper section III-B): which candidate poses are close enough
  * to be grouped, and how many votes each pose's neighbourhood holds.
  *
  * Poses are unit quaternions (x, y, z, w) and translations (mm). Poses i and j are compatible

@@ -1,4 +1,4 @@
-/* Drost voting around one hypothesis (paper section III-B; issue 5 step 3).
+/* Drost voting around one hypothesis (paper section III-B).
  *
  * ppf_scene_features: one work item per reference point s_r; for every subsampled scene point
  *   s_i the key and alpha_s of the pair (s_r, s_i), computed by the same bp_ppf_pair as the

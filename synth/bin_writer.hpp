@@ -1,5 +1,5 @@
 // Writes one synthetic bin as one BOP scene (image id 0): depth, gray, cloud, masks and the
-// scene JSON files (DESIGN.md section 4).
+// scene JSON files (docs/formats.md).
 #pragma once
 
 #include <filesystem>

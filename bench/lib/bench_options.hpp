@@ -1,4 +1,4 @@
-// What `binpick bench` measures and on what (issue 7): the paper's scene (1600 x 900, 350 parts
+// What `binpick bench` measures and on what: the paper's scene (1600 x 900, 350 parts
 // of a built-in part), detection at 20 % and 2 % reference points, and the side-by-side run of
 // OpenCV's PPF3DDetector when its runner was built. --quick is the smoke-test size.
 #pragma once

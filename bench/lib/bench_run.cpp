@@ -58,7 +58,7 @@ TrainMeasure measure_training(const Mesh& mesh, const BenchOptions& o, PpfModel*
 
 }  // namespace
 
-BenchRun run_bench(const BenchOptions& o, std::ostream& log) {
+BenchRun run_bench(const Model& part, const BenchOptions& o, std::ostream& log) {
   check(o);
   const auto start = std::chrono::steady_clock::now();
   BenchRun run;
@@ -66,7 +66,6 @@ BenchRun run_bench(const BenchOptions& o, std::ostream& log) {
   r.part = pipeline::describe(o.part);
   r.scene = fmt::format("{} x {}, {} parts, {} bins", o.width, o.height, o.objects, o.bins);
   r.repeats = o.repeats;
-  const Model part = load_model_with_symmetries(o.part.spec, o.part.options);
 
   log << "bench: peaks of the OpenCL device" << std::endl;
   r.machine = machine_info(o);

@@ -1,4 +1,4 @@
-// `binpick bench`: every measurement of issue 7 in one run, in the order a reader needs them:
+// `binpick bench`: every measurement of the benchmark in one run, in the order a reader needs them:
 // the machine's peaks, the paper's scenes (synth, timed per bin), the model (training timed),
 // detection per stage at each reference ratio, the scaling sweeps, OpenCV side by side; then
 // the report. Progress lines go to `log`; the scenes are reused by a rerun.
@@ -17,6 +17,7 @@ struct BenchRun {
   BenchFiles files;
 };
 
-BenchRun run_bench(const BenchOptions& options, std::ostream& log);
+// `part` is the model options.part names, loaded.
+BenchRun run_bench(const Model& part, const BenchOptions& options, std::ostream& log);
 
 }  // namespace binpick::bench

@@ -1,6 +1,6 @@
 // What the OpenCL device can do at best, measured once with plain kernels each bound by one
 // resource (kernels/machine_peak.cl), so that each detection stage's throughput can be reported
-// as a fraction of it (issue 7): memory bandwidth (STREAM triad), floating point (FMA chains),
+// as a fraction of it: memory bandwidth (STREAM triad), floating point (FMA chains),
 // integer ALU, and random lookups (gathers from a table out of cache and one in cache).
 #pragma once
 

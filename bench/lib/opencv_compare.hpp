@@ -1,4 +1,4 @@
-// binpick and OpenCV's cv::ppf_match_3d::PPF3DDetector side by side (issue 7): the same model
+// binpick and OpenCV's cv::ppf_match_3d::PPF3DDetector side by side: the same model
 // points, the same crops (each hypothesis' subsampled neighbourhood from the stage run), the
 // same parameters, the same scenes' ground truth. OpenCV runs in its own executable
 // (bench/opencv/opencv_ppf3d, built only when Debian's libopencv-contrib-dev is installed), so

@@ -1,4 +1,4 @@
-// How detection cost grows (issue 7): time per hypothesis against the reference ratio and
+// How detection cost grows: time per hypothesis against the reference ratio and
 // against the scene points of a neighbourhood (both on the fixed crops of the stage run), and
 // detection and training time against the model's points (retrained at several voxel sizes).
 // Each sweep reports the exponent k of time ~ size^k fitted on a log-log scale.

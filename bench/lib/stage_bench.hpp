@@ -1,4 +1,4 @@
-// Detection stage by stage on the benchmark's scenes (issue 7): the production path
+// Detection stage by stage on the benchmark's scenes: the production path
 // (Detector::detect on each depth image), repeated, timed per stage and per hypothesis, with
 // the work counted for throughput and the results evaluated against the ground truth. The
 // neighbourhoods each hypothesis voted on are kept: the scaling sweeps and OpenCV's runner get

@@ -1,6 +1,6 @@
 // opencv_ppf3d: OpenCV's cv::ppf_match_3d::PPF3DDetector (opencv_contrib's surface_matching,
 // Debian 12: OpenCV 4.6) on the crops `binpick bench` writes, so both detectors are timed on the
-// same neighbourhoods with the same parameters (issue 7). Only this executable links OpenCV;
+// same neighbourhoods with the same parameters. Only this executable links OpenCV;
 // binpick itself never does. `binpick bench` runs it as a subprocess and reads its JSON.
 //
 //   opencv_ppf3d --model MODEL.ply --crops DIR --out RESULT.json [options, see --help]

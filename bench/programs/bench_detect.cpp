@@ -17,6 +17,7 @@
 #include "host/formats/bop/png_image.hpp"
 #include "host/detect/detect_batch.hpp"
 #include "host/detect/detector.hpp"
+#include "host/app/model_options.hpp"
 #include "host/formats/mesh/load_model.hpp"
 #include "host/train/ppf_model.hpp"
 #include "synth/synthesize.hpp"
@@ -44,7 +45,7 @@ struct Bench {
 const Bench& bench() {
   static const Bench b = [] {
     Bench b;
-    b.part = load_model_with_symmetries("builtin:bracket", {});
+    b.part = cli::load_part({"builtin:bracket", {}});
     b.model = train_ppf_model(b.part.mesh, {});
     const fs::path dir = fs::temp_directory_path() /
                          ("binpick_bench_detect_" + std::to_string(::getpid()));

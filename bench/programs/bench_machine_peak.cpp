@@ -1,6 +1,6 @@
 // What the PoCL device can do at best (bench/lib/machine_peak.hpp): STREAM triad bandwidth,
 // FMA and integer throughput, random lookups from a table out of cache and from one in L2.
-// The yardsticks issue 7 reports each detection stage against. Each iteration is one whole
+// The yardsticks `binpick bench` reports each detection stage against. Each iteration is one whole
 // measurement (itself the best of several launches per kernel); the counters are the medians
 // over iterations. Under BINPICK_BENCH_SMOKE one quick measurement runs (not peaks).
 #include <benchmark/benchmark.h>

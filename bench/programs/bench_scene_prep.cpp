@@ -72,11 +72,11 @@ void BM_PrepareScene(benchmark::State& state) {
   ScenePrepOptions opt;
   opt.read_back = state.range(0) != 0;
   opt.normals_everywhere = state.range(1) != 0;
-  (void)prepare_scene(s.depth, s.cam, opt);  // builds the programs outside the timing
+  (void)prepare_scene(ocl::Device::shared(), s.depth, s.cam, opt);  // builds the programs outside the timing
   std::map<std::string, double> sum;
   const double cpu_start = process_cpu_ms();
   for (auto _ : state) {
-    const PreparedScene p = prepare_scene(s.depth, s.cam, opt);
+    const PreparedScene p = prepare_scene(ocl::Device::shared(), s.depth, s.cam, opt);
     for (const StageTime& t : p.timings) sum[t.stage] += t.ms;
   }
   for (const auto& [stage, ms] : sum)
@@ -90,7 +90,7 @@ void BM_Hypotheses(benchmark::State& state) {
   const Scene& s = scene();
   ScenePrepOptions opt;
   opt.read_back = false;
-  const PreparedScene p = prepare_scene(s.depth, s.cam, opt);
+  const PreparedScene p = prepare_scene(ocl::Device::shared(), s.depth, s.cam, opt);
   const HypothesisOptions hyp{std::uint32_t(state.range(0)), 60.0f};
   std::size_t found = 0, cropped = 0;
   double hyp_ms = 0, crop_ms = 0;

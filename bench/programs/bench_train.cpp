@@ -54,10 +54,10 @@ void BM_TableSphere(benchmark::State& state) {
     cloud.normals.push_back(v);
   }
   const bp_ppf_quant q = make_ppf_quant(52.0f, 20, 30);
-  build_ppf_table(cloud, q);  // warm-up
+  build_ppf_table(ocl::Device::shared(), cloud, q);  // warm-up
   PpfTableTimes t;
   PpfTable table;
-  for (auto _ : state) table = build_ppf_table(cloud, q, &t);
+  for (auto _ : state) table = build_ppf_table(ocl::Device::shared(), cloud, q, &t);
   report(state, n, table, t);
 }
 

@@ -27,7 +27,8 @@ int main(int argc, char** argv) {
     app.parse(argc, argv);
     return 0;
   } catch (const CLI::ParseError& e) {
-    return app.exit(e);  // --help, or a usage error with CLI11's own message
+    // --help (0), or a usage error with CLI11's own message: bad input, so 2 like every other.
+    return app.exit(e) == 0 ? 0 : 2;
   } catch (const binpick::InputError& e) {
     std::cerr << "binpick: error: " << e.what() << "\n";
     return 2;

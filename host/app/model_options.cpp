@@ -1,8 +1,16 @@
 #include "host/app/model_options.hpp"
 
+#include <string_view>
+
+#include "host/core/error.hpp"
 #include "synth/parts/builtin_parts.hpp"
 
 namespace binpick::cli {
+namespace {
+
+constexpr std::string_view builtin_prefix = "builtin:";
+
+}  // namespace
 
 void add_model_options(CLI::App* verb, ModelArgs& args, bool required) {
   std::string builtins;
@@ -25,12 +33,24 @@ ModelOptions model_options_of(const ModelArgs& args) {
   return {args.unit_scale, args.diameter, args.mesh};
 }
 
-Mesh load_model(const ModelArgs& args) {
-  return binpick::load_model(args.model, model_options_of(args));
+pipeline::PartSpec part_spec_of(const ModelArgs& args) {
+  return {args.model, model_options_of(args)};
 }
 
-Model load_model_with_symmetries(const ModelArgs& args) {
-  return binpick::load_model_with_symmetries(args.model, model_options_of(args));
+Model load_part(const pipeline::PartSpec& part) {
+  if (!part.spec.starts_with(builtin_prefix))
+    return load_model_with_symmetries(part.spec, part.options);
+  const std::string name = part.spec.substr(builtin_prefix.size());
+  if (!part.options.mesh_name.empty())
+    throw InputError(part.spec +
+                     ": --mesh selects a node of a glTF file, not of a built-in part");
+  Mesh mesh;
+  try {
+    mesh = make_builtin_part(name);
+  } catch (const InputError& e) {
+    throw InputError(part.spec + ": " + e.what());
+  }
+  return complete_model(std::move(mesh), builtin_part_symmetries(name), part.spec, part.options);
 }
 
 }  // namespace binpick::cli

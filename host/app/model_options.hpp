@@ -1,5 +1,6 @@
-// The model options shared by every verb that takes a part (parts --info, synth, train):
-// --model, --unit-scale, --diameter, --mesh.
+// The model options shared by every verb that takes a part (parts --info, synth, train, tune,
+// run, bench): --model, --unit-scale, --diameter, --mesh; and the one place where the model
+// argument is resolved: a file goes to the mesh loader, builtin:NAME to the built-in parts.
 #pragma once
 
 #include <CLI/CLI.hpp>
@@ -7,6 +8,7 @@
 #include <string>
 
 #include "host/formats/mesh/load_model.hpp"
+#include "host/train/model_store.hpp"
 
 namespace binpick::cli {
 
@@ -20,9 +22,10 @@ struct ModelArgs {
 void add_model_options(CLI::App* verb, ModelArgs& args, bool required = true);
 
 ModelOptions model_options_of(const ModelArgs& args);
+pipeline::PartSpec part_spec_of(const ModelArgs& args);
 
-// Loads the model the options name (throws binpick::InputError).
-Mesh load_model(const ModelArgs& args);
-Model load_model_with_symmetries(const ModelArgs& args);
+// The part spec names ("builtin:NAME" or a model file), with its symmetries where known, scaled
+// as its options say. Throws binpick::InputError naming spec.
+Model load_part(const pipeline::PartSpec& part);
 
 }  // namespace binpick::cli

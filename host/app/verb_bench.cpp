@@ -1,4 +1,4 @@
-// `binpick bench`: how fast, and faster than what (issue 7). Measures the paper's scene stage by
+// `binpick bench`: how fast, and faster than what. Measures the paper's scene stage by
 // stage, the device's peaks, the scaling sweeps and OpenCV's PPF3DDetector on the same crops,
 // and writes bench.md and bench.json (bench/lib/bench_run.hpp). `./run.sh bench` runs it.
 #include <iostream>
@@ -7,6 +7,7 @@
 #include <fmt/format.h>
 
 #include "bench/lib/bench_run.hpp"
+#include "host/app/dataset_options.hpp"
 #include "host/app/model_options.hpp"
 #include "host/app/verbs.hpp"
 #include "host/core/error.hpp"
@@ -24,16 +25,19 @@ ModelArgs default_model() {
 struct BenchArgs {
   ModelArgs model = default_model();
   bench::BenchOptions options;
+  DatasetArgs dataset{.bins = bench::BenchOptions{}.bins, .objects = bench::BenchOptions{}.objects};
   std::string ref_ratios = "0.2,0.02";
   bool quick = false;
 };
 
 void run_bench_verb(const BenchArgs& a) {
-  bench::BenchOptions o = a.quick ? bench::quick_options(a.options) : a.options;
-  o.part = {a.model.model, model_options_of(a.model)};
+  bench::BenchOptions given = a.options;
+  apply_dataset_args(a.dataset, given);
+  bench::BenchOptions o = a.quick ? bench::quick_options(given) : given;
+  o.part = part_spec_of(a.model);
   o.ref_ratios = pipeline::parse_number_list(a.ref_ratios, "--ref-ratios", "0.2,0.02");
   bench::check(o);  // before the slow stages
-  const auto run = bench::run_bench(o, std::cout);
+  const auto run = bench::run_bench(load_part(o.part), o, std::cout);
   std::cout << "\n" << bench::bench_markdown(run.result) << "\n"
             << fmt::format("report: {}\n        {}\n", run.files.markdown.string(),
                            run.files.json.string());
@@ -54,11 +58,7 @@ void add_bench_verb(CLI::App& app) {
   auto& o = a->options;
   verb->add_option("--out", o.out, "directory for the report, the scenes and the crops")
       ->capture_default_str();
-  verb->add_option("--bins", o.bins, "scenes measured")->capture_default_str();
-  verb->add_option("--objects", o.objects, "parts per bin")->capture_default_str();
-  verb->add_option("--width", o.width, "image width (pixels)")->capture_default_str();
-  verb->add_option("--height", o.height, "image height (pixels)")->capture_default_str();
-  verb->add_option("--seed", o.seed, "random seed of the scenes")->capture_default_str();
+  add_dataset_options(verb, a->dataset, "scenes measured", false);
   verb->add_option("--repeats", o.repeats, "timed runs per measurement (medians reported)")
       ->capture_default_str();
   verb->add_option("--ref-ratios", a->ref_ratios,

@@ -11,6 +11,7 @@
 #include <fmt/format.h>
 
 #include "host/runtime/cl/cl_device.hpp"
+#include "host/app/model_options.hpp"
 #include "host/app/verbs.hpp"
 #include "host/core/error.hpp"
 #include "host/tune/experiment.hpp"
@@ -26,7 +27,7 @@ struct DemoArgs {
   fs::path out = "binpick-demo";
   std::string part = "bracket";
   // 5 bins of 70 parts at two noise levels: about a minute on two idle cores (the physics of
-  // one 350-part bin alone takes minutes, DESIGN.md 7), two curves in the report.
+  // one 350-part bin alone takes minutes, docs/synthesis.md), two curves in the report.
   int bins = 5;
   int objects = 70;
   std::uint64_t seed = 1;
@@ -54,7 +55,7 @@ void run_demo(const DemoArgs& a) {
                            a.bins, a.objects, o.part.spec, a.noise,
                            a.out.string())
             << std::flush;
-  const auto r = pipeline::run_experiment(o, std::cout);
+  const auto r = pipeline::run_experiment(load_part(o.part), o, std::cout);
   for (const auto& w : r.report.warnings) std::cerr << "binpick: warning: " << w << "\n";
   std::cout << "\n" << pipeline::results_table(r.evaluations) << "\n";
   std::cout << fmt::format("report:   {}\n", r.report.html.string());

@@ -10,6 +10,7 @@
 #include <fmt/format.h>
 
 #include "host/formats/bop/results_csv.hpp"
+#include "host/app/output_file.hpp"
 #include "host/app/verbs.hpp"
 #include "host/core/error.hpp"
 #include "host/detect/detect_batch.hpp"
@@ -32,18 +33,11 @@ struct DetectArgs {
   pipeline::DetectCliOptions detection;  // --params and one option per parameter
 };
 
-void check_output(const fs::path& out) {
-  const auto dir = out.has_parent_path() ? out.parent_path() : fs::path(".");
-  if (!fs::is_directory(dir))
-    throw InputError("--out " + out.string() + ": directory " + dir.string() + " does not exist");
-  if (fs::is_directory(out)) throw InputError("--out " + out.string() + " is a directory");
-}
-
 void run_detect(DetectArgs& a) {
   if (a.dataset.empty() == a.cloud.empty())
     throw InputError("give exactly one of --dataset DIR and --cloud FILE.ply");
   const DetectParams params = pipeline::resolve(a.detection);
-  check_output(a.out);
+  check_output_file(a.out);
   const std::string model_bytes = read_file_bytes(a.model);
   const PpfModel model = parse_ppf_model(model_bytes, a.model);
   Detector detector(model, params);

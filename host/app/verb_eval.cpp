@@ -1,6 +1,6 @@
 // `binpick eval`: compares detection results (BOP results CSV) with a dataset's ground truth and
 // writes a report directory: report.html, report.json, curves.csv, hypotheses.csv, the
-// precision figure and pictures of the first scenes (DESIGN.md section 1, step 4).
+// precision figure and pictures of the first scenes (docs/pipeline.md).
 #include <filesystem>
 #include <iostream>
 #include <memory>

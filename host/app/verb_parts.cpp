@@ -34,7 +34,7 @@ std::string vector_text(const Eigen::Vector3f& v) {
 }
 
 void print_info(const ModelArgs& args) {
-  const Model model = load_model_with_symmetries(args);
+  const Model model = load_part(part_spec_of(args));
   const Mesh& mesh = model.mesh;
   const BoundingBox box = bounding_box(mesh.positions);
   const TopologyReport topology = check_topology(mesh);
@@ -67,7 +67,7 @@ void write_parts(const PartsArgs& args) {
     const std::string name = spec.starts_with(builtin)
                                  ? spec.substr(builtin.size())
                                  : std::filesystem::path(spec).stem().string();
-    parts.emplace_back(name, load_model(args.model));
+    parts.emplace_back(name, load_part(part_spec_of(args.model)).mesh);
   } else {
     for (const auto& name : builtin_part_names()) parts.emplace_back(name, make_builtin_part(name));
   }

@@ -8,10 +8,12 @@
 
 #include <fmt/format.h>
 
+#include "host/app/dataset_options.hpp"
+#include "host/app/detect_options.hpp"
 #include "host/app/model_options.hpp"
+#include "host/app/train_options.hpp"
 #include "host/app/verbs.hpp"
 #include "host/core/error.hpp"
-#include "host/app/detect_options.hpp"
 #include "host/tune/experiment.hpp"
 
 namespace binpick::cli {
@@ -20,6 +22,8 @@ namespace {
 struct RunArgs {
   ModelArgs model;
   pipeline::ExperimentOptions experiment;
+  DatasetArgs dataset;
+  TrainArgs train;
   std::string noise = "0";
   pipeline::DetectCliOptions detect;
 };
@@ -28,10 +32,13 @@ void run_run(RunArgs& a) {
   pipeline::ExperimentOptions o = a.experiment;
   // Parsed here rather than by CLI11, which would quietly keep the default for "--noise ''".
   o.noise = pipeline::parse_noise_list(a.noise);
-  o.part = {a.model.model, model_options_of(a.model)};
+  o.part = part_spec_of(a.model);
+  apply_dataset_args(a.dataset, o);
+  o.max_wall_seconds = a.dataset.max_wall_seconds;
+  o.train = train_params_of(a.train);
   o.detect = pipeline::resolve(a.detect);
   pipeline::check(o);  // before the slow stages: bad options fail fast
-  const auto r = pipeline::run_experiment(o, std::cout);
+  const auto r = pipeline::run_experiment(load_part(o.part), o, std::cout);
   std::cout << "\n" << pipeline::results_table(r.evaluations);
   for (const auto& w : r.report.warnings) std::cerr << "binpick: warning: " << w << "\n";
   std::cout << fmt::format(
@@ -55,27 +62,12 @@ void add_run_verb(CLI::App& app) {
   verb->add_option("--out", o.out,
                    "working directory: noise_S/ datasets, model.ppfm, results/, report/")
       ->required();
-  verb->add_option("--bins", o.bins, "bins per noise level")->capture_default_str();
-  verb->add_option("--objects", o.objects, "parts per bin")->capture_default_str();
+  add_dataset_options(verb, a->dataset, "bins per noise level");
   verb->add_option("--noise", a->noise,
                    "noise levels, comma separated: Gaussian depth noise sigma as a fraction of the "
                    "diameter (the paper: 0,0.01,0.02,0.03,0.04,0.05)")
       ->capture_default_str();
-  verb->add_option("--seed", o.seed, "random seed of the bins")->capture_default_str();
-  verb->add_option("--width", o.width, "image width, pixels")->capture_default_str();
-  verb->add_option("--height", o.height, "image height, pixels")->capture_default_str();
-  verb->add_option("--max-wall-seconds", o.max_wall_seconds,
-                   "wall-clock limit of one bin's physics (0: none)")
-      ->capture_default_str();
-  verb->add_option("--voxel-ratio", o.train.voxel_ratio,
-                   "training: subsampling voxel as a fraction of the diameter")
-      ->capture_default_str();
-  verb->add_option("--distance-steps", o.train.distance_steps,
-                   "training: distance bins up to the diameter")
-      ->capture_default_str();
-  verb->add_option("--angle-steps", o.train.angle_steps,
-                   "training: angle bins of a full turn (30 = 12 degrees)")
-      ->capture_default_str();
+  add_train_options(verb, a->train, "training");
   verb->add_option("--pictures", o.pictures, "images pictured per noise level in the report")
       ->capture_default_str();
   pipeline::add_detect_cli_options(verb, a->detect, "detection");

@@ -1,9 +1,10 @@
-// `binpick synth`: synthetic bins as a BOP dataset (DESIGN.md sections 1 and 4).
+// `binpick synth`: synthetic bins as a BOP dataset (docs/pipeline.md, docs/formats.md).
 #include <iostream>
 #include <memory>
 
 #include <fmt/format.h>
 
+#include "host/app/dataset_options.hpp"
 #include "host/app/model_options.hpp"
 #include "host/app/verbs.hpp"
 #include "synth/synthesize.hpp"
@@ -14,6 +15,7 @@ namespace {
 struct SynthArgs {
   ModelArgs model;
   SynthOptions options;
+  DatasetArgs dataset;
   std::vector<double> bin_size{600.0, 400.0, 300.0};
   std::vector<int> grid{7, 5};
   std::string cache_dir;
@@ -21,12 +23,19 @@ struct SynthArgs {
 
 void run_synth(const SynthArgs& args) {
   SynthOptions o = args.options;
+  const DatasetArgs& d = args.dataset;
+  o.bins = d.bins;
+  o.drop.objects = d.objects;
+  o.seed = d.seed;
+  o.width = d.width;
+  o.height = d.height;
+  o.drop.max_wall_seconds = d.max_wall_seconds;
   o.drop.bin_size_mm = Eigen::Vector3d(args.bin_size[0], args.bin_size[1], args.bin_size[2]);
   o.drop.grid_x = args.grid[0];
   o.drop.grid_y = args.grid[1];
   o.decompose.cache_dir = args.cache_dir;
   validate_synth_options(o);  // before loading: bad options fail fast
-  const Model model = load_model_with_symmetries(args.model);
+  const Model model = load_part(part_spec_of(args.model));
   const SynthSummary s = synthesize(model, args.model.model, o);
   std::cout << fmt::format(
       "{}: {} bins made, {} already there; decomposition {:.1f} s, physics {:.1f} s, "
@@ -47,10 +56,7 @@ void add_synth_verb(CLI::App& app) {
   add_model_options(verb, args->model);
   SynthOptions& o = args->options;
   verb->add_option("--out", o.out, "dataset directory (created)")->required();
-  verb->add_option("--bins", o.bins, "number of bins (BOP scenes)")->capture_default_str();
-  verb->add_option("--objects", o.drop.objects, "parts per bin")->capture_default_str();
-  verb->add_option("--seed", o.seed, "random seed: the same seed gives the same bins")
-      ->capture_default_str();
+  add_dataset_options(verb, args->dataset, "number of bins (BOP scenes)");
   verb->add_option("--noise", o.noise,
                    "Gaussian depth noise along the ray, sigma as a fraction of the part diameter "
                    "(the paper: 0 to 0.05)")
@@ -67,13 +73,8 @@ void add_synth_verb(CLI::App& app) {
       ->capture_default_str();
   verb->add_option("--camera-height", o.camera_height_mm, "camera height above the floor, mm")
       ->capture_default_str();
-  verb->add_option("--width", o.width, "image width, pixels")->capture_default_str();
-  verb->add_option("--height", o.height, "image height, pixels")->capture_default_str();
   verb->add_option("--max-wave-seconds", o.drop.max_wave_seconds,
                    "simulated seconds a wave may take to come to rest before the next is released")
-      ->capture_default_str();
-  verb->add_option("--max-wall-seconds", o.drop.max_wall_seconds,
-                   "wall-clock limit of one bin's physics (0: none); a bin cut short says so")
       ->capture_default_str();
   verb->add_flag("--final-settle", o.drop.final_settle_all_dynamic,
                  "after the last wave, keep the whole pile dynamic until all of it is at rest. "

@@ -11,6 +11,8 @@
 #include <fmt/format.h>
 
 #include "host/app/model_options.hpp"
+#include "host/app/train_options.hpp"
+#include "host/app/output_file.hpp"
 #include "host/app/verbs.hpp"
 #include "host/core/error.hpp"
 #include "host/train/ppf_model.hpp"
@@ -19,49 +21,19 @@
 namespace binpick::cli {
 namespace {
 
-struct TrainArgs {
+struct TrainVerbArgs {
   ModelArgs model;
   std::string out;
-  double voxel_ratio = 0.05;
-  // Wide types, so that a negative or huge value reaches our range check (an InputError that
-  // says what is allowed) instead of a conversion error.
-  std::int64_t distance_steps = BP_PPF_DEFAULT_DIST_STEPS;
-  std::int64_t angle_steps = BP_PPF_DEFAULT_ANGLE_STEPS;
+  TrainArgs train;
 };
-
-std::uint32_t steps(std::int64_t value, const char* option, std::int64_t lo, std::int64_t hi) {
-  if (value < lo || value > hi)
-    throw InputError(fmt::format("{} {} must be in [{}, {}]", option, value, lo, hi));
-  return static_cast<std::uint32_t>(value);
-}
-
-PpfTrainParams params_of(const TrainArgs& a) {
-  PpfTrainParams p;
-  p.voxel_ratio = a.voxel_ratio;
-  if (!(std::isfinite(a.voxel_ratio) && a.voxel_ratio > 0 && a.voxel_ratio <= 1))
-    throw InputError(fmt::format("--voxel-ratio {} must be in (0, 1] (a fraction of the diameter)",
-                                 a.voxel_ratio));
-  p.distance_steps = steps(a.distance_steps, "--distance-steps", 1, 1000);
-  p.angle_steps = steps(a.angle_steps, "--angle-steps", 4, 360);
-  check_train_params(p);
-  return p;
-}
-
-void check_output(const std::filesystem::path& out) {
-  const auto dir = out.has_parent_path() ? out.parent_path() : std::filesystem::path(".");
-  if (!std::filesystem::is_directory(dir))
-    throw InputError("--out " + out.string() + ": directory " + dir.string() + " does not exist");
-  if (std::filesystem::is_directory(out))
-    throw InputError("--out " + out.string() + " is a directory");
-}
 
 double ms(double s) { return s * 1e3; }
 
-void run_train(const TrainArgs& args) {
-  const PpfTrainParams params = params_of(args);  // before the (slow) load: fail fast
-  check_output(args.out);
+void run_train(const TrainVerbArgs& args) {
+  const PpfTrainParams params = train_params_of(args.train);  // before the (slow) load: fail fast
+  check_output_file(args.out);
   const auto start = std::chrono::steady_clock::now();
-  const Mesh mesh = load_model(args.model);
+  const Mesh mesh = load_part(part_spec_of(args.model)).mesh;
   const double load_s =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   PpfTrainStats st;
@@ -95,23 +67,14 @@ void run_train(const TrainArgs& args) {
 }  // namespace
 
 void add_train_verb(CLI::App& app) {
-  auto args = std::make_shared<TrainArgs>();
+  auto args = std::make_shared<TrainVerbArgs>();
   auto* verb = app.add_subcommand(
       "train",
       "Build the point pair feature model of a part: sample its surface uniformly, voxel "
       "subsample, hash all point pair features on the OpenCL device, write a .ppfm file");
   add_model_options(verb, args->model);
   verb->add_option("--out", args->out, "model file to write (.ppfm)")->required();
-  verb->add_option("--voxel-ratio", args->voxel_ratio,
-                   "subsampling voxel size as a fraction of the diameter, in (0, 1]")
-      ->capture_default_str();
-  verb->add_option("--distance-steps", args->distance_steps,
-                   "distance bins up to the diameter, in [1, 1000]")
-      ->capture_default_str();
-  verb->add_option("--angle-steps", args->angle_steps,
-                   "angle bins of a full turn (30 = 12 degrees), in [4, 360]; feature angles in "
-                   "[0, pi] get half as many")
-      ->capture_default_str();
+  add_train_options(verb, args->train, "model");
   verb->callback([args] { run_train(*args); });
 }
 

@@ -14,15 +14,17 @@ struct StageTime {
 };
 using StageTimings = std::vector<StageTime>;
 
-// Milliseconds since construction or the last lap().
+// Time since construction or the last lap.
 class Stopwatch {
  public:
+  // Milliseconds.
   double lap() {
     const auto now = std::chrono::steady_clock::now();
     const double ms = std::chrono::duration<double, std::milli>(now - start_).count();
     start_ = now;
     return ms;
   }
+  double lap_seconds() { return lap() / 1e3; }
 
  private:
   std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now();

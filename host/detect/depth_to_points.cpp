@@ -5,9 +5,8 @@
 #include "host/detect/depth_to_points.hpp"
 
 namespace binpick {
-namespace {
 
-void check(const DepthImage& depth, const bp_camera& cam) {
+void check_depth_camera(const DepthImage& depth, const bp_camera& cam) {
   if (depth.width != cam.width || depth.height != cam.height ||
       depth.raw.size() != std::size_t(depth.width) * depth.height)
     throw InputError("depth image of " + std::to_string(depth.width) + " x " +
@@ -17,11 +16,8 @@ void check(const DepthImage& depth, const bp_camera& cam) {
     throw InputError("camera focal lengths and depth_scale must be positive");
 }
 
-}  // namespace
-
-PointImage depth_to_points(const DepthImage& depth, const bp_camera& cam) {
-  check(depth, cam);
-  auto& dev = ocl::Device::shared();
+PointImage depth_to_points(ocl::Device& dev, const DepthImage& depth, const bp_camera& cam) {
+  check_depth_camera(depth, cam);
   const std::size_t n = depth.raw.size();
   ocl::Buffer<std::uint16_t> in(dev, std::span<const std::uint16_t>(depth.raw), CL_MEM_READ_ONLY);
   ocl::Buffer<float> out(dev, 4 * n, CL_MEM_WRITE_ONLY);  // float4 per pixel
@@ -31,7 +27,7 @@ PointImage depth_to_points(const DepthImage& depth, const bp_camera& cam) {
 }
 
 PointImage depth_to_points_reference(const DepthImage& depth, const bp_camera& cam) {
-  check(depth, cam);
+  check_depth_camera(depth, cam);
   PointImage img{depth.width, depth.height, std::vector<float>(4 * depth.raw.size(), 0.0f)};
   for (std::uint32_t v = 0; v < depth.height; ++v)
     for (std::uint32_t u = 0; u < depth.width; ++u) {

@@ -4,6 +4,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "host/runtime/cl/cl_device.hpp"
 #include "kernels/binpick_shared.h"
 
 namespace binpick {
@@ -19,8 +20,12 @@ struct PointImage {
   std::vector<float> xyzw;  // 4 floats a pixel
 };
 
-// Routine: the depth_to_points kernel on the shared OpenCL device.
-PointImage depth_to_points(const DepthImage& depth, const bp_camera& cam);
+// InputError unless the image has the camera's size and the camera positive focal lengths and
+// depth scale.
+void check_depth_camera(const DepthImage& depth, const bp_camera& cam);
+
+// Routine: the depth_to_points kernel on dev.
+PointImage depth_to_points(ocl::Device& dev, const DepthImage& depth, const bp_camera& cam);
 // Reference: the same in plain C++.
 PointImage depth_to_points_reference(const DepthImage& depth, const bp_camera& cam);
 

@@ -31,23 +31,19 @@ double sum_ms(const StageTimings& t, std::size_t from) {
 }  // namespace
 
 void check(const DetectParams& p) {
-  require(in(p.ref_ratio, 0, 1) && p.ref_ratio > 0,
-          fmt::format("--ref-ratio {} must be in (0, 1]", p.ref_ratio));
-  require(p.hypotheses >= 1 && p.hypotheses <= 1000,
-          fmt::format("--hypotheses {} must be in [1, 1000]", p.hypotheses));
-  require(in(p.exclusion_ratio, 0, 100),
-          fmt::format("--exclusion-ratio {} must be in [0, 100]", p.exclusion_ratio));
-  require(in(p.crop_ratio, 0, 100) && p.crop_ratio > 0,
-          fmt::format("--crop-ratio {} must be in (0, 100]", p.crop_ratio));
-  require(in(p.cluster_distance, 0, 100),
-          fmt::format("--cluster-distance {} must be in [0, 100]", p.cluster_distance));
-  require(in(p.cluster_angle, 0, 180),
-          fmt::format("--cluster-angle {} must be in [0, 180] degrees", p.cluster_angle));
-  require(p.peaks_per_ref >= 1 && p.peaks_per_ref <= 16,
-          fmt::format("--peaks-per-ref {} must be in [1, 16]", p.peaks_per_ref));
-  require(in(p.peak_ratio, 0, 1), fmt::format("--peak-ratio {} must be in [0, 1]", p.peak_ratio));
-  require(in(p.normal_ratio, 0, 10) && p.normal_ratio > 0,
-          fmt::format("--normal-ratio {} must be in (0, 10]", p.normal_ratio));
+  // Parameters are named as in the --params file (docs/cli.md), which is also the option name.
+  const auto need = [](bool ok, const char* name, double value, const char* range) {
+    if (!ok) throw InputError(fmt::format("detection parameter {} {} must be in {}", name, value, range));
+  };
+  need(in(p.ref_ratio, 0, 1) && p.ref_ratio > 0, "ref-ratio", p.ref_ratio, "(0, 1]");
+  need(p.hypotheses >= 1 && p.hypotheses <= 1000, "hypotheses", p.hypotheses, "[1, 1000]");
+  need(in(p.exclusion_ratio, 0, 100), "exclusion-ratio", p.exclusion_ratio, "[0, 100]");
+  need(in(p.crop_ratio, 0, 100) && p.crop_ratio > 0, "crop-ratio", p.crop_ratio, "(0, 100]");
+  need(in(p.cluster_distance, 0, 100), "cluster-distance", p.cluster_distance, "[0, 100]");
+  need(in(p.cluster_angle, 0, 180), "cluster-angle", p.cluster_angle, "[0, 180] degrees");
+  need(p.peaks_per_ref >= 1 && p.peaks_per_ref <= 16, "peaks-per-ref", p.peaks_per_ref, "[1, 16]");
+  need(in(p.peak_ratio, 0, 1), "peak-ratio", p.peak_ratio, "[0, 1]");
+  need(in(p.normal_ratio, 0, 10) && p.normal_ratio > 0, "normal-ratio", p.normal_ratio, "(0, 10]");
 }
 
 DetectTimes& DetectTimes::operator+=(const DetectTimes& o) {
@@ -59,12 +55,12 @@ DetectTimes& DetectTimes::operator+=(const DetectTimes& o) {
   return *this;
 }
 
-Detector::Detector(const PpfModel& model, const DetectParams& params)
-    : model_(model), params_(params) {
+Detector::Detector(const PpfModel& model, const DetectParams& params, ocl::Device& dev)
+    : dev_(dev), model_(model), params_(params) {
   check(params_);
   require(model.diameter > 0 && model.voxel_size > 0 && !model.cloud.points.empty(),
           "the PPF model is empty");
-  device_model_ = upload_model(ocl::Device::shared(), model_);
+  device_model_ = upload_model(dev_, model_);
 }
 
 Detection Detector::detect_neighbourhood(const PointCloud& neighbourhood, DetectTimes* times) {
@@ -73,7 +69,7 @@ Detection Detector::detect_neighbourhood(const PointCloud& neighbourhood, Detect
   Detection d;
   d.neighbourhood = neighbourhood.points.size();
   // The scene is subsampled like the model (its voxel), so that densities, and so votes, match.
-  const VoxelSubsample sub = voxel_subsample(neighbourhood, model_.voxel_size);
+  const VoxelSubsample sub = voxel_subsample(dev_, neighbourhood, model_.voxel_size);
   const double ms = clock.lap();
   t.prepare_ms += ms;
   t.stages.push_back({"subsample", ms});
@@ -83,7 +79,7 @@ Detection Detector::detect_neighbourhood(const PointCloud& neighbourhood, Detect
 }
 
 void Detector::vote_and_cluster(const PointCloud& subsampled, Detection& d, DetectTimes& t) {
-  auto& dev = ocl::Device::shared();
+  auto& dev = dev_;
   Stopwatch clock;
   const std::vector<std::uint32_t> refs =
       select_reference_points(subsampled.points.size(), params_.ref_ratio);
@@ -144,7 +140,7 @@ std::vector<Detection> Detector::detect(const DepthImage& depth, const bp_camera
   prep.normals.max_distance = float(params_.normal_ratio * model_.diameter);
   prep.read_back = false;
   prep.normals_everywhere = false;  // only where the neighbourhoods need them, below
-  const PreparedScene scene = prepare_scene(depth, cam, prep);
+  const PreparedScene scene = prepare_scene(dev_, depth, cam, prep);
   t.stages.insert(t.stages.end(), scene.timings.begin(), scene.timings.end());
   HypothesisOptions ho;
   ho.count = params_.hypotheses;

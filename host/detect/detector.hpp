@@ -1,4 +1,4 @@
-// The detection pipeline of one image (paper section III-B/C; issue 5): scene preparation, the
+// The detection pipeline of one image (paper section III-B/C): scene preparation, the
 // highest points, and per hypothesis its neighbourhood -> voxel subsampling -> reference points
 // -> voting and peaks (ppf_vote) -> candidate poses (ppf_pose) -> clustering (pose_cluster); the
 // best cluster of each hypothesis is its detection. Everything data-parallel is a kernel; the
@@ -20,7 +20,7 @@
 
 namespace binpick {
 
-// Every parameter of detection; the paper's values are the defaults (DESIGN.md section 5).
+// Every parameter of detection; the paper's values are the defaults (docs/parameters.md).
 // Ratios are fractions of the model's diameter.
 struct DetectParams {
   double ref_ratio = 0.2;          // reference points / subsampled scene points (2 %: fast)
@@ -33,7 +33,7 @@ struct DetectParams {
   double peak_ratio = 0.9;         // ... with at least this fraction of its best votes
   double normal_ratio = 0.2;       // depth normals: neighbours within this distance (fraction)
 };
-// InputError naming the option ("--ref-ratio ...") for a value out of range.
+// InputError naming the parameter ("detection parameter ref-ratio ...") for a value out of range.
 void check(const DetectParams& params);
 
 // The pose found around one hypothesis (model to camera, mm).
@@ -60,8 +60,10 @@ struct DetectTimes {
 
 class Detector {
  public:
-  // Checks params; uploads the model's table to the shared device.
-  Detector(const PpfModel& model, const DetectParams& params);
+  // Checks params; uploads the model's table to dev, where every stage of detection runs (the
+  // process's shared device unless a caller, such as a test, picks another).
+  Detector(const PpfModel& model, const DetectParams& params,
+           ocl::Device& dev = ocl::Device::shared());
 
   const PpfModel& model() const { return model_; }
   const DetectParams& params() const { return params_; }
@@ -95,6 +97,7 @@ class Detector {
   // Steps 4-5 on a subsampled neighbourhood with normals: reference points, votes, clusters.
   void vote_and_cluster(const PointCloud& subsampled, Detection& d, DetectTimes& t);
 
+  ocl::Device& dev_;
   const PpfModel& model_;
   DetectParams params_;
   DeviceModel device_model_;

@@ -64,12 +64,11 @@ std::vector<Hypothesis> find_hypotheses(ocl::Device& dev, const ocl::Buffer<floa
   return out;
 }
 
-std::vector<Hypothesis> find_hypotheses(const PointImage& points,
+std::vector<Hypothesis> find_hypotheses(ocl::Device& dev, const PointImage& points,
                                         const std::vector<float>& filtered,
                                         const HypothesisOptions& opt) {
   check_filtered(points, filtered);
   check(opt);
-  auto& dev = ocl::Device::shared();
   ocl::Buffer<float> p(dev, std::span<const float>(points.xyzw), CL_MEM_READ_ONLY);
   ocl::Buffer<float> f(dev, std::span<const float>(filtered), CL_MEM_READ_ONLY);
   return find_hypotheses(dev, p, f, points.width, points.height, opt);
@@ -109,9 +108,9 @@ std::vector<Hypothesis> find_hypotheses(const PreparedScene& scene, const Hypoth
                                         StageTimings* timings) {
   Stopwatch clock;
   std::vector<Hypothesis> out =
-      scene.device ? find_hypotheses(ocl::Device::shared(), scene.device->points,
+      scene.device ? find_hypotheses(*scene.device->dev, scene.device->points,
                                      scene.device->filtered, scene.width, scene.height, opt)
-                   : find_hypotheses(scene.points, scene.filtered_depth, opt);
+                   : find_hypotheses_reference(scene.points, scene.filtered_depth, opt);
   if (timings) timings->push_back({"hypotheses", clock.lap()});
   return out;
 }

@@ -31,7 +31,7 @@ void check(const HypothesisOptions& opt);
 
 // Routine: on the device, from a point image and its filtered depth (one float a pixel,
 // 0 = no data). Highest first; fewer than count when the valid pixels run out.
-std::vector<Hypothesis> find_hypotheses(const PointImage& points,
+std::vector<Hypothesis> find_hypotheses(ocl::Device& dev, const PointImage& points,
                                         const std::vector<float>& filtered,
                                         const HypothesisOptions& opt = {});
 // Reference: the same rounds in plain C++ (same float predicate: the same pixels exactly).
@@ -44,8 +44,9 @@ std::vector<Hypothesis> find_hypotheses(ocl::Device& dev, const ocl::Buffer<floa
                                         const ocl::Buffer<float>& filtered, std::uint32_t width,
                                         std::uint32_t height, const HypothesisOptions& opt);
 
-// On a prepared scene: its device buffers if it has them, else its host images. Appends the
-// stage "hypotheses" to timings if given.
+// On a prepared scene: the kernels on its device buffers if it has them, else the C++ reference
+// on its host images (a scene from prepare_scene_reference). Appends the stage "hypotheses" to
+// timings if given.
 std::vector<Hypothesis> find_hypotheses(const PreparedScene& scene,
                                         const HypothesisOptions& opt = {},
                                         StageTimings* timings = nullptr);

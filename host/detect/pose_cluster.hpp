@@ -1,4 +1,4 @@
-// Pose clustering (Drost 2010; paper section III-B and IV; issue 5 step 4): candidate poses
+// Pose clustering (Drost 2010; paper section III-B and IV): candidate poses
 // within a translation threshold (14.4 % of the diameter) and a rotation threshold (20 degrees)
 // are grouped, the group's votes summed and its poses averaged.
 //

@@ -1,4 +1,4 @@
-// Candidate poses from accumulator peaks (Drost 2010, section 3.3; issue 5 step 3): a peak
+// Candidate poses from accumulator peaks (Drost 2010, section 3.3): a peak
 // (scene reference point s_r, model point m_r, alpha) is the pose
 //   P(m) = R_s^T R_x(alpha) R_m (m - m_r) + s_r,
 // where R_m, R_s take the normals n_m, n_s onto +x exactly as bp_ppf_alpha does (rotation about

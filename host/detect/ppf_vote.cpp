@@ -15,20 +15,6 @@
 namespace binpick {
 namespace {
 
-// Like ocl::launch, with one work item per work group: each reference point is an independent
-// task of uneven cost, and left to itself PoCL may put a few hundred of them in one work group,
-// which runs on one core.
-template <class... Args>
-void launch_tasks(ocl::Device& dev, cl::Kernel& kernel, std::size_t global, const Args&... args) {
-  if (global == 0) return;
-  const std::string name = kernel.getInfo<CL_KERNEL_FUNCTION_NAME>();
-  ocl::guarded("launching kernel " + name, [&] {
-    cl_uint index = 0;
-    (kernel.setArg(index++, ocl::detail::arg(args)), ...);
-    dev.queue().enqueueNDRangeKernel(kernel, cl::NullRange, cl::NDRange(global), cl::NDRange(1));
-  });
-}
-
 std::size_t cells_of(const PpfModel& model) {
   return model.cloud.points.size() * std::size_t(model.quant.n_alpha);
 }
@@ -92,7 +78,7 @@ std::vector<VotePeak> vote_peaks(ocl::Device& dev, const DeviceModel& dmodel,
   ocl::Buffer<float> alphas(dev, n_refs * n);
   const auto n32 = static_cast<std::uint32_t>(n), refs32 = static_cast<std::uint32_t>(n_refs);
   cl::Kernel features = dev.kernel("ppf_vote.cl", "ppf_scene_features");
-  launch_tasks(dev, features, n_refs, points, normals, n32, ref_buf, refs32, model.quant, keys,
+  ocl::launch_tasks(dev, features, n_refs, points, normals, n32, ref_buf, refs32, model.quant, keys,
               alphas);
   ocl::finish(dev);
   if (timings) timings->push_back({"features", clock.lap()});
@@ -111,11 +97,11 @@ std::vector<VotePeak> vote_peaks(ocl::Device& dev, const DeviceModel& dmodel,
   for (std::size_t first = 0; first < n_refs; first += batch) {
     const auto count = static_cast<std::uint32_t>(std::min(batch, n_refs - first));
     const auto first32 = static_cast<std::uint32_t>(first);
-    launch_tasks(dev, vote, count, keys, alphas, n32, first32, count, dmodel.offsets,
+    ocl::launch_tasks(dev, vote, count, keys, alphas, n32, first32, count, dmodel.offsets,
                 dmodel.entries, n_model, model.quant, ppf_vote_inv_step(model.quant), acc);
     ocl::finish(dev);
     vote_ms += clock.lap();
-    launch_tasks(dev, find_peaks, count, acc, first32, count, cells32, k, opt.peak_ratio,
+    ocl::launch_tasks(dev, find_peaks, count, acc, first32, count, cells32, k, opt.peak_ratio,
                 peak_buf);
     ocl::finish(dev);
     peaks_ms += clock.lap();

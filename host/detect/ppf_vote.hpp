@@ -1,4 +1,4 @@
-// Drost voting around one hypothesis (paper section III-B; issue 5 step 3; kernels/ppf_vote.cl):
+// Drost voting around one hypothesis (paper section III-B; kernels/ppf_vote.cl):
 // the point pair features of every reference point with every other subsampled scene point,
 // the hash lookup, one integer accumulator (model point x alpha bin) per reference point, and
 // its peaks. A peak (s_r, m_r, alpha) is a candidate pose; ppf_pose.hpp turns it into one.

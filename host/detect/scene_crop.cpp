@@ -64,11 +64,10 @@ PointCloud crop_sphere(ocl::Device& dev, const ocl::Buffer<float>& points,
   return cloud;
 }
 
-PointCloud crop_sphere(const PointImage& points, const PointImage& normals,
+PointCloud crop_sphere(ocl::Device& dev, const PointImage& points, const PointImage& normals,
                        const CropOptions& opt) {
   check(points, normals);
   check(opt);
-  auto& dev = ocl::Device::shared();
   ocl::Buffer<float> p(dev, std::span<const float>(points.xyzw), CL_MEM_READ_ONLY);
   ocl::Buffer<float> nr(dev, std::span<const float>(normals.xyzw), CL_MEM_READ_ONLY);
   return crop_sphere(dev, p, nr, std::size_t(points.width) * points.height, opt);
@@ -171,9 +170,9 @@ PointCloud crop_sphere(const PreparedScene& scene, const CropOptions& opt) {
   if (!scene.has_normals)
     throw InputError("the prepared scene has no normals (ScenePrepOptions::normals_everywhere)");
   if (scene.device)
-    return crop_sphere(ocl::Device::shared(), scene.device->points, scene.device->normals,
+    return crop_sphere(*scene.device->dev, scene.device->points, scene.device->normals,
                        std::size_t(scene.width) * scene.height, opt);
-  return crop_sphere(scene.points, scene.normals, opt);
+  return crop_sphere_reference(scene.points, scene.normals, opt);
 }
 
 }  // namespace binpick

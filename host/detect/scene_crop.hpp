@@ -22,7 +22,7 @@ struct CropOptions {
 };
 
 // Routine: points (and normals: same size, float4 a pixel) inside the sphere, pixel order.
-PointCloud crop_sphere(const PointImage& points, const PointImage& normals,
+PointCloud crop_sphere(ocl::Device& dev, const PointImage& points, const PointImage& normals,
                        const CropOptions& opt);
 // Reference: the same predicate in plain C++; equal to the routine point for point.
 PointCloud crop_sphere_reference(const PointImage& points, const PointImage& normals,
@@ -32,7 +32,8 @@ PointCloud crop_sphere_reference(const PointImage& points, const PointImage& nor
 PointCloud crop_sphere(ocl::Device& dev, const ocl::Buffer<float>& points,
                        const ocl::Buffer<float>& normals, std::size_t n, const CropOptions& opt);
 
-// On a prepared scene: its device buffers if it has them, else its host images.
+// On a prepared scene: the kernels on its device buffers if it has them, else the C++ reference
+// on its host images (a scene from prepare_scene_reference).
 PointCloud crop_sphere(const PreparedScene& scene, const CropOptions& opt);
 
 // The pixels of a sphere's neighbourhood before normals are known: every pixel with data whose

@@ -24,10 +24,9 @@ void enqueue_lowpass_depth(ocl::Device& dev, const ocl::Buffer<float>& points,
               filtered);
 }
 
-std::vector<float> lowpass_depth(const PointImage& points, int radius) {
+std::vector<float> lowpass_depth(ocl::Device& dev, const PointImage& points, int radius) {
   check_point_image(points);
   check_lowpass_radius(radius);
-  auto& dev = ocl::Device::shared();
   const std::size_t n = std::size_t(points.width) * points.height;
   ocl::Buffer<float> in(dev, std::span<const float>(points.xyzw), CL_MEM_READ_ONLY);
   ocl::Buffer<float> row_sums(dev, 2 * n), out(dev, n, CL_MEM_WRITE_ONLY);

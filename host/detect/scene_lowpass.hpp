@@ -12,7 +12,7 @@ namespace binpick {
 
 // Routine: per pixel the mean z (mm) of the valid pixels in the (2r+1)^2 window, r in [0, 64];
 // 0 where the pixel itself has no data (holes are not filled).
-std::vector<float> lowpass_depth(const PointImage& points, int radius);
+std::vector<float> lowpass_depth(ocl::Device& dev, const PointImage& points, int radius);
 // Reference: the same separable sums in the same order, in plain C++.
 std::vector<float> lowpass_depth_reference(const PointImage& points, int radius);
 

@@ -75,7 +75,7 @@ NeighbourhoodSample sample_neighbourhood(const PreparedScene& scene, const CropO
                                          StageTimings* timings) {
   if (!scene.device) throw InputError("sample_neighbourhood needs a scene on the device");
   check(normal_opt);
-  auto& dev = ocl::Device::shared();
+  auto& dev = *scene.device->dev;
   Stopwatch clock;
   const CroppedPixels c = crop_pixels(dev, scene.device->points, scene.camera, crop);
   if (timings) timings->push_back({"crop", clock.lap()});
@@ -107,7 +107,7 @@ NeighbourhoodSample sample_neighbourhood(const PreparedScene& scene, const CropO
     PointCloud s;
     s.points.reserve(active.size());
     for (std::uint32_t i : active) s.points.push_back(c.points[i]);
-    const VoxelSubsample sub = voxel_subsample(s, voxel_size);
+    const VoxelSubsample sub = voxel_subsample(dev, s, voxel_size);
     subsample_ms += clock.lap();
 
     std::vector<std::uint32_t> need = sub.kept;

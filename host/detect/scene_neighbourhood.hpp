@@ -1,5 +1,5 @@
 // The subsampled neighbourhood of one hypothesis, with normals computed only where they are
-// needed (issue: normals over the whole 1.4 M-pixel image cost ~120 ms an image, while voting
+// needed (measured: normals over the whole 1.4 M-pixel image cost ~120 ms an image, while voting
 // uses only the ~1-2 thousand points left after cropping and subsampling a hypothesis).
 //
 // The result is exactly voxel_subsample(crop_sphere(scene with normals everywhere)) -- the

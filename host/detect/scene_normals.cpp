@@ -40,10 +40,10 @@ void enqueue_normals_from_points(ocl::Device& dev, const ocl::Buffer<float>& poi
               cl_int(opt.radius), opt.max_distance, normals);
 }
 
-PointImage normals_from_points(const PointImage& points, const NormalOptions& opt) {
+PointImage normals_from_points(ocl::Device& dev, const PointImage& points,
+                               const NormalOptions& opt) {
   check_point_image(points);
   check(opt);
-  auto& dev = ocl::Device::shared();
   const std::size_t n = std::size_t(points.width) * points.height;
   ocl::Buffer<float> in(dev, std::span<const float>(points.xyzw), CL_MEM_READ_ONLY);
   ocl::Buffer<float> out(dev, 4 * n, CL_MEM_WRITE_ONLY);
@@ -125,11 +125,10 @@ std::vector<float> normals_at_pixels(ocl::Device& dev, const ocl::Buffer<float>&
   return out.read(dev);
 }
 
-std::vector<float> normals_at_pixels(const PointImage& points,
+std::vector<float> normals_at_pixels(ocl::Device& dev, const PointImage& points,
                                      const std::vector<std::uint32_t>& pixels,
                                      const NormalOptions& opt) {
   check_point_image(points);
-  auto& dev = ocl::Device::shared();
   ocl::Buffer<float> in(dev, std::span<const float>(points.xyzw), CL_MEM_READ_ONLY);
   return normals_at_pixels(dev, in, points.width, points.height, pixels, opt);
 }

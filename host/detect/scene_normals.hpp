@@ -23,7 +23,8 @@ void check(const NormalOptions& opt);
 
 // Routine: the normals_from_points kernel on the shared device. Out: per pixel (nx, ny, nz, 1)
 // with n . p < 0, or all 0 (no data, fewer than 3 neighbours, or a degenerate fit).
-PointImage normals_from_points(const PointImage& points, const NormalOptions& opt = {});
+PointImage normals_from_points(ocl::Device& dev, const PointImage& points,
+                               const NormalOptions& opt = {});
 // Reference: the same covariance in double, solved by Eigen's SelfAdjointEigenSolver.
 PointImage normals_from_points_reference(const PointImage& points, const NormalOptions& opt = {});
 
@@ -42,7 +43,7 @@ std::vector<float> normals_at_pixels(ocl::Device& dev, const ocl::Buffer<float>&
                                      const std::vector<std::uint32_t>& pixels,
                                      const NormalOptions& opt = {});
 // The same on a host image (uploads it).
-std::vector<float> normals_at_pixels(const PointImage& points,
+std::vector<float> normals_at_pixels(ocl::Device& dev, const PointImage& points,
                                      const std::vector<std::uint32_t>& pixels,
                                      const NormalOptions& opt = {});
 // Reference: normals_from_points_reference's value at each listed pixel.

@@ -9,23 +9,16 @@ namespace binpick {
 namespace {
 
 void check(const DepthImage& depth, const bp_camera& cam, const ScenePrepOptions& opt) {
-  if (depth.width != cam.width || depth.height != cam.height ||
-      depth.raw.size() != std::size_t(depth.width) * depth.height)
-    throw InputError("depth image of " + std::to_string(depth.width) + " x " +
-                     std::to_string(depth.height) + " does not match the camera's " +
-                     std::to_string(cam.width) + " x " + std::to_string(cam.height));
-  if (!(cam.fx > 0 && cam.fy > 0 && cam.depth_scale > 0))
-    throw InputError("camera focal lengths and depth_scale must be positive");
+  check_depth_camera(depth, cam);
   check(opt.normals);
   check_lowpass_radius(opt.lowpass_radius);
 }
 
 }  // namespace
 
-PreparedScene prepare_scene(const DepthImage& depth, const bp_camera& cam,
+PreparedScene prepare_scene(ocl::Device& dev, const DepthImage& depth, const bp_camera& cam,
                             const ScenePrepOptions& opt) {
   check(depth, cam, opt);
-  auto& dev = ocl::Device::shared();
   const std::size_t n = depth.raw.size();
   PreparedScene s;
   s.width = depth.width, s.height = depth.height, s.camera = cam;
@@ -34,7 +27,7 @@ PreparedScene prepare_scene(const DepthImage& depth, const bp_camera& cam,
                                  CL_MEM_READ_ONLY);
   s.has_normals = opt.normals_everywhere;
   s.device = std::make_shared<DeviceScene>(
-      DeviceScene{ocl::Buffer<float>(dev, 4 * n),
+      DeviceScene{&dev, ocl::Buffer<float>(dev, 4 * n),
                   ocl::Buffer<float>(dev, s.has_normals ? 4 * n : 0), ocl::Buffer<float>(dev, n)});
   DeviceScene& d = *s.device;
   ocl::finish(dev);

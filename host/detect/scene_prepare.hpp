@@ -1,4 +1,4 @@
-// Scene preparation of detection (paper section III-C, issue 5 step 1): depth -> camera-frame
+// Scene preparation of detection (paper section III-C): depth -> camera-frame
 // points, normals and the low-pass filtered range image, all on the OpenCL device, kept there
 // for the later stages (hypotheses, crops), optionally copied to the host.
 #pragma once
@@ -28,6 +28,7 @@ struct ScenePrepOptions {
 
 // The prepared scene on the device; every buffer is one entry per pixel, row-major.
 struct DeviceScene {
+  ocl::Device* dev = nullptr;   // the device the buffers live on
   ocl::Buffer<float> points;    // float4: xyz mm, w = 1 where there is data
   ocl::Buffer<float> normals;   // float4: unit normal, w = 1 where valid (empty without them)
   ocl::Buffer<float> filtered;  // low-pass depth in mm, 0 = no data
@@ -46,7 +47,7 @@ struct PreparedScene {
 
 // Routine: the kernels depth_to_points, normals_from_points, lowpass_rows/cols in one queue.
 // Throws InputError for a depth image that does not match the camera or bad options.
-PreparedScene prepare_scene(const DepthImage& depth, const bp_camera& cam,
+PreparedScene prepare_scene(ocl::Device& dev, const DepthImage& depth, const bp_camera& cam,
                             const ScenePrepOptions& opt = {});
 // Reference: the C++ references of the same stages (host vectors only, no device).
 PreparedScene prepare_scene_reference(const DepthImage& depth, const bp_camera& cam,

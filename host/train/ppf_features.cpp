@@ -44,10 +44,9 @@ PointCloud ppf_input(const PointCloud& cloud, std::size_t max_points, const char
   return with_unit_normals(cloud);
 }
 
-PairFeatures ppf_pair_features(const PointCloud& input, const bp_ppf_quant& quant) {
+PairFeatures ppf_pair_features(ocl::Device& dev, const PointCloud& input, const bp_ppf_quant& quant) {
   const PointCloud cloud = ppf_input(input, 8192, "point pair features");
   const std::size_t n = cloud.points.size();
-  auto& dev = ocl::Device::shared();
   ocl::Buffer<cl_float4> points(dev, std::span<const cl_float4>(pack_float4(cloud.points)),
                                 CL_MEM_READ_ONLY);
   ocl::Buffer<cl_float4> normals(dev, std::span<const cl_float4>(pack_float4(cloud.normals)),

@@ -15,6 +15,7 @@
 #include <Eigen/Core>
 
 #include "host/core/mesh.hpp"
+#include "host/runtime/cl/cl_device.hpp"
 #include "kernels/binpick_shared.h"
 
 namespace binpick {
@@ -36,7 +37,7 @@ struct PairFeatures {
 // Device routine (kernels/ppf_features.cl), for checking and inspection: it stores n^2 pairs,
 // so n is limited to 8192. Normals are required (scaled to unit length first); non-finite
 // values are InputError.
-PairFeatures ppf_pair_features(const PointCloud& cloud, const bp_ppf_quant& quant);
+PairFeatures ppf_pair_features(ocl::Device& dev, const PointCloud& cloud, const bp_ppf_quant& quant);
 
 // The undiscretised feature of one pair, computed with Eigen (the reference).
 struct PairFeature {

@@ -42,10 +42,11 @@ inline constexpr double kSamplesPerVoxelArea = 16.0;
 // (make_ppf_quant).
 void check_train_params(const PpfTrainParams& params);
 
-// Samples the surface, voxel-subsamples it and builds the table on the device. Throws
+// Samples the surface, voxel-subsamples it and builds the table on dev (the process's shared
+// device unless a caller, such as a test, picks another). Throws
 // InputError for bad parameters, a degenerate mesh, or a voxel so small that the model would
 // exceed kMaxPpfModelPoints points.
 PpfModel train_ppf_model(const Mesh& mesh, const PpfTrainParams& params,
-                         PpfTrainStats* stats = nullptr);
+                         PpfTrainStats* stats = nullptr, ocl::Device& dev = ocl::Device::shared());
 
 }  // namespace binpick

@@ -1,39 +1,28 @@
 #include "host/train/ppf_table.hpp"
 
 #include <algorithm>
-#include <chrono>
 #include <string>
 
 #include "host/runtime/cl/cl_buffer.hpp"
 #include "host/core/error.hpp"
+#include "host/core/timing.hpp"
 #include "host/core/cloud_input.hpp"
 #include "host/train/device_scan.hpp"
 
 namespace binpick {
-namespace {
-
-double seconds_since(std::chrono::steady_clock::time_point& t) {
-  const auto now = std::chrono::steady_clock::now();
-  const double s = std::chrono::duration<double>(now - t).count();
-  t = now;
-  return s;
-}
-
-}  // namespace
-
 std::size_t PpfTable::distinct_keys() const {
   std::size_t count = 0;
   for (std::size_t k = 0; k + 1 < offsets.size(); ++k) count += offsets[k + 1] != offsets[k];
   return count;
 }
 
-PpfTable build_ppf_table(const PointCloud& input, const bp_ppf_quant& quant, PpfTableTimes* times) {
+PpfTable build_ppf_table(ocl::Device& dev, const PointCloud& input, const bp_ppf_quant& quant,
+                         PpfTableTimes* times) {
   const PointCloud cloud = ppf_input(input, kMaxPpfModelPoints, "PPF table");
   const std::size_t n = cloud.points.size();
   const std::size_t n_keys = bp_ppf_key_count(quant);
-  auto& dev = ocl::Device::shared();
   PpfTableTimes t;
-  auto clock = std::chrono::steady_clock::now();
+  Stopwatch clock;
 
   // Groups of rows with a histogram each: enough to keep every core busy, few enough that the
   // histograms stay within 2^24 counters (64 MiB).
@@ -54,7 +43,7 @@ PpfTable build_ppf_table(const PointCloud& input, const bp_ppf_quant& quant, Ppf
   ocl::launch(dev, count_kernel, n > 0 ? groups : 0, points, normals, count, quant,
               rows_per_group, keys, counts);
   ocl::finish(dev);
-  t.count_s = seconds_since(clock);
+  t.count_s = clock.lap_seconds();
 
   cl::Kernel totals_kernel = dev.kernel("ppf_table.cl", "ppf_bucket_totals");
   ocl::launch(dev, totals_kernel, n_keys, counts, group_count, keys, totals);
@@ -63,17 +52,17 @@ PpfTable build_ppf_table(const PointCloud& input, const bp_ppf_quant& quant, Ppf
   cl::Kernel slots_kernel = dev.kernel("ppf_table.cl", "ppf_group_slots");
   ocl::launch(dev, slots_kernel, n_keys, counts, group_count, keys, offsets);
   ocl::finish(dev);
-  t.scan_s = seconds_since(clock);
+  t.scan_s = clock.lap_seconds();
 
   ocl::Buffer<bp_ppf_entry> entries(dev, total);
   cl::Kernel scatter = dev.kernel("ppf_table.cl", "ppf_scatter");
   ocl::launch(dev, scatter, n > 0 ? groups : 0, points, normals, count, quant, rows_per_group,
               keys, counts, entries);
   ocl::finish(dev);
-  t.scatter_s = seconds_since(clock);
+  t.scatter_s = clock.lap_seconds();
 
   PpfTable table{offsets.read(dev), entries.read(dev)};
-  t.read_s = seconds_since(clock);
+  t.read_s = clock.lap_seconds();
   if (times) *times = t;
   return table;
 }

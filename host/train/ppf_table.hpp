@@ -34,7 +34,7 @@ struct PpfTableTimes {
 // Device routine: all ordered pairs of the cloud (normals required, scaled to unit length).
 // Throws InputError for non-finite input or more than kMaxPpfModelPoints points. An empty or
 // one-point cloud gives an empty table.
-PpfTable build_ppf_table(const PointCloud& cloud, const bp_ppf_quant& quant,
+PpfTable build_ppf_table(ocl::Device& dev, const PointCloud& cloud, const bp_ppf_quant& quant,
                          PpfTableTimes* times = nullptr);
 
 // The table of given pair features (row-major n x n, as ppf_pair_features returns), built on the

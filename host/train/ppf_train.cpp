@@ -1,8 +1,8 @@
-#include <chrono>
 #include <cmath>
 #include <string>
 
 #include "host/core/error.hpp"
+#include "host/core/timing.hpp"
 #include "host/core/diameter.hpp"
 #include "host/core/cloud_input.hpp"
 #include "host/train/ppf_model.hpp"
@@ -10,17 +10,6 @@
 #include "host/train/voxel_subsample.hpp"
 
 namespace binpick {
-namespace {
-
-double seconds_since(std::chrono::steady_clock::time_point& t) {
-  const auto now = std::chrono::steady_clock::now();
-  const double s = std::chrono::duration<double>(now - t).count();
-  t = now;
-  return s;
-}
-
-}  // namespace
-
 void check_train_params(const PpfTrainParams& p) {
   if (!(p.voxel_ratio > 0 && p.voxel_ratio <= 1))
     throw InputError("voxel ratio " + std::to_string(p.voxel_ratio) +
@@ -28,17 +17,18 @@ void check_train_params(const PpfTrainParams& p) {
   make_ppf_quant(1.0f, p.distance_steps, p.angle_steps);
 }
 
-PpfModel train_ppf_model(const Mesh& mesh, const PpfTrainParams& params, PpfTrainStats* stats) {
+PpfModel train_ppf_model(const Mesh& mesh, const PpfTrainParams& params, PpfTrainStats* stats,
+                         ocl::Device& dev) {
   check_train_params(params);
   PpfTrainStats st;
-  auto clock = std::chrono::steady_clock::now();
+  Stopwatch clock;
   PpfModel model;
   model.diameter = static_cast<float>(exact_diameter(mesh.positions));
   if (!(model.diameter > 0 && std::isfinite(model.diameter)))
     throw InputError("the model has no extent (diameter " + std::to_string(model.diameter) + ")");
   model.voxel_size = static_cast<float>(params.voxel_ratio * model.diameter);
   model.quant = make_ppf_quant(model.diameter, params.distance_steps, params.angle_steps);
-  st.diameter_s = seconds_since(clock);
+  st.diameter_s = clock.lap_seconds();
 
   const double voxel_areas = surface_area(mesh) / (double(model.voxel_size) * model.voxel_size);
   if (voxel_areas > 8.0 * kMaxPpfModelPoints)
@@ -49,17 +39,17 @@ PpfModel train_ppf_model(const Mesh& mesh, const PpfTrainParams& params, PpfTrai
   const auto samples = static_cast<std::size_t>(std::ceil(kSamplesPerVoxelArea * voxel_areas));
   const PointCloud dense = sample_surface(mesh, std::max<std::size_t>(samples, 1));
   st.surface_samples = dense.points.size();
-  st.sample_s = seconds_since(clock);
+  st.sample_s = clock.lap_seconds();
 
   // Stored exactly as the table saw them (unit normals), for detection to use.
-  model.cloud = with_unit_normals(voxel_subsample(dense, model.voxel_size).cloud);
-  st.subsample_s = seconds_since(clock);
+  model.cloud = with_unit_normals(voxel_subsample(dev, dense, model.voxel_size).cloud);
+  st.subsample_s = clock.lap_seconds();
   if (model.cloud.points.size() > kMaxPpfModelPoints)
     throw InputError("voxel ratio " + std::to_string(params.voxel_ratio) + " gives " +
                      std::to_string(model.cloud.points.size()) + " model points, at most " +
                      std::to_string(kMaxPpfModelPoints) + " are supported: raise it");
 
-  model.table = build_ppf_table(model.cloud, model.quant, &st.table);
+  model.table = build_ppf_table(dev, model.cloud, model.quant, &st.table);
   st.points = model.cloud.points.size();
   st.pairs = st.points * (st.points > 0 ? st.points - 1 : 0);
   st.entries = model.table.entries.size();

@@ -65,11 +65,10 @@ VoxelGrid voxel_grid(const PointCloud& cloud, float voxel_size) {
   return g;
 }
 
-VoxelSubsample voxel_subsample(const PointCloud& cloud, float voxel_size) {
+VoxelSubsample voxel_subsample(ocl::Device& dev, const PointCloud& cloud, float voxel_size) {
   const VoxelGrid g = voxel_grid(cloud, voxel_size);
   const std::size_t n = cloud.points.size();
   if (n == 0) return gather(cloud, {});
-  auto& dev = ocl::Device::shared();
   const auto count = static_cast<std::uint32_t>(n);
   ocl::Buffer<cl_float4> points(dev, std::span<const cl_float4>(pack_float4(cloud.points)),
                                 CL_MEM_READ_ONLY);

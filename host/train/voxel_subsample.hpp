@@ -14,6 +14,7 @@
 #include <Eigen/Core>
 
 #include "host/core/mesh.hpp"
+#include "host/runtime/cl/cl_device.hpp"
 
 namespace binpick {
 
@@ -36,7 +37,7 @@ VoxelGrid voxel_grid(const PointCloud& cloud, float voxel_size);
 
 // Device routine. Throws InputError for non-finite points or normals, bad voxel size.
 // An empty cloud gives an empty result.
-VoxelSubsample voxel_subsample(const PointCloud& cloud, float voxel_size);
+VoxelSubsample voxel_subsample(ocl::Device& dev, const PointCloud& cloud, float voxel_size);
 
 // Plain C++ reference with the same result.
 VoxelSubsample voxel_subsample_reference(const PointCloud& cloud, float voxel_size);

@@ -95,10 +95,9 @@ void check(const ExperimentOptions& o) {
   binpick::check(o.detect);
 }
 
-ExperimentResult run_experiment(const ExperimentOptions& o, std::ostream& log) {
+ExperimentResult run_experiment(const Model& part, const ExperimentOptions& o, std::ostream& log) {
   check(o);
   ExperimentResult r;
-  const Model part = load_model_with_symmetries(o.part.spec, o.part.options);
   const std::string description = describe(o.part);
 
   auto start = std::chrono::steady_clock::now();

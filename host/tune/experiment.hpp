@@ -61,9 +61,10 @@ struct ExperimentResult {
   double synth_s = 0, train_s = 0, detect_s = 0, eval_s = 0;
 };
 
-// Runs every stage, writing one line per stage and dataset to `log` (the stages' progress bars
-// go to stderr).
-ExperimentResult run_experiment(const ExperimentOptions& options, std::ostream& log);
+// Runs every stage on `part` (loaded from options.part), writing one line per stage and dataset
+// to `log` (the stages' progress bars go to stderr).
+ExperimentResult run_experiment(const Model& part, const ExperimentOptions& options,
+                                std::ostream& log);
 
 // The final table: noise, bins, hypotheses, precision top/all at both operating points, ms per
 // hypothesis; one row per evaluation.

@@ -109,9 +109,8 @@ void check(const TuneOptions& o) {
   binpick::check(o.start.detect);
 }
 
-TuneResult run_tune(const TuneOptions& o, std::ostream& out) {
+TuneResult run_tune(const Model& part, const TuneOptions& o, std::ostream& out) {
   check(o);
-  const Model part = load_model_with_symmetries(o.part.spec, o.part.options);
   const std::string description = describe(o.part);
   const SynthSummary made = synthesize(part, description, synth_options(o));
   out << fmt::format("dataset {}: {} bins ({} made now), {} parts each, noise {}\n",

@@ -47,6 +47,7 @@ struct TuneResult {
 
 // Runs the loop, printing the table to `out` as it goes (header, one row per measurement, then
 // the best); a progress bar over the measurements on stderr.
-TuneResult run_tune(const TuneOptions& options, std::ostream& out);
+// `part` is the model options.part names, loaded.
+TuneResult run_tune(const Model& part, const TuneOptions& options, std::ostream& out);
 
 }  // namespace binpick::pipeline

@@ -29,7 +29,7 @@ std::string point_key(const TunePoint& p) {
 }
 
 const std::vector<TuneAxis>& tune_axes() {
-  // The values around the paper's (DESIGN.md 5): 2 % and 20 % reference points, 12-degree angle
+  // The values around the paper's (docs/parameters.md): 2 % and 20 % reference points, 12-degree angle
   // steps, 20 distance steps, clustering at 14.4 % and 20 degrees, exclusion 1.2 diameters.
   static const std::vector<TuneAxis> axes = {
       detect_axis("ref-ratio", {0.02, 0.05, 0.1, 0.2, 0.3}, &DetectParams::ref_ratio),

@@ -100,7 +100,7 @@ ConvexParts decompose_convex_uncached(const Mesh& part, const DecomposeOptions& 
   WeldedMesh mesh = weld(part);
   if (mesh.triangles.empty()) throw InputError("mesh has only degenerate triangles");
 
-  // HACD's concavity threshold depends on the model's scale (DESIGN.md 7): normalise to the
+  // HACD's concavity threshold depends on the model's scale (docs/synthesis.md): normalise to the
   // unit diagonal around the bounding-box centre, and undo that on the hulls.
   Eigen::Vector3d lo = mesh.points.front(), hi = lo;
   for (const auto& p : mesh.points) {

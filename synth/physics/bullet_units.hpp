@@ -1,5 +1,5 @@
 // Bullet runs in the paper's units, 1 unit = 1 cm: with a bin in metres and 6 cm parts piles
-// never settled, Bullet wants moving objects of at least about 0.2 units (DESIGN.md 7).
+// never settled, Bullet wants moving objects of at least about 0.2 units (docs/synthesis.md).
 // Everything outside synth/physics is in mm.
 #pragma once
 

@@ -15,7 +15,7 @@
 
 namespace binpick {
 
-// Defaults are the paper's scene (DESIGN.md 4) and settings measured to settle a 350-part bin
+// Defaults are the paper's scene (docs/parameters.md) and settings measured to settle a 350-part bin
 // quickly (bench/programs/bench_synth_physics.cpp).
 struct DropOptions {
   Eigen::Vector3d bin_size_mm{600.0, 400.0, 300.0};  // interior: x width, y depth, z wall height

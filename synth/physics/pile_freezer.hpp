@@ -1,7 +1,7 @@
 // Per-part sleeping for a pile. Bullet puts bodies to sleep by islands of touching bodies and
 // wakes a whole island when one of its bodies is hit; a pile on the bin floor is one island,
 // so every landing wave re-simulated the entire pile until all of it slept again: most of a
-// bin's time (DESIGN.md 7). Here a part at rest whose neighbours are at rest too is made
+// bin's time (docs/synthesis.md). Here a part at rest whose neighbours are at rest too is made
 // static (static bodies do not join islands), and a part hitting the pile makes the frozen
 // parts around the hit dynamic again: a wake-up spreads only as far as parts are pushed.
 #pragma once

@@ -1,6 +1,6 @@
 // Whether each part is at rest: its linear and angular velocity, averaged over the last quarter
 // second, stayed under the rest speeds (in magnitude, so motion in any direction counts,
-// DESIGN.md 7) for rest_seconds. Averaged, because parts resting on each other jitter:
+// docs/synthesis.md) for rest_seconds. Averaged, because parts resting on each other jitter:
 // Bullet's contact solver kicks a resting part back and forth from step to step, its speed
 // spiking over any useful threshold while it goes nowhere (measured: 3 mm/s and 0.1 rad/s
 // for a bracket that moved 0.2 mm in 1.5 s). A raw test, like Bullet's own sleeping test,

@@ -1,4 +1,4 @@
-// The benchmark's arithmetic and report (host/bench/): the log-log exponent, the throughput
+// The benchmark's arithmetic and report (bench/lib/): the log-log exponent, the throughput
 // fractions, the pair counts against a brute-force count, and the tables and JSON keys a
 // reader and a script rely on.
 #include <gtest/gtest.h>
@@ -10,6 +10,7 @@
 #include "bench/lib/scaling_bench.hpp"
 #include "bench/lib/throughput.hpp"
 #include "host/detect/ppf_vote.hpp"
+#include "host/app/model_options.hpp"
 #include "host/formats/mesh/load_model.hpp"
 #include "host/train/ppf_features.hpp"
 
@@ -57,7 +58,7 @@ TEST(BenchThroughput, rates_and_fractions_of_the_peaks) {
 }
 
 TEST(BenchPairCounts, equal_a_brute_force_count_over_the_table) {
-  const Mesh mesh = load_model("builtin:bolt", {});
+  const Mesh mesh = cli::load_part({"builtin:bolt", {}}).mesh;
   const PpfModel model = train_ppf_model(mesh, {});
   // The model's own points as the scene: every pair within the diameter has a key.
   const PointCloud& scene = model.cloud;

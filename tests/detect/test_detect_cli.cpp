@@ -14,6 +14,7 @@
 #include "host/formats/bop/png_image.hpp"
 #include "host/formats/bop/results_csv.hpp"
 #include "host/core/error.hpp"
+#include "host/app/model_options.hpp"
 #include "host/formats/mesh/load_model.hpp"
 #include "host/train/surface_sampling.hpp"
 #include "tests/support/cli_run.hpp"
@@ -26,7 +27,7 @@ namespace {
 // A BOP dataset of `scenes` images of the bracket at different poses over a floor (point splat
 // z-buffer, 320 x 240). zero_depth makes every image empty.
 void make_dataset(const fs::path& dir, int scenes, bool zero_depth = false) {
-  const Mesh mesh = load_model("builtin:bracket", {});
+  const Mesh mesh = cli::load_part({"builtin:bracket", {}}).mesh;
   const PointCloud samples = sample_surface(mesh, 300000);
   const std::uint32_t w = 320, h = 240;
   const double f = 600, cx = (w - 1) / 2.0, cy = (h - 1) / 2.0, scale = 0.1;
@@ -175,7 +176,7 @@ TEST_F(DetectCli, ParamsFileAppliesAndCommandLineWins) {
 
 TEST_F(DetectCli, CloudPath) {
   // The cloud of scene 0 as a PLY without normals: x y z per vertex.
-  const Mesh mesh = load_model("builtin:bracket", {});
+  const Mesh mesh = cli::load_part({"builtin:bracket", {}}).mesh;
   const PointCloud samples = sample_surface(mesh, 20000);
   const auto gt = bop::read_scene_gt(*dir_ / "data" / "test" / "000000" / "scene_gt.json");
   const Eigen::Isometry3d T = gt.at(0)[0].model_to_camera.isometry();

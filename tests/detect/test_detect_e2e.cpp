@@ -14,6 +14,7 @@
 #include "host/formats/bop/bop_files.hpp"
 #include "host/formats/bop/results_csv.hpp"
 #include "host/detect/detector.hpp"
+#include "host/app/model_options.hpp"
 #include "host/formats/mesh/load_model.hpp"
 #include "host/train/ppf_model.hpp"
 #include "host/train/surface_sampling.hpp"
@@ -81,7 +82,7 @@ class DetectKnownPose : public ::testing::TestWithParam<std::string> {};
 }  // namespace
 
 TEST_P(DetectKnownPose, FoundWithinFivePercentAndFiveDegrees) {
-  const Model part = load_model_with_symmetries("builtin:" + GetParam(), {});
+  const Model part = cli::load_part({"builtin:" + GetParam(), {}});
   const PpfModel model = train_ppf_model(part.mesh, {});
   Detector detector(model, {});
   for (int trial = 0; trial < 2; ++trial) {
@@ -121,7 +122,7 @@ TEST(DetectSynthBins, TopVotedHypothesisIsRightInMostBins) {
     ASSERT_EQ(r.status, 0) << r.err;
     r = test::run_binpick(fmt::format("detect --model {} --dataset {} --out {}", ppfm, data, csv));
     ASSERT_EQ(r.status, 0) << r.err;
-    const Model part = load_model_with_symmetries("builtin:" + name, {});
+    const Model part = cli::load_part({"builtin:" + name, {}});
     const auto rows = bop::read_results_csv(csv);
     for (int scene = 0; scene < 2; ++scene) {
       ++bins;

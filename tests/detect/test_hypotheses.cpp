@@ -12,8 +12,10 @@
 #include "host/detect/scene_cloud.hpp"
 #include "host/detect/scene_lowpass.hpp"
 #include "host/detect/scene_prepare.hpp"
+#include "tests/support/test_device.hpp"
 
 using namespace binpick;
+using binpick::test::test_device;
 
 namespace {
 
@@ -81,7 +83,7 @@ TEST(Hypotheses, MatchReferenceExactlyOnRandomScenes) {
     const PointImage pts = depth_to_points_reference(render(cam, spheres, {}, rng, 1.0f, 0.05f), cam);
     const std::vector<float> filtered = lowpass_depth_reference(pts, t % 3);
     const HypothesisOptions opt{std::uint32_t(1 + 3 * t), 40.0f + 20.0f * t};
-    const auto got = find_hypotheses(pts, filtered, opt);
+    const auto got = find_hypotheses(test_device(), pts, filtered, opt);
     const auto want = find_hypotheses_reference(pts, filtered, opt);
     expect_same(got, want);
     EXPECT_EQ(got.size(), opt.count);
@@ -100,7 +102,7 @@ TEST(Hypotheses, TiesGoToTheSmallestPixelIndex) {
   std::mt19937 rng(2);
   DepthImage flat = render(cam, {}, {}, rng);
   flat.raw[0] = flat.raw[1] = 0;  // the first valid pixel is 2
-  const PreparedScene s = prepare_scene(flat, cam);
+  const PreparedScene s = prepare_scene(test_device(), flat, cam);
   const auto h = find_hypotheses(s, {3, 5.0f});
   ASSERT_EQ(h.size(), 3u);
   EXPECT_EQ(h[0].pixel, 2u);
@@ -112,9 +114,9 @@ TEST(Hypotheses, DegenerateImages) {
   for (auto [w, h] : {std::pair{1u, 1u}, {30u, 20u}}) {
     const bp_camera cam = camera(w, h, 100.0f);
     DepthImage depth{w, h, std::vector<std::uint16_t>(w * h, 0)};
-    EXPECT_TRUE(find_hypotheses(prepare_scene(depth, cam)).empty());  // all zero: none
+    EXPECT_TRUE(find_hypotheses(prepare_scene(test_device(), depth, cam)).empty());  // all zero: none
     depth.raw[w * h - 1] = 4321;  // single valid pixel: one, then none left
-    const PreparedScene one = prepare_scene(depth, cam);
+    const PreparedScene one = prepare_scene(test_device(), depth, cam);
     const auto got = find_hypotheses(one, {5, 60.0f});
     ASSERT_EQ(got.size(), 1u);
     EXPECT_EQ(got[0].pixel, w * h - 1);
@@ -123,13 +125,13 @@ TEST(Hypotheses, DegenerateImages) {
     EXPECT_TRUE(find_hypotheses(one, {0, 60.0f}).empty());  // count 0
     // A zero radius still excludes the chosen pixel: the rounds never repeat a pixel.
     depth.raw[0] = 4000;
-    const auto two = find_hypotheses(prepare_scene(depth, cam), {5, 0.0f});
+    const auto two = find_hypotheses(prepare_scene(test_device(), depth, cam), {5, 0.0f});
     EXPECT_EQ(two.size(), w * h == 1 ? 1u : 2u);
   }
   const PointImage p{2, 1, std::vector<float>(8, 0.0f)};
-  EXPECT_THROW(find_hypotheses(p, std::vector<float>(3)), InputError);
-  EXPECT_THROW(find_hypotheses(p, std::vector<float>(2), {5, -1.0f}), InputError);
-  EXPECT_THROW(find_hypotheses(p, std::vector<float>(2), {5, NAN}), InputError);
+  EXPECT_THROW(find_hypotheses(test_device(), p, std::vector<float>(3)), InputError);
+  EXPECT_THROW(find_hypotheses(test_device(), p, std::vector<float>(2), {5, -1.0f}), InputError);
+  EXPECT_THROW(find_hypotheses(test_device(), p, std::vector<float>(2), {5, NAN}), InputError);
 }
 
 TEST(Hypotheses, TopsOfTheHighestObjectsInOrder) {
@@ -143,7 +145,7 @@ TEST(Hypotheses, TopsOfTheHighestObjectsInOrder) {
   const DepthImage depth = render(cam, spheres, {box}, rng, 0.3f, 0.02f);
   ScenePrepOptions prep;
   prep.lowpass_radius = 3;
-  const PreparedScene s = prepare_scene(depth, cam, prep);
+  const PreparedScene s = prepare_scene(test_device(), depth, cam, prep);
   const HypothesisOptions opt{6, 60.0f};
   const auto h = find_hypotheses(s, opt);
   ASSERT_EQ(h.size(), 6u);

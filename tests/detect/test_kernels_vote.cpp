@@ -17,6 +17,7 @@
 #include "host/core/cloud_input.hpp"
 #include "host/train/ppf_table.hpp"
 #include "tests/support/kernel_refs.hpp"
+#include "tests/support/test_device.hpp"
 
 using namespace binpick;
 using namespace binpick::test;
@@ -38,12 +39,6 @@ PointCloud random_cloud(std::mt19937& rng, std::size_t n, float radius) {
     c.normals.push_back(Eigen::Vector3f(N(rng), N(rng), N(rng)));
   }
   return with_unit_normals(c);
-}
-
-// Launched as the routine does: one work item per work group (host/detect/ppf_vote.cpp).
-template <class... Args>
-void launch_tasks(ocl::Device& dev, cl::Kernel& k, std::size_t global, const Args&... args) {
-  ocl::launch_local(dev, k, global, 1, args...);
 }
 
 struct DeviceScene {
@@ -121,7 +116,7 @@ TEST(VoteKernels, ppf_scene_features_matches_reference) {
       ocl::Buffer<u32> ref_buf = upload(dev, refs);
       ocl::Buffer<u32> keys = guarded_buffer(dev, std::vector<u32>(refs.size() * n, kCanary), kGuard, kCanary);
       ocl::Buffer<float> alphas = guarded_buffer(dev, std::vector<float>(refs.size() * n, -9.0f), kGuard, -9.0f);
-      launch_tasks(dev, k, refs.size(), s.points, s.normals, n, ref_buf, u32(refs.size()), q, keys, alphas);
+      ocl::launch_tasks(dev, k, refs.size(), s.points, s.normals, n, ref_buf, u32(refs.size()), q, keys, alphas);
       const std::vector<u32> got_keys = keys.read(dev);
       const std::vector<float> got_alphas = alphas.read(dev);
       for (std::size_t i = refs.size() * n; i < got_keys.size(); ++i) {
@@ -156,7 +151,7 @@ TEST(VoteKernels, ppf_peaks_matches_reference) {
         const std::size_t slots = std::size_t(first_ref + count) * kk;
         std::vector<cl_uint2> init(slots + kGuard, cl_uint2{{kCanary, kCanary}});
         ocl::Buffer<cl_uint2> peaks = upload(dev, init);
-        launch_tasks(dev, k, count, acc_buf, first_ref, count, cells, kk, ratio, peaks);
+        ocl::launch_tasks(dev, k, count, acc_buf, first_ref, count, cells, kk, ratio, peaks);
         const std::vector<cl_uint2> got = peaks.read(dev);
         for (std::size_t j = 0; j < got.size(); ++j) {
           const std::size_t row = j / kk;
@@ -189,7 +184,7 @@ TEST(VoteKernels, SequenceFeaturesVotePeaksStepByStep) {
   model.diameter = 50.0f;
   model.quant = make_ppf_quant(model.diameter, 20, 30);
   model.cloud = random_cloud(rng, 150, 25.0f);
-  model.table = build_ppf_table(model.cloud, model.quant);
+  model.table = build_ppf_table(test_device(), model.cloud, model.quant);
   PointCloud scene = random_cloud(rng, 120, 30.0f);
   for (std::size_t i = 0; i < model.cloud.points.size(); i += 3) {  // part of the model itself
     scene.points.push_back(model.cloud.points[i] + Eigen::Vector3f(1, 2, 3));
@@ -202,7 +197,7 @@ TEST(VoteKernels, SequenceFeaturesVotePeaksStepByStep) {
   ocl::Buffer<u32> ref_buf = upload(dev, refs);
   ocl::Buffer<u32> keys(dev, refs.size() * n);
   ocl::Buffer<float> alphas(dev, refs.size() * n);
-  launch_tasks(dev, features, refs.size(), s.points, s.normals, u32(n), ref_buf, u32(refs.size()),
+  ocl::launch_tasks(dev, features, refs.size(), s.points, s.normals, u32(n), ref_buf, u32(refs.size()),
                model.quant, keys, alphas);
   ScenePairs pairs{n, refs, keys.read(dev), alphas.read(dev)};
   expect_scene_features(scene, refs, model.quant, pairs.keys, pairs.alphas,
@@ -217,7 +212,7 @@ TEST(VoteKernels, SequenceFeaturesVotePeaksStepByStep) {
   std::uint64_t votes = 0;
   for (std::size_t first = 0; first < refs.size(); first += batch) {
     const u32 count = u32(std::min(batch, refs.size() - first));
-    launch_tasks(dev, vote, count, keys, alphas, u32(n), u32(first), count, dm.offsets, dm.entries,
+    ocl::launch_tasks(dev, vote, count, keys, alphas, u32(n), u32(first), count, dm.offsets, dm.entries,
                  n_model, model.quant, ppf_vote_inv_step(model.quant), acc);
     const std::vector<u32> got_acc = acc.read(dev, std::size_t(count) * cells);
     for (u32 r = 0; r < count; ++r) {
@@ -225,7 +220,7 @@ TEST(VoteKernels, SequenceFeaturesVotePeaksStepByStep) {
       ASSERT_TRUE(std::equal(want.begin(), want.end(), got_acc.begin() + std::size_t(r) * cells)) << first + r;
       for (u32 x : want) votes += x;
     }
-    launch_tasks(dev, find_peaks, count, acc, u32(first), count, cells, opt.peaks_per_ref,
+    ocl::launch_tasks(dev, find_peaks, count, acc, u32(first), count, cells, opt.peaks_per_ref,
                  opt.peak_ratio, peak_buf);
     const std::vector<cl_uint2> got = peak_buf.read(dev);
     for (u32 r = 0; r < count; ++r) {

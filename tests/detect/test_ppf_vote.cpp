@@ -15,8 +15,10 @@
 #include "host/detect/ppf_vote.hpp"
 #include "host/train/ppf_features.hpp"
 #include "host/train/ppf_table.hpp"
+#include "tests/support/test_device.hpp"
 
 using namespace binpick;
+using binpick::test::test_device;
 
 namespace {
 
@@ -39,7 +41,7 @@ PpfModel random_model(std::size_t n, std::mt19937& rng) {
   m.voxel_size = 2.5f;
   m.quant = make_ppf_quant(m.diameter, 20, 30);
   m.cloud = random_cloud(n, rng);
-  m.table = build_ppf_table(m.cloud, m.quant);
+  m.table = build_ppf_table(test_device(), m.cloud, m.quant);
   return m;
 }
 

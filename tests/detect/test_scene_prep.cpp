@@ -17,8 +17,10 @@
 #include "host/detect/scene_prepare.hpp"
 #include "kernels/scene_shared.h"
 #include "tests/support/kernel_refs.hpp"
+#include "tests/support/test_device.hpp"
 
 using namespace binpick;
+using binpick::test::test_device;
 
 namespace {
 
@@ -107,7 +109,7 @@ TEST(Normals, MatchReferenceOnRandomImages) {
     const DepthImage depth = random_depth(rng, cam, noise);
     const PointImage pts = depth_to_points_reference(depth, cam);
     const NormalOptions opt{radius, 20.0f};
-    const PointImage got = normals_from_points(pts, opt);
+    const PointImage got = normals_from_points(test_device(), pts, opt);
     const PointImage want = normals_from_points_reference(pts, opt);
     ASSERT_EQ(got.xyzw.size(), want.xyzw.size());
     for (std::uint32_t i = 0; i < w * h; ++i) {
@@ -144,7 +146,7 @@ TEST(Normals, TiltedPlaneWithinOneDegreeOfTruth) {
       const float t = truth.z() * 1000.0f / truth.dot(d);
       depth.raw[v * cam.width + u] = std::uint16_t(std::lround(t / cam.depth_scale));
     }
-  const PointImage normals = normals_from_points(depth_to_points(depth, cam), {2, 50.0f});
+  const PointImage normals = normals_from_points(test_device(), depth_to_points(test_device(), depth, cam), {2, 50.0f});
   float worst = 0;
   for (std::size_t i = 0; i < normals.xyzw.size() / 4; ++i) {
     ASSERT_EQ(normals.xyzw[4 * i + 3], 1.0f) << i;
@@ -159,7 +161,7 @@ TEST(Normals, DoNotBleedAcrossADepthStep) {
   const bp_camera cam = camera(40, 20, 100.0f);
   DepthImage depth{40, 20, std::vector<std::uint16_t>(800)};
   for (std::uint32_t i = 0; i < 800; ++i) depth.raw[i] = (i % 40) < 20 ? 5000 : 5300;
-  const PointImage n = normals_from_points(depth_to_points(depth, cam), {2, 10.0f});
+  const PointImage n = normals_from_points(test_device(), depth_to_points(test_device(), depth, cam), {2, 10.0f});
   for (std::size_t i = 0; i < 800; ++i) {
     ASSERT_EQ(n.xyzw[4 * i + 3], 1.0f) << i;
     EXPECT_NEAR(n.xyzw[4 * i + 2], -1.0f, 1e-5f) << i;
@@ -169,16 +171,16 @@ TEST(Normals, DoNotBleedAcrossADepthStep) {
 TEST(Normals, DegenerateInputsGiveNoNormal) {
   const bp_camera cam = camera(5, 5, 100.0f);
   DepthImage depth{5, 5, std::vector<std::uint16_t>(25, 0)};
-  for (float x : normals_from_points(depth_to_points(depth, cam)).xyzw) EXPECT_EQ(x, 0.0f);
+  for (float x : normals_from_points(test_device(), depth_to_points(test_device(), depth, cam)).xyzw) EXPECT_EQ(x, 0.0f);
   depth.raw[12] = 5000;  // single valid pixel
-  for (float x : normals_from_points(depth_to_points(depth, cam)).xyzw) EXPECT_EQ(x, 0.0f);
+  for (float x : normals_from_points(test_device(), depth_to_points(test_device(), depth, cam)).xyzw) EXPECT_EQ(x, 0.0f);
   for (int u = 0; u < 5; ++u) depth.raw[10 + u] = 5000;  // one row: collinear points
-  for (float x : normals_from_points(depth_to_points(depth, cam)).xyzw) EXPECT_EQ(x, 0.0f);
-  EXPECT_THROW(normals_from_points(PointImage{2, 2, std::vector<float>(3)}), InputError);
-  const PointImage p = depth_to_points(depth, cam);
-  EXPECT_THROW(normals_from_points(p, {-1, 10.0f}), InputError);
-  EXPECT_THROW(normals_from_points(p, {2, 0.0f}), InputError);
-  EXPECT_THROW(normals_from_points(p, {2, NAN}), InputError);
+  for (float x : normals_from_points(test_device(), depth_to_points(test_device(), depth, cam)).xyzw) EXPECT_EQ(x, 0.0f);
+  EXPECT_THROW(normals_from_points(test_device(), PointImage{2, 2, std::vector<float>(3)}), InputError);
+  const PointImage p = depth_to_points(test_device(), depth, cam);
+  EXPECT_THROW(normals_from_points(test_device(), p, {-1, 10.0f}), InputError);
+  EXPECT_THROW(normals_from_points(test_device(), p, {2, 0.0f}), InputError);
+  EXPECT_THROW(normals_from_points(test_device(), p, {2, NAN}), InputError);
 }
 
 TEST(Lowpass, MatchesReferenceOnRandomImages) {
@@ -187,7 +189,7 @@ TEST(Lowpass, MatchesReferenceOnRandomImages) {
                               {160u, 120u, 5}, {200u, 50u, 11}}) {
     const bp_camera cam = camera(w, h, 150.0f);
     const PointImage pts = depth_to_points_reference(random_depth(rng, cam, 1.0f), cam);
-    const std::vector<float> got = lowpass_depth(pts, radius), want = lowpass_depth_reference(pts, radius);
+    const std::vector<float> got = lowpass_depth(test_device(), pts, radius), want = lowpass_depth_reference(pts, radius);
     ASSERT_EQ(got.size(), want.size());
     for (std::size_t i = 0; i < got.size(); ++i) {
       ASSERT_NEAR(got[i], want[i], 1e-5f * want[i]) << i;
@@ -197,8 +199,8 @@ TEST(Lowpass, MatchesReferenceOnRandomImages) {
       }
     }
   }
-  EXPECT_THROW(lowpass_depth(PointImage{1, 1, {0, 0, 1, 1}}, -1), InputError);
-  EXPECT_THROW(lowpass_depth(PointImage{1, 1, {0, 0, 1, 1}}, 65), InputError);
+  EXPECT_THROW(lowpass_depth(test_device(), PointImage{1, 1, {0, 0, 1, 1}}, -1), InputError);
+  EXPECT_THROW(lowpass_depth(test_device(), PointImage{1, 1, {0, 0, 1, 1}}, 65), InputError);
 }
 
 // The kernels add the same values in the same order as the reference (only additions and one
@@ -209,7 +211,7 @@ TEST(Lowpass, EqualsTheReferenceExactly) {
   for (int radius : {2, 3, 4, 5, 6, 7, 8}) {
     const bp_camera cam = camera(97 + 10 * radius, 61, 150.0f);
     const PointImage pts = depth_to_points_reference(random_depth(rng, cam, 1.0f), cam);
-    EXPECT_EQ(lowpass_depth(pts, radius), lowpass_depth_reference(pts, radius)) << radius;
+    EXPECT_EQ(lowpass_depth(test_device(), pts, radius), lowpass_depth_reference(pts, radius)) << radius;
   }
 }
 
@@ -218,32 +220,32 @@ TEST(Crop, MatchesReferenceExactlyInPixelOrder) {
   std::uniform_real_distribution<float> U(-1.0f, 1.0f);
   const bp_camera cam = camera(160, 120, 150.0f);
   const PointImage pts = depth_to_points_reference(random_depth(rng, cam, 0.5f), cam);
-  const PointImage nrm = normals_from_points(pts);
+  const PointImage nrm = normals_from_points(test_device(), pts);
   for (int t = 0; t < 12; ++t) {
     const std::size_t i = std::size_t((U(rng) + 1) / 2 * (pts.xyzw.size() / 4 - 1));
     const CropOptions opt{Eigen::Vector3f(pts.xyzw[4 * i] + 50 * U(rng), pts.xyzw[4 * i + 1],
                                           pts.xyzw[4 * i + 2] + 50 * U(rng)),
                           t == 0 ? 0.0f : 200.0f * (U(rng) + 1), t % 2 == 0};
-    const PointCloud got = crop_sphere(pts, nrm, opt), want = crop_sphere_reference(pts, nrm, opt);
+    const PointCloud got = crop_sphere(test_device(), pts, nrm, opt), want = crop_sphere_reference(pts, nrm, opt);
     ASSERT_EQ(got.points.size(), want.points.size()) << t;
     for (std::size_t k = 0; k < got.points.size(); ++k) {
       ASSERT_EQ(got.points[k], want.points[k]) << t << " " << k;
       ASSERT_EQ(got.normals[k], want.normals[k]) << t << " " << k;
     }
   }
-  const PointCloud all = crop_sphere(pts, nrm, {Eigen::Vector3f::Zero(), 1e6f, false});
+  const PointCloud all = crop_sphere(test_device(), pts, nrm, {Eigen::Vector3f::Zero(), 1e6f, false});
   std::size_t valid = 0;
   for (std::size_t i = 0; i < pts.xyzw.size() / 4; ++i) valid += pts.xyzw[4 * i + 3] != 0;
   EXPECT_EQ(all.points.size(), valid);
-  EXPECT_THROW(crop_sphere(pts, nrm, {Eigen::Vector3f(NAN, 0, 0), 1.0f, true}), InputError);
-  EXPECT_THROW(crop_sphere(pts, nrm, {Eigen::Vector3f::Zero(), -1.0f, true}), InputError);
+  EXPECT_THROW(crop_sphere(test_device(), pts, nrm, {Eigen::Vector3f(NAN, 0, 0), 1.0f, true}), InputError);
+  EXPECT_THROW(crop_sphere(test_device(), pts, nrm, {Eigen::Vector3f::Zero(), -1.0f, true}), InputError);
 }
 
 TEST(PrepareScene, MatchesReferencesAndReportsStages) {
   std::mt19937 rng(4);
   const bp_camera cam = camera(200, 150, 180.0f);
   const DepthImage depth = random_depth(rng, cam, 0.3f);
-  const PreparedScene got = prepare_scene(depth, cam);
+  const PreparedScene got = prepare_scene(test_device(), depth, cam);
   const PreparedScene want = prepare_scene_reference(depth, cam);
   ASSERT_TRUE(got.device);
   ASSERT_EQ(got.points.xyzw.size(), want.points.xyzw.size());
@@ -268,7 +270,7 @@ TEST(PrepareScene, MatchesReferencesAndReportsStages) {
 
   ScenePrepOptions device_only;
   device_only.read_back = false;
-  const PreparedScene d = prepare_scene(depth, cam, device_only);
+  const PreparedScene d = prepare_scene(test_device(), depth, cam, device_only);
   EXPECT_TRUE(d.points.xyzw.empty() && d.filtered_depth.empty());
   EXPECT_EQ(d.device->filtered.read(ocl::Device::shared()), got.filtered_depth);
 }
@@ -277,19 +279,19 @@ TEST(PrepareScene, DegenerateImagesAndBadInput) {
   for (auto [w, h] : {std::pair{1u, 1u}, {16u, 9u}}) {
     const bp_camera cam = camera(w, h, 100.0f);
     DepthImage zero{w, h, std::vector<std::uint16_t>(w * h, 0)};
-    const PreparedScene s = prepare_scene(zero, cam);
+    const PreparedScene s = prepare_scene(test_device(), zero, cam);
     for (float x : s.normals.xyzw) EXPECT_EQ(x, 0.0f);
     for (float x : s.filtered_depth) EXPECT_EQ(x, 0.0f);
     zero.raw[0] = 1234;  // single valid pixel: filtered = its depth, no normal
-    const PreparedScene one = prepare_scene(zero, cam);
+    const PreparedScene one = prepare_scene(test_device(), zero, cam);
     EXPECT_FLOAT_EQ(one.filtered_depth[0], 123.4f);
     EXPECT_EQ(one.normals.xyzw[3], 0.0f);
   }
   const bp_camera cam = camera(4, 4, 100.0f);
-  EXPECT_THROW(prepare_scene(DepthImage{3, 4, std::vector<std::uint16_t>(12)}, cam), InputError);
+  EXPECT_THROW(prepare_scene(test_device(), DepthImage{3, 4, std::vector<std::uint16_t>(12)}, cam), InputError);
   ScenePrepOptions bad;
   bad.lowpass_radius = -2;
-  EXPECT_THROW(prepare_scene(DepthImage{4, 4, std::vector<std::uint16_t>(16)}, cam, bad), InputError);
+  EXPECT_THROW(prepare_scene(test_device(), DepthImage{4, 4, std::vector<std::uint16_t>(16)}, cam, bad), InputError);
 }
 
 // The list kernel is the full-image kernel at the listed pixels: bit for bit (same function,
@@ -302,12 +304,12 @@ TEST(Normals, AtPixelsEqualTheFullImageKernel) {
     const bp_camera cam = camera(w, h, 150.0f);
     const PointImage pts = depth_to_points_reference(random_depth(rng, cam, noise), cam);
     const NormalOptions opt{radius, 20.0f};
-    const PointImage full = normals_from_points(pts, opt);
+    const PointImage full = normals_from_points(test_device(), pts, opt);
     const PointImage ref = normals_from_points_reference(pts, opt);
     std::vector<std::uint32_t> pixels;
     std::uniform_int_distribution<std::uint32_t> P(0, w * h - 1);
     for (int k = 0; k < 2000; ++k) pixels.push_back(P(rng));  // any order, repeats allowed
-    const std::vector<float> got = normals_at_pixels(pts, pixels, opt);
+    const std::vector<float> got = normals_at_pixels(test_device(), pts, pixels, opt);
     const std::vector<float> want = normals_at_pixels_reference(pts, pixels, opt);
     ASSERT_EQ(got.size(), 4 * pixels.size());
     ASSERT_EQ(want.size(), 4 * pixels.size());
@@ -323,8 +325,8 @@ TEST(Normals, AtPixelsEqualTheFullImageKernel) {
     EXPECT_GE(close, int(pixels.size()) - int(pixels.size()) / 100 - 2);
   }
   const PointImage pts{2, 2, std::vector<float>(16, 0.0f)};
-  EXPECT_TRUE(normals_at_pixels(pts, {}).empty());
-  EXPECT_THROW(normals_at_pixels(pts, {4}), InputError);
+  EXPECT_TRUE(normals_at_pixels(test_device(), pts, {}).empty());
+  EXPECT_THROW(normals_at_pixels(test_device(), pts, {4}), InputError);
   EXPECT_THROW(normals_at_pixels_reference(pts, {4}), InputError);
 }
 
@@ -375,8 +377,8 @@ TEST(SampleNeighbourhood, EqualsCropThenSubsampleWithNormalsEverywhere) {
     ScenePrepOptions with, without;
     with.normals.max_distance = without.normals.max_distance = img == 3 ? 3.0f : 10.0f;
     without.normals_everywhere = false;
-    const PreparedScene full = prepare_scene(depth, cam, with);
-    const PreparedScene lazy = prepare_scene(depth, cam, without);
+    const PreparedScene full = prepare_scene(test_device(), depth, cam, with);
+    const PreparedScene lazy = prepare_scene(test_device(), depth, cam, without);
     EXPECT_FALSE(lazy.has_normals);
     EXPECT_TRUE(lazy.normals.xyzw.empty());
     EXPECT_THROW(crop_sphere(lazy, CropOptions{}), InputError);
@@ -389,7 +391,7 @@ TEST(SampleNeighbourhood, EqualsCropThenSubsampleWithNormalsEverywhere) {
       const float voxel = t % 2 ? 2.6f : 6.0f;
       StageTimings timings;
       const NeighbourhoodSample got = sample_neighbourhood(lazy, opt, without.normals, voxel, &timings);
-      const VoxelSubsample want = voxel_subsample(crop_sphere(full, opt), voxel);
+      const VoxelSubsample want = voxel_subsample(test_device(), crop_sphere(full, opt), voxel);
       ASSERT_EQ(got.cloud.points, want.cloud.points) << img << " " << t;
       ASSERT_EQ(got.cloud.normals, want.cloud.normals) << img << " " << t;
       EXPECT_EQ(got.cropped, crop_pixels_reference(full.points, opt).pixels.size());

@@ -11,6 +11,7 @@
 #include "host/formats/bop/png_image.hpp"
 #include "host/formats/bop/results_csv.hpp"
 #include "host/formats/bop/bop_models.hpp"
+#include "host/app/model_options.hpp"
 #include "host/formats/mesh/load_model.hpp"
 #include "tests/support/cli_run.hpp"
 
@@ -27,7 +28,7 @@ const bop::Pose kPart{Eigen::AngleAxisd(0.5, Eigen::Vector3d(1, 1, 0).normalized
 void write_tiny_dataset(const fs::path& root) {
   fs::create_directories(root / "test/000000/depth");
   bop::write_camera(root / "camera.json", {80, 80, 32, 24, 64, 48, 1.0});
-  write_bop_models(root, load_model("builtin:bracket", {}), 1, {});
+  write_bop_models(root, cli::load_part({"builtin:bracket", {}}).mesh, 1, {});
   bop::write_scene_gt(root / "test/000000/scene_gt.json", {{0, {{1, kPart}}}});
   bop::SceneCamera cam;
   cam.K << 80, 0, 32, 0, 80, 24, 0, 0, 1;

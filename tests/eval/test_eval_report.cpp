@@ -16,6 +16,7 @@
 #include "host/eval/report/precision_plot.hpp"
 #include "host/eval/report/scene_pictures.hpp"
 #include "host/formats/bop/bop_models.hpp"
+#include "host/app/model_options.hpp"
 #include "host/formats/mesh/load_model.hpp"
 #include "tests/support/cli_run.hpp"
 
@@ -38,7 +39,7 @@ void write_toy_dataset(const fs::path& root, double noise) {
   fs::create_directories(root / "test/000000/depth");
   fs::create_directories(root / "test/000000/gray");
   bop::write_camera(root / "camera.json", {kF, kF, kW / 2.0, kH / 2.0, kW, kH, kScale});
-  write_bop_models(root, load_model("builtin:bracket", {}), 1, {});
+  write_bop_models(root, cli::load_part({"builtin:bracket", {}}).mesh, 1, {});
   const auto parts = toy_parts();
   bop::write_scene_gt(root / "test/000000/scene_gt.json", {{0, parts}});
   bop::SceneCamera cam;

@@ -19,6 +19,7 @@
 #include "host/formats/mesh/point_cloud_ply.hpp"
 #include "host/core/read_file.hpp"
 #include "host/core/diameter.hpp"
+#include "host/app/model_options.hpp"
 #include "host/formats/mesh/load_model.hpp"
 #include "host/core/mesh_geometry.hpp"
 #include "host/core/mesh_topology.hpp"
@@ -51,7 +52,7 @@ class MeshIo : public testing::Test {
 
 std::string error_of(const std::string& spec, const ModelOptions& options = {}) {
   try {
-    load_model(spec, options);
+    cli::load_part({spec, options});
   } catch (const InputError& e) {
     return e.what();
   }
@@ -162,7 +163,7 @@ TEST_F(MeshIo, AtomicWriteLeavesNothingOnFailure) {
 }
 
 TEST_F(MeshIo, BopModels) {
-  const Model bolt = load_model_with_symmetries("builtin:bolt", {});
+  const Model bolt = cli::load_part({"builtin:bolt", {}});
   write_bop_models(dir_, make_builtin_part("bracket"), 1);
   write_bop_models(dir_, bolt.mesh, 2, bolt.symmetries);
 

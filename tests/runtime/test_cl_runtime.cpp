@@ -8,8 +8,10 @@
 #include "host/runtime/cl/cl_buffer.hpp"
 #include "host/core/error.hpp"
 #include "host/detect/depth_to_points.hpp"
+#include "tests/support/test_device.hpp"
 
 using namespace binpick;
+using binpick::test::test_device;
 
 TEST(ClRuntime, ChoosesAPoclCpuDevice) {
   auto devices = ocl::list_devices();
@@ -65,7 +67,7 @@ TEST(DepthToPoints, MatchesReferenceOnRandomImages) {
     DepthImage depth{w, h, std::vector<std::uint16_t>(std::size_t(w) * h)};
     std::uniform_int_distribution<int> raw(0, 65535), zero(0, 4);
     for (auto& d : depth.raw) d = zero(rng) == 0 ? 0 : std::uint16_t(raw(rng));
-    const PointImage got = depth_to_points(depth, cam);
+    const PointImage got = depth_to_points(test_device(), depth, cam);
     const PointImage want = depth_to_points_reference(depth, cam);
     ASSERT_EQ(got.xyzw.size(), want.xyzw.size());
     for (std::size_t i = 0; i < got.xyzw.size(); ++i)
@@ -78,17 +80,17 @@ TEST(DepthToPoints, AllZeroImageGivesNoPoints) {
   std::mt19937 rng(3);
   bp_camera cam = random_camera(rng, 8, 8);
   DepthImage depth{8, 8, std::vector<std::uint16_t>(64, 0)};
-  for (float v : depth_to_points(depth, cam).xyzw) EXPECT_EQ(v, 0.0f);
+  for (float v : depth_to_points(test_device(), depth, cam).xyzw) EXPECT_EQ(v, 0.0f);
 }
 
 TEST(DepthToPoints, MismatchedSizeAndBadCameraAreInputErrors) {
   std::mt19937 rng(5);
   bp_camera cam = random_camera(rng, 8, 8);
   DepthImage wrong{4, 4, std::vector<std::uint16_t>(16, 1)};
-  EXPECT_THROW(depth_to_points(wrong, cam), InputError);
+  EXPECT_THROW(depth_to_points(test_device(), wrong, cam), InputError);
   DepthImage ok{8, 8, std::vector<std::uint16_t>(64, 1)};
   cam.fx = 0;
-  EXPECT_THROW(depth_to_points(ok, cam), InputError);
+  EXPECT_THROW(depth_to_points(test_device(), ok, cam), InputError);
   cam.fx = NAN;
-  EXPECT_THROW(depth_to_points(ok, cam), InputError);
+  EXPECT_THROW(depth_to_points(test_device(), ok, cam), InputError);
 }

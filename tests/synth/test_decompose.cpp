@@ -144,7 +144,7 @@ TEST(Decompose, ConcavePartsGiveSeveralHulls) {
 }
 
 TEST(Decompose, SameHullsAtAnyScale) {
-  // HACD's concavity depends on the scale (DESIGN.md 7); the normalisation must hide that.
+  // HACD's concavity depends on the scale (docs/synthesis.md); the normalisation must hide that.
   // A power of two scales every float exactly: HACD must then see the very same input. (At
   // other factors rounding alone can tip HACD's greedy merging by one hull.)
   const float scale = 128.0f;

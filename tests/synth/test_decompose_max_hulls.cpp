@@ -3,6 +3,7 @@
 // limit are untouched by construction: the second run happens only above it.)
 #include <gtest/gtest.h>
 
+#include "host/app/model_options.hpp"
 #include "host/formats/mesh/load_model.hpp"
 #include "synth/decompose/decompose.hpp"
 
@@ -29,7 +30,7 @@ float outside_all_boxes(const Mesh& mesh, const ConvexParts& parts) {
 }  // namespace
 
 TEST(DecomposeMaxHulls, a_part_with_holes_is_capped_and_still_covered) {
-  const Mesh bracket = load_model("builtin:bracket", {});
+  const Mesh bracket = cli::load_part({"builtin:bracket", {}}).mesh;
   DecomposeOptions unlimited;
   unlimited.use_cache = false;
   unlimited.max_hulls = 0;

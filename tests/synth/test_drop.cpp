@@ -1,4 +1,4 @@
-// The Bullet drop: small bins (a full 350-part bin is the benchmark's job, DESIGN.md 7).
+// The Bullet drop: small bins (a full 350-part bin is the benchmark's job, docs/synthesis.md).
 #include <gtest/gtest.h>
 
 #include <cmath>

@@ -6,6 +6,7 @@
 #include <Eigen/Geometry>
 #include <cmath>
 
+#include "host/app/model_options.hpp"
 #include "host/formats/mesh/load_model.hpp"
 #include "synth/decompose/decompose.hpp"
 #include "synth/decompose/hull_cover.hpp"
@@ -74,7 +75,7 @@ TEST(HullMerge, LimitsPerMergeAndInTotal) {
 }
 
 TEST(HullMerge, BuiltinBracketBecomesItsTwoPlatesAndStaysCovered) {
-  const Mesh bracket = load_model("builtin:bracket", {});
+  const Mesh bracket = cli::load_part({"builtin:bracket", {}}).mesh;
   const ConvexParts hacd = decompose_convex(bracket, hacd_only());
   ASSERT_GT(hacd.hulls.size(), 4u) << "HACD no longer splits the bracket: the test lost its case";
   const ConvexParts merged = merge_hulls(hacd, {});

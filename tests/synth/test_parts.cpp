@@ -7,6 +7,7 @@
 
 #include "host/core/error.hpp"
 #include "host/core/diameter.hpp"
+#include "host/app/model_options.hpp"
 #include "host/formats/mesh/load_model.hpp"
 #include "host/core/mesh_geometry.hpp"
 #include "host/core/mesh_topology.hpp"
@@ -98,13 +99,13 @@ TEST(BuiltinParts, UnknownNameListsTheKnownOnes) {
     EXPECT_NE(message.find("sprocket"), std::string::npos);
     for (const auto& name : builtin_part_names()) EXPECT_NE(message.find(name), std::string::npos);
   }
-  EXPECT_THROW(load_model("builtin:sprocket", {}), InputError);
+  EXPECT_THROW(cli::load_part({"builtin:sprocket", {}}).mesh, InputError);
 }
 
 TEST(BuiltinParts, LoadModelRescalesPartAndSymmetries) {
   ModelOptions options;
   options.diameter = 104;
-  const Model model = load_model_with_symmetries("builtin:tee", options);
+  const Model model = cli::load_part({"builtin:tee", options});
   EXPECT_NEAR(exact_diameter(model.mesh.positions), 104, 1e-3);
   EXPECT_EQ(model.symmetries.discrete.size(), 1u);
   EXPECT_TRUE(check_topology(model.mesh).closed_and_oriented());

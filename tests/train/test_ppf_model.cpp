@@ -17,8 +17,10 @@
 #include "host/train/ppf_model_file.hpp"
 #include "host/train/ppf_table.hpp"
 #include "host/train/surface_sampling.hpp"
+#include "tests/support/test_device.hpp"
 
 using namespace binpick;
+using binpick::test::test_device;
 
 namespace {
 
@@ -117,7 +119,7 @@ TEST(PpfFeatures, MatchReferenceExceptAtBinEdges) {
   std::mt19937 rng(5);
   const PointCloud cloud = random_cloud(rng, 400, 50.0f);
   const bp_ppf_quant q = make_ppf_quant(40.0f, 20, 30);  // some pairs are farther: skipped
-  const PairFeatures got = ppf_pair_features(cloud, q);
+  const PairFeatures got = ppf_pair_features(test_device(), cloud, q);
   const PairFeatures want = ppf_pair_features_reference(cloud, q);
   ASSERT_EQ(got.keys.size(), 400u * 400u);
   std::size_t key_mismatches = 0, skipped = 0;
@@ -158,7 +160,7 @@ TEST(PpfFeatures, DegenerateInput) {
   // 0 and 1 coincide; 2 has the normal of 0 (parallel normals) along d = p2 - p0.
   c.points = {{0, 0, 0}, {0, 0, 0}, {0, 0, 5}, {3, 0, 0}};
   c.normals = {{0, 0, 1}, {1, 0, 0}, {0, 0, 1}, {0, 0, -1}};
-  for (const PairFeatures& f : {ppf_pair_features(c, q), ppf_pair_features_reference(c, q)}) {
+  for (const PairFeatures& f : {ppf_pair_features(test_device(), c, q), ppf_pair_features_reference(c, q)}) {
     EXPECT_EQ(f.keys[0 * 4 + 1], BP_PPF_NO_KEY);  // coincident: skipped both ways
     EXPECT_EQ(f.keys[1 * 4 + 0], BP_PPF_NO_KEY);
     for (int i = 0; i < 4; ++i) EXPECT_EQ(f.keys[i * 4 + i], BP_PPF_NO_KEY);
@@ -171,23 +173,23 @@ TEST(PpfFeatures, DegenerateInput) {
   PointCloud one;
   one.points = {{1, 2, 3}};
   one.normals = {{0, 1, 0}};
-  EXPECT_EQ(ppf_pair_features(one, q).keys, std::vector<std::uint32_t>{BP_PPF_NO_KEY});
-  EXPECT_TRUE(ppf_pair_features(PointCloud{}, q).keys.empty());
+  EXPECT_EQ(ppf_pair_features(test_device(), one, q).keys, std::vector<std::uint32_t>{BP_PPF_NO_KEY});
+  EXPECT_TRUE(ppf_pair_features(test_device(), PointCloud{}, q).keys.empty());
 }
 
 TEST(PpfFeatures, BadInputIsAnInputError) {
   const bp_ppf_quant q = make_ppf_quant(10.0f, 20, 30);
   PointCloud c;
   c.points = {{0, 0, 0}, {1, 0, 0}};
-  EXPECT_THROW(ppf_pair_features(c, q), InputError);  // no normals
+  EXPECT_THROW(ppf_pair_features(test_device(), c, q), InputError);  // no normals
   c.normals = {{0, 0, 1}, {0, 0, 0}};
-  EXPECT_THROW(ppf_pair_features(c, q), InputError);  // zero normal
+  EXPECT_THROW(ppf_pair_features(test_device(), c, q), InputError);  // zero normal
   c.normals = {{0, 0, 1}, {0, NAN, 1}};
-  EXPECT_THROW(ppf_pair_features(c, q), InputError);
-  EXPECT_THROW(build_ppf_table(c, q), InputError);
+  EXPECT_THROW(ppf_pair_features(test_device(), c, q), InputError);
+  EXPECT_THROW(build_ppf_table(test_device(), c, q), InputError);
   c.normals = {{0, 0, 1}, {0, 0, 1}};
   c.points[1].x() = NAN;
-  EXPECT_THROW(build_ppf_table(c, q), InputError);
+  EXPECT_THROW(build_ppf_table(test_device(), c, q), InputError);
   EXPECT_THROW(build_ppf_table_reference(c, q), InputError);
 }
 
@@ -202,8 +204,8 @@ TEST(PpfTable, EqualsTheTableOfTheDeviceFeaturesExactly) {
       cloud.normals.emplace_back(0, 0, 1);
     }
   PpfTableTimes times;
-  const PpfTable got = build_ppf_table(cloud, q, &times);
-  const PpfTable want = ppf_table_from_features(ppf_pair_features(cloud, q), q);
+  const PpfTable got = build_ppf_table(test_device(), cloud, q, &times);
+  const PpfTable want = ppf_table_from_features(ppf_pair_features(test_device(), cloud, q), q);
   ASSERT_EQ(got.offsets, want.offsets);
   ASSERT_EQ(got.entries.size(), want.entries.size());
   for (std::size_t e = 0; e < got.entries.size(); ++e) {
@@ -211,7 +213,7 @@ TEST(PpfTable, EqualsTheTableOfTheDeviceFeaturesExactly) {
     ASSERT_EQ(got.entries[e].alpha, want.entries[e].alpha) << e;
   }
   // Deterministic: a second build gives the same bytes.
-  const PpfTable again = build_ppf_table(cloud, q);
+  const PpfTable again = build_ppf_table(test_device(), cloud, q);
   EXPECT_EQ(again.offsets, got.offsets);
   EXPECT_EQ(0, std::memcmp(again.entries.data(), got.entries.data(),
                            got.entries.size() * sizeof(bp_ppf_entry)));
@@ -221,7 +223,7 @@ TEST(PpfTable, HoldsTheReferenceMultisetUpToBinEdges) {
   std::mt19937 rng(7);
   const bp_ppf_quant q = make_ppf_quant(60.0f, 20, 30);  // larger than the cloud: every pair
   const PointCloud cloud = random_cloud(rng, 500, 30.0f);
-  const PpfTable got = build_ppf_table(cloud, q);
+  const PpfTable got = build_ppf_table(test_device(), cloud, q);
   const PpfTable want = build_ppf_table_reference(cloud, q);
   ASSERT_EQ(got.entries.size(), 500u * 499u);  // no pair lost to a collision
   ASSERT_EQ(want.entries.size(), 500u * 499u);
@@ -251,7 +253,7 @@ TEST(PpfTable, EmptyAndSinglePointClouds) {
       c.points.emplace_back(1, 1, 1);
       c.normals.emplace_back(1, 0, 0);
     }
-    const PpfTable t = build_ppf_table(c, q);
+    const PpfTable t = build_ppf_table(test_device(), c, q);
     EXPECT_EQ(t.offsets.size(), bp_ppf_key_count(q) + 1);
     EXPECT_EQ(t.offsets.back(), 0u);
     EXPECT_TRUE(t.entries.empty());

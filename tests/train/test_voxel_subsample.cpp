@@ -11,8 +11,10 @@
 #include "host/core/error.hpp"
 #include "host/train/device_scan.hpp"
 #include "host/train/voxel_subsample.hpp"
+#include "tests/support/test_device.hpp"
 
 using namespace binpick;
+using binpick::test::test_device;
 
 namespace {
 
@@ -59,7 +61,7 @@ TEST(VoxelSubsample, MatchesReferenceOnRandomClouds) {
                                   {5000u, 100.0f, 5.0f}, {20000u, 52.0f, 2.6f},
                                   {20000u, 52.0f, 0.5f}}) {
     const PointCloud cloud = random_cloud(rng, n, extent, n != 50);
-    const VoxelSubsample got = voxel_subsample(cloud, voxel);
+    const VoxelSubsample got = voxel_subsample(test_device(), cloud, voxel);
     expect_same(got, voxel_subsample_reference(cloud, voxel));
     EXPECT_GT(got.kept.size(), 0u);
     EXPECT_LE(got.kept.size(), n);
@@ -71,7 +73,7 @@ TEST(VoxelSubsample, KeepsOnePointPerVoxelNearestItsCentre) {
   // is nearest (0.5, 0.5, 0.5). Point 3 is alone in voxel (2, 0, 0).
   PointCloud cloud;
   cloud.points = {{0, 0, 0}, {0.9f, 0.9f, 0.9f}, {0.45f, 0.5f, 0.6f}, {2.2f, 0.1f, 0.1f}};
-  const VoxelSubsample got = voxel_subsample(cloud, 1.0f);
+  const VoxelSubsample got = voxel_subsample(test_device(), cloud, 1.0f);
   EXPECT_EQ(got.kept, (std::vector<std::uint32_t>{2, 3}));
   EXPECT_TRUE(got.cloud.normals.empty());
 }
@@ -84,7 +86,7 @@ TEST(VoxelSubsample, CoincidentPointsKeepTheLowestIndex) {
   }
   cloud.points.emplace_back(10, 2, 3);
   cloud.normals.emplace_back(1, 0, 0);
-  const VoxelSubsample got = voxel_subsample(cloud, 0.5f);
+  const VoxelSubsample got = voxel_subsample(test_device(), cloud, 0.5f);
   EXPECT_EQ(got.kept, (std::vector<std::uint32_t>{0, 100}));
   EXPECT_EQ(got.cloud.normals[1], Eigen::Vector3f(1, 0, 0));
 }
@@ -92,16 +94,16 @@ TEST(VoxelSubsample, CoincidentPointsKeepTheLowestIndex) {
 TEST(VoxelSubsample, IsDeterministic) {
   std::mt19937 rng(2);
   const PointCloud cloud = random_cloud(rng, 30000, 50.0f);
-  const auto a = voxel_subsample(cloud, 1.0f), b = voxel_subsample(cloud, 1.0f);
+  const auto a = voxel_subsample(test_device(), cloud, 1.0f), b = voxel_subsample(test_device(), cloud, 1.0f);
   EXPECT_EQ(a.kept, b.kept);
 }
 
 TEST(VoxelSubsample, EmptyAndSinglePointClouds) {
-  EXPECT_TRUE(voxel_subsample(PointCloud{}, 1.0f).kept.empty());
+  EXPECT_TRUE(voxel_subsample(test_device(), PointCloud{}, 1.0f).kept.empty());
   PointCloud one;
   one.points = {{5, 5, 5}};
   one.normals = {{0, 1, 0}};
-  const auto got = voxel_subsample(one, 1.0f);
+  const auto got = voxel_subsample(test_device(), one, 1.0f);
   EXPECT_EQ(got.kept, std::vector<std::uint32_t>{0});
   EXPECT_EQ(got.cloud.normals.size(), 1u);
 }
@@ -109,15 +111,15 @@ TEST(VoxelSubsample, EmptyAndSinglePointClouds) {
 TEST(VoxelSubsample, BadInputIsAnInputError) {
   PointCloud cloud;
   cloud.points = {{0, 0, 0}, {1, NAN, 0}};
-  EXPECT_THROW(voxel_subsample(cloud, 1.0f), InputError);
+  EXPECT_THROW(voxel_subsample(test_device(), cloud, 1.0f), InputError);
   EXPECT_THROW(voxel_subsample_reference(cloud, 1.0f), InputError);
   cloud.points[1] = {1, 1, 0};
-  for (float v : {0.0f, -1.0f, NAN, INFINITY}) EXPECT_THROW(voxel_subsample(cloud, v), InputError);
+  for (float v : {0.0f, -1.0f, NAN, INFINITY}) EXPECT_THROW(voxel_subsample(test_device(), cloud, v), InputError);
   cloud.normals = {{0, 0, 1}};  // one normal for two points
-  EXPECT_THROW(voxel_subsample(cloud, 1.0f), InputError);
+  EXPECT_THROW(voxel_subsample(test_device(), cloud, 1.0f), InputError);
   cloud.normals = {{0, 0, 1}, {0, 0, NAN}};
-  EXPECT_THROW(voxel_subsample(cloud, 1.0f), InputError);
+  EXPECT_THROW(voxel_subsample(test_device(), cloud, 1.0f), InputError);
   PointCloud far;
   far.points = {{0, 0, 0}, {1e6f, 1e6f, 1e6f}};  // 10^18 voxels
-  EXPECT_THROW(voxel_subsample(far, 1.0f), InputError);
+  EXPECT_THROW(voxel_subsample(test_device(), far, 1.0f), InputError);
 }

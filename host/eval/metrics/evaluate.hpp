@@ -1,7 +1,6 @@
-// Evaluation of detection results against a dataset's ground truth (paper section III-D,
-// issue 6): each hypothesis is matched to the ground-truth part nearest in translation, its
-// errors are measured, and precision is counted for all hypotheses and for the top-voted one
-// of each image. The numbers `binpick tune` optimises come from here.
+// Evaluation of detection results against a dataset's ground truth (paper section III-D): each
+// hypothesis is matched to the ground-truth part nearest in translation, its errors are
+// measured, and precision is counted for all hypotheses and for the top-voted one of each image. The numbers `binpick tune` optimises come from here.
 #pragma once
 
 #include <cstddef>

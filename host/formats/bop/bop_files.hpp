@@ -1,4 +1,4 @@
-// The JSON files of a BOP dataset (bop.felk.cvut.cz; DESIGN.md section 4): camera.json,
+// The JSON files of a BOP dataset (bop.felk.cvut.cz; docs/formats.md): camera.json,
 // scene_camera.json, scene_gt.json, scene_gt_info.json. Millimetres; rotations row-major.
 // Readers validate what they read and name the file and the entry in their InputErrors.
 #pragma once

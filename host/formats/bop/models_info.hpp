@@ -1,4 +1,4 @@
-// Reader of BOP's models/models_info.json (DESIGN.md section 4): per object id its diameter and
+// Reader of BOP's models/models_info.json (docs/formats.md): per object id its diameter and
 // the symmetries evaluation must treat as equal poses (written by host/formats/bop/bop_models.cpp).
 #pragma once
 

@@ -1,4 +1,4 @@
-// The BOP results CSV (bop_toolkit's format; DESIGN.md section 4): what `detect` writes and
+// The BOP results CSV (bop_toolkit's format; docs/formats.md): what `detect` writes and
 // `eval` reads.
 //
 //   scene_id,im_id,obj_id,score,R,t,time

@@ -14,12 +14,9 @@
 #include "host/core/mesh_normals.hpp"
 #include "host/formats/mesh/mesh_readers.hpp"
 #include "host/core/mesh_topology.hpp"
-#include "synth/parts/builtin_parts.hpp"
 
 namespace binpick {
 namespace {
-
-constexpr std::string_view builtin_prefix = "builtin:";
 
 void check_options(const std::string& spec, const ModelOptions& options) {
   if (!(std::isfinite(options.unit_scale) && options.unit_scale > 0))
@@ -96,40 +93,46 @@ double scale_to_millimetres(Mesh& mesh, const ModelOptions& options) {
   return factor;
 }
 
-}  // namespace
-
-Model load_model_with_symmetries(const std::string& spec, const ModelOptions& options) {
-  check_options(spec, options);
+// Runs make (which returns the mesh as read) and completes it; every error names `name`.
+template <class Make>
+Model named_model(const std::string& name, const ModelOptions& options, Make&& make) {
+  check_options(name, options);
   try {
-    Model model;
-    if (spec.starts_with(builtin_prefix)) {
-      const std::string name = spec.substr(builtin_prefix.size());
-      if (!options.mesh_name.empty())
-        throw InputError("--mesh selects a node of a glTF file, not of a built-in part");
-      model.mesh = make_builtin_part(name);
-      model.symmetries = builtin_part_symmetries(name);
-    } else {
-      const std::filesystem::path path = spec;
-      const std::string bytes = read_file_bytes(path);
-      const std::string extension = path.extension().string();  // with its dot, or empty
-      model.mesh = read_model(bytes, std::string_view(extension).substr(extension.empty() ? 0 : 1),
-                              options, path.parent_path());
-    }
+    Model model = make();
     check_and_complete(model.mesh);
     model.symmetries = model.symmetries.scaled(scale_to_millimetres(model.mesh, options));
     return model;
   } catch (const InputError& e) {
     const std::string message = e.what();
     // Messages from read_file_bytes already start with the path.
-    if (message.starts_with(spec)) throw;
-    throw InputError(spec + ": " + message);
+    if (message.starts_with(name)) throw;
+    throw InputError(name + ": " + message);
   } catch (const std::bad_alloc&) {
-    throw InputError(spec + ": out of memory while reading (is the file corrupt?)");
+    throw InputError(name + ": out of memory while reading (is the file corrupt?)");
   }
 }
 
-Mesh load_model(const std::string& spec, const ModelOptions& options) {
-  return load_model_with_symmetries(spec, options).mesh;
+}  // namespace
+
+Model load_model_with_symmetries(const std::string& path, const ModelOptions& options) {
+  return named_model(path, options, [&] {
+    const std::filesystem::path file = path;
+    const std::string bytes = read_file_bytes(file);
+    const std::string extension = file.extension().string();  // with its dot, or empty
+    return Model{read_model(bytes, std::string_view(extension).substr(extension.empty() ? 0 : 1),
+                            options, file.parent_path()),
+                 {}};
+  });
+}
+
+Mesh load_model(const std::string& path, const ModelOptions& options) {
+  return load_model_with_symmetries(path, options).mesh;
+}
+
+Model complete_model(Mesh mesh, PartSymmetries symmetries, const std::string& name,
+                     const ModelOptions& options) {
+  return named_model(name, options,
+                     [&] { return Model{std::move(mesh), std::move(symmetries)}; });
 }
 
 Mesh parse_model(std::string_view bytes, std::string_view format, const ModelOptions& options,

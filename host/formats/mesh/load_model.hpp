@@ -1,5 +1,6 @@
-// The one entry point for part models: a file (.gltf .glb .ply .stl .obj) or builtin:NAME,
-// scaled to millimetres and checked, with normals.
+// The one entry point for part model files (.gltf .glb .ply .stl .obj), scaled to millimetres
+// and checked, with normals. (`builtin:NAME` is resolved above this layer, by the app's model
+// options, which hand the built-in mesh to complete_model.)
 #pragma once
 
 #include <filesystem>
@@ -23,14 +24,19 @@ struct Model {
   PartSymmetries symmetries;  // known only for built-in parts; scaled like the mesh
 };
 
-// Loads spec (a file path or "builtin:NAME"). The result has triangles, unit per-vertex normals
-// (from the file, or computed with sharp edges kept), no unused vertices, and positions
-// multiplied by unit_scale and then rescaled to the requested diameter. Throws
-// binpick::InputError naming spec for anything wrong with the file or the options.
-Model load_model_with_symmetries(const std::string& spec, const ModelOptions& options);
+// Loads the model file at path. The result has triangles, unit per-vertex normals (from the
+// file, or computed with sharp edges kept), no unused vertices, and positions multiplied by
+// unit_scale and then rescaled to the requested diameter. Throws binpick::InputError naming
+// path for anything wrong with the file or the options.
+Model load_model_with_symmetries(const std::string& path, const ModelOptions& options);
 
-// load_model_with_symmetries(spec, options).mesh
-Mesh load_model(const std::string& spec, const ModelOptions& options);
+// load_model_with_symmetries(path, options).mesh
+Mesh load_model(const std::string& path, const ModelOptions& options);
+
+// The same checks, repairs and scaling for a mesh from elsewhere (a built-in part): name is
+// what error messages start with.
+Model complete_model(Mesh mesh, PartSymmetries symmetries, const std::string& name,
+                     const ModelOptions& options);
 
 // The same for a model file held in memory: format is its extension without the dot ("ply",
 // "stl", "obj", "gltf", "glb"); files it refers to (glTF buffers, OBJ materials) are looked up

@@ -98,6 +98,14 @@ void launch_local(Device& dev, cl::Kernel& kernel, std::size_t global, std::size
   });
 }
 
+// Like launch, with one work item per work group: for work items that are independent tasks of
+// uneven cost (one reference point's voting each). Left to itself PoCL may put a few hundred of
+// them in one work group, which runs on one core.
+template <class... Args>
+void launch_tasks(Device& dev, cl::Kernel& kernel, std::size_t global, const Args&... args) {
+  launch_local(dev, kernel, global, 1, args...);
+}
+
 inline void finish(Device& dev) {
   guarded("waiting for the OpenCL queue", [&] { dev.queue().finish(); });
 }
