@@ -18,6 +18,7 @@
 #include "synth/bin_writer.hpp"
 #include "synth/camera_rig.hpp"
 #include "synth/seeds.hpp"
+#include "host/core/timing.hpp"
 
 namespace binpick {
 namespace {
@@ -25,8 +26,6 @@ namespace {
 namespace fs = std::filesystem;
 using nlohmann::json;
 using Clock = std::chrono::steady_clock;
-
-double since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
 
 // Bumped whenever the same options make different bins (drop, decomposition, rendering), so a
 // dataset is never resumed or extended with bins of another kind. 2: merged hulls, the
@@ -117,7 +116,7 @@ SynthSummary synthesize(const Model& model, const std::string& model_description
   SynthSummary summary;
   auto t0 = Clock::now();
   const ConvexParts hulls = decompose_convex(part, o.decompose);
-  summary.seconds_decompose = since(t0);
+  summary.seconds_decompose = seconds_since(t0);
 
   std::unique_ptr<BinRenderer> renderer;  // made on the first bin that is not already there
   const int waves = (o.drop.objects + o.drop.grid_x * o.drop.grid_y - 1) / (o.drop.grid_x * o.drop.grid_y);
@@ -140,7 +139,7 @@ SynthSummary synthesize(const Model& model, const std::string& model_description
                                                        p.wave + 1, p.waves, p.parts_moving,
                                                        p.simulated_seconds));
     });
-    const double physics = since(t0);
+    const double physics = seconds_since(t0);
     progress.update(std::size_t(waves), "rendering");
 
     t0 = Clock::now();
@@ -150,13 +149,13 @@ SynthSummary synthesize(const Model& model, const std::string& model_description
     render_options.seed = mix_seed(o.seed, 2 * std::uint64_t(b) + 1);
     if (!renderer) renderer = std::make_unique<BinRenderer>(part, camera);
     const RenderedBin rendered = renderer->render(part_to_camera, render_options);
-    const double render = since(t0);
+    const double render = seconds_since(t0);
 
     t0 = Clock::now();
     write_bop_scene(staging, {rendered, camera, w2c, part_to_camera, o.depth_scale, o.write_cloud,
                               o.write_masks});
     fs::rename(staging, scene);
-    const double write = since(t0);
+    const double write = seconds_since(t0);
 
     std::size_t visible = 0;
     for (auto px : rendered.px_visible) visible += px > 0;

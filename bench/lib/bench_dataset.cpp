@@ -66,7 +66,7 @@ std::vector<SynthBin> make_bench_dataset(const Model& part, const BenchOptions& 
   // bin's time.
   for (int k = 0; k < o.bins; ++k) {
     s.bins = k + 1;
-    const SynthSummary sum = synthesize(part, pipeline::describe(o.part), s);
+    const SynthSummary sum = synthesize(part, describe(o.part), s);
     SynthBin b;
     b.bin = k;
     if (sum.bins_made > 0) {

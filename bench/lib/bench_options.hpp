@@ -15,7 +15,7 @@
 namespace binpick::bench {
 
 struct BenchOptions {
-  pipeline::PartSpec part{"builtin:bracket", {}};
+  PartSpec part{"builtin:bracket", {}};
   std::filesystem::path out = "binpick-bench";  // report, scenes, crops
   // Scenes measured. Two: a 350-part bin of the built-in bracket is minutes of physics (made
   // once, reused by a rerun); 10 hypotheses per reference ratio.

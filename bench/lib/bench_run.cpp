@@ -63,7 +63,7 @@ BenchRun run_bench(const Model& part, const BenchOptions& o, std::ostream& log) 
   const auto start = std::chrono::steady_clock::now();
   BenchRun run;
   BenchResult& r = run.result;
-  r.part = pipeline::describe(o.part);
+  r.part = describe(o.part);
   r.scene = fmt::format("{} x {}, {} parts, {} bins", o.width, o.height, o.objects, o.bins);
   r.repeats = o.repeats;
 
@@ -107,7 +107,7 @@ BenchRun run_bench(const Model& part, const BenchOptions& o, std::ostream& log) 
   r.opencv = compare_with_opencv(model, o, crops, dataset, r.train.ms);
   if (!r.opencv.ran) log << "  not run: " << r.opencv.why_not << "\n";
 
-  r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  r.seconds = seconds_since(start);
   run.files = write_bench_report(r, o.out);
   return run;
 }

@@ -10,7 +10,6 @@
 #include <cstdlib>
 #include <filesystem>
 
-#include <sys/resource.h>
 #include <unistd.h>
 
 #include "host/formats/bop/bop_files.hpp"
@@ -21,19 +20,15 @@
 #include "host/formats/mesh/load_model.hpp"
 #include "host/train/ppf_model.hpp"
 #include "synth/synthesize.hpp"
+#include "bench/programs/bench_common.hpp"
 
 using namespace binpick;
 namespace fs = std::filesystem;
 
+using binpick::bench::process_cpu_ms;
+using binpick::bench::smoke;
+
 namespace {
-
-bool smoke() { return std::getenv("BINPICK_BENCH_SMOKE") != nullptr; }
-
-double process_cpu_ms() {
-  rusage u{};
-  getrusage(RUSAGE_SELF, &u);
-  return (u.ru_utime.tv_sec + u.ru_stime.tv_sec) * 1e3 + (u.ru_utime.tv_usec + u.ru_stime.tv_usec) * 1e-3;
-}
 
 struct Bench {
   Model part;
@@ -101,6 +96,6 @@ BENCHMARK(BM_DetectPerHypothesis)
     ->Arg(200)->Arg(20)
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime()
-    ->Iterations(std::getenv("BINPICK_BENCH_SMOKE") ? 1 : 3);
+    ->Iterations(smoke() ? 1 : 3);
 
 BENCHMARK_MAIN();

@@ -10,12 +10,13 @@
 #include <vector>
 
 #include "bench/lib/machine_peak.hpp"
+#include "bench/programs/bench_common.hpp"
 
 using namespace binpick;
 
-namespace {
+using binpick::bench::smoke;
 
-bool smoke() { return std::getenv("BINPICK_BENCH_SMOKE") != nullptr; }
+namespace {
 
 double median(std::vector<double> v) {
   std::sort(v.begin(), v.end());

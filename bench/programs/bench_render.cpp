@@ -8,23 +8,16 @@
 #include <cstdlib>
 #include <random>
 
-#include <sys/resource.h>
 
 #include "synth/render/bin_renderer.hpp"
+#include "bench/programs/bench_common.hpp"
 
 using namespace binpick;
 
+using binpick::bench::process_cpu_ms;
+using binpick::bench::smoke;
+
 namespace {
-
-// CPU time of the whole process (lavapipe's threads included), ms: on a shared machine the
-// wall clock also counts other people's work.
-double process_cpu_ms() {
-  rusage u{};
-  getrusage(RUSAGE_SELF, &u);
-  return (u.ru_utime.tv_sec + u.ru_stime.tv_sec) * 1e3 + (u.ru_utime.tv_usec + u.ru_stime.tv_usec) * 1e-3;
-}
-
-bool smoke() { return std::getenv("BINPICK_BENCH_SMOKE") != nullptr; }
 
 // A torus around z: tube radius r, centre-line radius R, smooth normals.
 Mesh make_torus(float R, float r, int around, int tube) {
@@ -95,10 +88,10 @@ void BM_RenderBin(benchmark::State& state) {
 
 // Arguments: parts, count px_all (0/1). Medians over 5 repetitions (1 in the smoke run).
 BENCHMARK(BM_RenderBin)
-    ->ArgsProduct({{std::getenv("BINPICK_BENCH_SMOKE") ? 5 : 350}, {0, 1}})
+    ->ArgsProduct({{smoke() ? 5 : 350}, {0, 1}})
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime()
-    ->Repetitions(std::getenv("BINPICK_BENCH_SMOKE") ? 1 : 5)
-    ->ReportAggregatesOnly(std::getenv("BINPICK_BENCH_SMOKE") == nullptr);
+    ->Repetitions(smoke() ? 1 : 5)
+    ->ReportAggregatesOnly(!smoke());
 
 BENCHMARK_MAIN();

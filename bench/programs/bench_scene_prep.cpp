@@ -10,25 +10,18 @@
 #include <map>
 #include <random>
 
-#include <sys/resource.h>
 
 #include "host/detect/hypotheses.hpp"
 #include "host/detect/scene_crop.hpp"
 #include "host/detect/scene_prepare.hpp"
+#include "bench/programs/bench_common.hpp"
 
 using namespace binpick;
 
+using binpick::bench::process_cpu_ms;
+using binpick::bench::smoke;
+
 namespace {
-
-bool smoke() { return std::getenv("BINPICK_BENCH_SMOKE") != nullptr; }
-
-// CPU time of the whole process (PoCL's threads included), ms: on a shared machine the wall
-// clock also counts other people's work.
-double process_cpu_ms() {
-  rusage u{};
-  getrusage(RUSAGE_SELF, &u);
-  return (u.ru_utime.tv_sec + u.ru_stime.tv_sec) * 1e3 + (u.ru_utime.tv_usec + u.ru_stime.tv_usec) * 1e-3;
-}
 
 struct Scene {
   DepthImage depth;
@@ -119,14 +112,14 @@ BENCHMARK(BM_PrepareScene)
     ->Args({0, 1})->Args({1, 1})->Args({0, 0})
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime()
-    ->Repetitions(std::getenv("BINPICK_BENCH_SMOKE") ? 1 : 5)
-    ->ReportAggregatesOnly(std::getenv("BINPICK_BENCH_SMOKE") == nullptr);
+    ->Repetitions(smoke() ? 1 : 5)
+    ->ReportAggregatesOnly(!smoke());
 // Argument: number of hypotheses (the paper's 5).
 BENCHMARK(BM_Hypotheses)
     ->Arg(5)
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime()
-    ->Repetitions(std::getenv("BINPICK_BENCH_SMOKE") ? 1 : 5)
-    ->ReportAggregatesOnly(std::getenv("BINPICK_BENCH_SMOKE") == nullptr);
+    ->Repetitions(smoke() ? 1 : 5)
+    ->ReportAggregatesOnly(!smoke());
 
 BENCHMARK_MAIN();

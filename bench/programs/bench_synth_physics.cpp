@@ -20,11 +20,12 @@
 #include "synth/physics/penetration.hpp"
 #include "synth/physics/settle_drift.hpp"
 #include "tests/support/test_meshes.hpp"
+#include "bench/programs/bench_common.hpp"
 
 namespace binpick {
-namespace {
+using binpick::bench::smoke;
 
-bool smoke_run() { return std::getenv("BINPICK_BENCH_SMOKE") != nullptr; }
+namespace {
 
 // Index 0, 1: the tests' L-bracket (2 hulls) and torus (8 hulls); 2: builtin:bracket. All
 // about 52 mm across.
@@ -65,7 +66,7 @@ void BM_DropBin(benchmark::State& state) {
   decompose.cache_dir = bench_cache_dir();
   const ConvexParts hulls = decompose_convex(part, decompose);
   DropOptions options;
-  if (smoke_run()) options.objects = 20;
+  if (smoke()) options.objects = 20;
   options.final_settle_all_dynamic = state.range(1) != 0;
   // Each repetition drops another bin (seeds 1, 2, 3, ...), so the median is over bins, not
   // over one bin replayed.

@@ -13,12 +13,13 @@
 #include "host/train/ppf_model.hpp"
 #include "host/train/ppf_table.hpp"
 #include "synth/parts/builtin_parts.hpp"
+#include "bench/programs/bench_common.hpp"
 
 using namespace binpick;
 
-namespace {
+using binpick::bench::smoke;
 
-bool smoke() { return std::getenv("BINPICK_BENCH_SMOKE") != nullptr; }
+namespace {
 
 void report(benchmark::State& state, std::size_t points, const PpfTable& table,
             const PpfTableTimes& t) {

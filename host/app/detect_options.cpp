@@ -6,8 +6,9 @@
 
 #include "host/core/error.hpp"
 #include "host/detect/detect_params_file.hpp"
+#include "host/detect/detector.hpp"
 
-namespace binpick::pipeline {
+namespace binpick::cli {
 namespace {
 
 std::uint32_t narrow(std::int64_t v, const char* option) {
@@ -68,8 +69,16 @@ DetectParams resolve(const DetectCliOptions& a) {
       if (option->count() > 0) given.insert(name);
     apply_params_file(a.params_file, p, given);
   }
-  check(p);
+  // Named as the user gave it: the option, or the parameter of the --params file.
+  if (const auto bad = find_param_problem(p)) {
+    const auto option = a.options.find(bad->name);
+    const bool from_file = !a.params_file.empty() &&
+                           (option == a.options.end() || option->second->count() == 0);
+    const std::string name =
+        from_file ? fmt::format("{}: {}", a.params_file, bad->name) : "--" + bad->name;
+    throw InputError(fmt::format("{} {} must be in {}", name, bad->value, bad->range));
+  }
   return p;
 }
 
-}  // namespace binpick::pipeline
+}  // namespace binpick::cli

@@ -11,7 +11,7 @@
 
 #include "host/detect/detector.hpp"
 
-namespace binpick::pipeline {
+namespace binpick::cli {
 
 struct DetectCliOptions {
   std::string params_file;
@@ -28,4 +28,4 @@ void add_detect_cli_options(CLI::App* verb, DetectCliOptions& o, const std::stri
 // Defaults, then the file, then the options given. InputError for a bad file or value.
 DetectParams resolve(const DetectCliOptions& o);
 
-}  // namespace binpick::pipeline
+}  // namespace binpick::cli

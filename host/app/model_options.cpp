@@ -33,11 +33,11 @@ ModelOptions model_options_of(const ModelArgs& args) {
   return {args.unit_scale, args.diameter, args.mesh};
 }
 
-pipeline::PartSpec part_spec_of(const ModelArgs& args) {
+PartSpec part_spec_of(const ModelArgs& args) {
   return {args.model, model_options_of(args)};
 }
 
-Model load_part(const pipeline::PartSpec& part) {
+Model load_part(const PartSpec& part) {
   if (!part.spec.starts_with(builtin_prefix))
     return load_model_with_symmetries(part.spec, part.options);
   const std::string name = part.spec.substr(builtin_prefix.size());

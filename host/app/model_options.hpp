@@ -22,10 +22,10 @@ struct ModelArgs {
 void add_model_options(CLI::App* verb, ModelArgs& args, bool required = true);
 
 ModelOptions model_options_of(const ModelArgs& args);
-pipeline::PartSpec part_spec_of(const ModelArgs& args);
+PartSpec part_spec_of(const ModelArgs& args);
 
 // The part spec names ("builtin:NAME" or a model file), with its symmetries where known, scaled
 // as its options say. Throws binpick::InputError naming spec.
-Model load_part(const pipeline::PartSpec& part);
+Model load_part(const PartSpec& part);
 
 }  // namespace binpick::cli

@@ -35,7 +35,7 @@ void run_bench_verb(const BenchArgs& a) {
   apply_dataset_args(a.dataset, given);
   bench::BenchOptions o = a.quick ? bench::quick_options(given) : given;
   o.part = part_spec_of(a.model);
-  o.ref_ratios = pipeline::parse_number_list(a.ref_ratios, "--ref-ratios", "0.2,0.02");
+  o.ref_ratios = parse_number_list(a.ref_ratios, "--ref-ratios", "0.2,0.02");
   bench::check(o);  // before the slow stages
   const auto run = bench::run_bench(load_part(o.part), o, std::cout);
   std::cout << "\n" << bench::bench_markdown(run.result) << "\n"

@@ -17,6 +17,7 @@
 #include "host/tune/experiment.hpp"
 #include "host/runtime/vk/vk_context.hpp"
 #include "synth/parts/builtin_parts.hpp"
+#include "host/core/timing.hpp"
 
 namespace binpick::cli {
 namespace {
@@ -39,14 +40,14 @@ void run_demo(const DemoArgs& a) {
   const auto& names = builtin_part_names();
   if (std::find(names.begin(), names.end(), a.part) == names.end())
     throw InputError("--part " + a.part + " is not a built-in part (see `binpick parts --list`)");
-  pipeline::ExperimentOptions o;
+  ExperimentOptions o;
   o.part = {"builtin:" + a.part, {}};
   o.out = a.out;
-  o.noise = pipeline::parse_noise_list(a.noise);
+  o.noise = parse_noise_list(a.noise);
   o.bins = a.bins;
   o.objects = a.objects;
   o.seed = a.seed;
-  pipeline::check(o);  // before touching the devices: bad options fail fast
+  check(o);  // before touching the devices: bad options fail fast
 
   std::cout << "devices\n  OpenCL: " << ocl::Device::shared().description()
             << "\n  Vulkan: " << vkrt::Context::shared().description() << "\n"
@@ -55,15 +56,15 @@ void run_demo(const DemoArgs& a) {
                            a.bins, a.objects, o.part.spec, a.noise,
                            a.out.string())
             << std::flush;
-  const auto r = pipeline::run_experiment(load_part(o.part), o, std::cout);
+  const auto r = run_experiment(load_part(o.part), o, std::cout);
   for (const auto& w : r.report.warnings) std::cerr << "binpick: warning: " << w << "\n";
-  std::cout << "\n" << pipeline::results_table(r.evaluations) << "\n";
+  std::cout << "\n" << results_table(r.evaluations) << "\n";
   std::cout << fmt::format("report:   {}\n", r.report.html.string());
   if (!r.report.plot.empty()) std::cout << fmt::format("figure:   {}\n", r.report.plot.string());
   std::cout << fmt::format("pictures: {}\n", (r.report.html.parent_path() / "pictures").string());
   std::cout << fmt::format(
       "time:     {:.0f} s (synth {:.1f}, train {:.1f}, detect {:.1f}, eval {:.1f}){}\n",
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), r.synth_s,
+      seconds_since(start), r.synth_s,
       r.train_s, r.detect_s, r.eval_s,
       r.bins_reused > 0 || r.model_reused ? "; earlier work in " + a.out.string() + " reused" : "");
 }

@@ -20,6 +20,7 @@
 #include "host/train/ppf_model_file.hpp"
 #include "host/app/detect_options.hpp"
 #include "host/train/model_store.hpp"
+#include "host/core/timing.hpp"
 
 namespace binpick::cli {
 namespace {
@@ -30,13 +31,13 @@ struct DetectArgs {
   std::string model, dataset, cloud, out, scenes, split = "test";
   int obj_id = 1;
   bool verbose = false;
-  pipeline::DetectCliOptions detection;  // --params and one option per parameter
+  DetectCliOptions detection;  // --params and one option per parameter
 };
 
 void run_detect(DetectArgs& a) {
   if (a.dataset.empty() == a.cloud.empty())
     throw InputError("give exactly one of --dataset DIR and --cloud FILE.ply");
-  const DetectParams params = pipeline::resolve(a.detection);
+  const DetectParams params = resolve(a.detection);
   check_output_file(a.out);
   const std::string model_bytes = read_file_bytes(a.model);
   const PpfModel model = parse_ppf_model(model_bytes, a.model);
@@ -54,7 +55,7 @@ void run_detect(DetectArgs& a) {
       throw InputError(a.cloud + ": " + e.what());
     }
     const double seconds =
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        seconds_since(start);
     bop::write_results_csv(a.out, detection_rows(found, 0, 0, a.obj_id, seconds));
     BatchSummary s;
     s.scenes = s.images = 1;
@@ -73,7 +74,7 @@ void run_detect(DetectArgs& a) {
   if (!a.scenes.empty()) opt.scenes = parse_scene_list(a.scenes);
   opt.obj_id = a.obj_id;
   opt.out = a.out;
-  opt.model_checksum = pipeline::checksum_hex(model_bytes);
+  opt.model_checksum = checksum_hex(model_bytes);
   opt.verbose = a.verbose;
   const BatchSummary s = detect_dataset(detector, opt, &std::cout);
   std::cout << summary_line(s) << "\nwrote " << a.out << "\n";
@@ -97,7 +98,7 @@ void add_detect_verb(CLI::App& app) {
   verb->add_option("--scenes", a->scenes, "subset of scene ids, e.g. 0,3,5-9 (default: all)");
   verb->add_option("--obj-id", a->obj_id, "object id written in the results")->capture_default_str();
   verb->add_flag("--verbose", a->verbose, "print per-stage timings of every image");
-  pipeline::add_detect_cli_options(verb, a->detection, "detection");
+  add_detect_cli_options(verb, a->detection, "detection");
   verb->callback([a] { run_detect(*a); });
 }
 

@@ -21,25 +21,25 @@ namespace {
 
 struct RunArgs {
   ModelArgs model;
-  pipeline::ExperimentOptions experiment;
+  ExperimentOptions experiment;
   DatasetArgs dataset;
   TrainArgs train;
   std::string noise = "0";
-  pipeline::DetectCliOptions detect;
+  DetectCliOptions detect;
 };
 
 void run_run(RunArgs& a) {
-  pipeline::ExperimentOptions o = a.experiment;
+  ExperimentOptions o = a.experiment;
   // Parsed here rather than by CLI11, which would quietly keep the default for "--noise ''".
-  o.noise = pipeline::parse_noise_list(a.noise);
+  o.noise = parse_noise_list(a.noise);
   o.part = part_spec_of(a.model);
   apply_dataset_args(a.dataset, o);
   o.max_wall_seconds = a.dataset.max_wall_seconds;
   o.train = train_params_of(a.train);
-  o.detect = pipeline::resolve(a.detect);
-  pipeline::check(o);  // before the slow stages: bad options fail fast
-  const auto r = pipeline::run_experiment(load_part(o.part), o, std::cout);
-  std::cout << "\n" << pipeline::results_table(r.evaluations);
+  o.detect = resolve(a.detect);
+  check(o);  // before the slow stages: bad options fail fast
+  const auto r = run_experiment(load_part(o.part), o, std::cout);
+  std::cout << "\n" << results_table(r.evaluations);
   for (const auto& w : r.report.warnings) std::cerr << "binpick: warning: " << w << "\n";
   std::cout << fmt::format(
       "\ntime: synth {:.1f} s, train {:.1f} s{}, detect {:.1f} s, eval {:.1f} s\n"
@@ -70,7 +70,7 @@ void add_run_verb(CLI::App& app) {
   add_train_options(verb, a->train, "training");
   verb->add_option("--pictures", o.pictures, "images pictured per noise level in the report")
       ->capture_default_str();
-  pipeline::add_detect_cli_options(verb, a->detect, "detection");
+  add_detect_cli_options(verb, a->detect, "detection");
   verb->callback([a] { run_run(*a); });
 }
 

@@ -17,6 +17,7 @@
 #include "host/core/error.hpp"
 #include "host/train/ppf_model.hpp"
 #include "host/train/ppf_model_file.hpp"
+#include "host/core/timing.hpp"
 
 namespace binpick::cli {
 namespace {
@@ -35,7 +36,7 @@ void run_train(const TrainVerbArgs& args) {
   const auto start = std::chrono::steady_clock::now();
   const Mesh mesh = load_part(part_spec_of(args.model)).mesh;
   const double load_s =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+      seconds_since(start);
   PpfTrainStats st;
   const PpfModel model = train_ppf_model(mesh, params, &st);
   const auto write_start = std::chrono::steady_clock::now();

@@ -21,15 +21,15 @@ namespace {
 
 struct TuneArgs {
   ModelArgs model;
-  pipeline::TuneOptions tune;
-  DatasetArgs dataset{.bins = pipeline::TuneOptions{}.bins,
-                      .objects = pipeline::TuneOptions{}.objects};
+  TuneOptions tune;
+  DatasetArgs dataset{.bins = TuneOptions{}.bins,
+                      .objects = TuneOptions{}.objects};
   TrainArgs train;
-  pipeline::DetectCliOptions start;
+  DetectCliOptions start;
 };
 
 void run_tune(TuneArgs& a) {
-  pipeline::TuneOptions o = a.tune;
+  TuneOptions o = a.tune;
   o.part = part_spec_of(a.model);
   apply_dataset_args(a.dataset, o);
   o.max_wall_seconds = a.dataset.max_wall_seconds;
@@ -37,9 +37,9 @@ void run_tune(TuneArgs& a) {
   o.voxel_ratio = train.voxel_ratio;
   o.start.distance_steps = train.distance_steps;
   o.start.angle_steps = train.angle_steps;
-  o.start.detect = pipeline::resolve(a.start);
-  pipeline::check(o);  // before the slow stages: bad options fail fast
-  pipeline::run_tune(load_part(o.part), o, std::cout);
+  o.start.detect = resolve(a.start);
+  check(o);  // before the slow stages: bad options fail fast
+  binpick::run_tune(load_part(o.part), o, std::cout);
 }
 
 }  // namespace
@@ -74,7 +74,7 @@ void add_tune_verb(CLI::App& app) {
       ->capture_default_str();
   add_train_options(verb, a->train,
                     "models (the voxel is kept; the steps are the search's starting point)");
-  pipeline::add_detect_cli_options(verb, a->start, "starting point");
+  add_detect_cli_options(verb, a->start, "starting point");
   verb->callback([a] { run_tune(*a); });
 }
 

@@ -7,14 +7,12 @@
 #include <fmt/format.h>
 #include <unistd.h>
 
+#include "host/core/timing.hpp"
+
 namespace binpick {
 namespace {
 
 constexpr int kBarWidth = 28;
-
-double seconds_since(std::chrono::steady_clock::time_point t) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
-}
 
 }  // namespace
 

@@ -1,5 +1,6 @@
-// Wall-clock time per pipeline stage, for the CLI and the benchmark ("ms per stage").
-// Each stage ends with a queue finish, so the time is the device's work, not an enqueue.
+// Wall-clock time: a stopwatch, seconds since a start, and the time per pipeline stage for the
+// CLI and the benchmark ("ms per stage"). Each stage ends with a queue finish, so a stage's time
+// is the device's work, not an enqueue.
 #pragma once
 
 #include <chrono>
@@ -13,6 +14,11 @@ struct StageTime {
   double ms = 0.0;
 };
 using StageTimings = std::vector<StageTime>;
+
+// Seconds elapsed since start (steady clock).
+inline double seconds_since(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
 
 // Time since construction or the last lap.
 class Stopwatch {

@@ -14,6 +14,7 @@
 #include "host/detect/detect_params_file.hpp"
 #include "host/core/atomic_file.hpp"
 #include "host/core/read_file.hpp"
+#include "host/core/timing.hpp"
 
 namespace binpick {
 namespace fs = std::filesystem;
@@ -46,10 +47,6 @@ void prepare_parts(const fs::path& out, const std::string& fingerprint) {
   fs::create_directories(dir, ec);
   if (!fs::is_directory(dir)) throw InputError("cannot create " + dir.string());
   write_file_atomically(stamp, [&](std::ostream& s) { s << fingerprint; });
-}
-
-double seconds_since(std::chrono::steady_clock::time_point start) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
 }  // namespace

@@ -2,7 +2,7 @@
 
 #include "host/core/error.hpp"
 
-namespace binpick::pipeline {
+namespace binpick {
 
 BatchSummary detect_to_csv(Detector& detector, const TrainedModel& model,
                            const std::filesystem::path& dataset, const std::filesystem::path& csv) {
@@ -18,4 +18,4 @@ BatchSummary detect_to_csv(Detector& detector, const TrainedModel& model,
   return detect_dataset(detector, opt, nullptr);
 }
 
-}  // namespace binpick::pipeline
+}  // namespace binpick

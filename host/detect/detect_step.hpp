@@ -8,11 +8,11 @@
 #include "host/detect/detector.hpp"
 #include "host/train/model_store.hpp"
 
-namespace binpick::pipeline {
+namespace binpick {
 
 // Every scene of DATASET/test with `detector`, whose model is `model`, into csv (its directory
 // is created). Progress on stderr.
 BatchSummary detect_to_csv(Detector& detector, const TrainedModel& model,
                            const std::filesystem::path& dataset, const std::filesystem::path& csv);
 
-}  // namespace binpick::pipeline
+}  // namespace binpick

@@ -30,20 +30,27 @@ double sum_ms(const StageTimings& t, std::size_t from) {
 
 }  // namespace
 
-void check(const DetectParams& p) {
-  // Parameters are named as in the --params file (docs/cli.md), which is also the option name.
-  const auto need = [](bool ok, const char* name, double value, const char* range) {
-    if (!ok) throw InputError(fmt::format("detection parameter {} {} must be in {}", name, value, range));
+std::optional<ParamProblem> find_param_problem(const DetectParams& p) {
+  const std::pair<bool, ParamProblem> rules[] = {
+      {in(p.ref_ratio, 0, 1) && p.ref_ratio > 0, {"ref-ratio", p.ref_ratio, "(0, 1]"}},
+      {p.hypotheses >= 1 && p.hypotheses <= 1000, {"hypotheses", double(p.hypotheses), "[1, 1000]"}},
+      {in(p.exclusion_ratio, 0, 100), {"exclusion-ratio", p.exclusion_ratio, "[0, 100]"}},
+      {in(p.crop_ratio, 0, 100) && p.crop_ratio > 0, {"crop-ratio", p.crop_ratio, "(0, 100]"}},
+      {in(p.cluster_distance, 0, 100), {"cluster-distance", p.cluster_distance, "[0, 100]"}},
+      {in(p.cluster_angle, 0, 180), {"cluster-angle", p.cluster_angle, "[0, 180] degrees"}},
+      {p.peaks_per_ref >= 1 && p.peaks_per_ref <= 16, {"peaks-per-ref", double(p.peaks_per_ref), "[1, 16]"}},
+      {in(p.peak_ratio, 0, 1), {"peak-ratio", p.peak_ratio, "[0, 1]"}},
+      {in(p.normal_ratio, 0, 10) && p.normal_ratio > 0, {"normal-ratio", p.normal_ratio, "(0, 10]"}},
   };
-  need(in(p.ref_ratio, 0, 1) && p.ref_ratio > 0, "ref-ratio", p.ref_ratio, "(0, 1]");
-  need(p.hypotheses >= 1 && p.hypotheses <= 1000, "hypotheses", p.hypotheses, "[1, 1000]");
-  need(in(p.exclusion_ratio, 0, 100), "exclusion-ratio", p.exclusion_ratio, "[0, 100]");
-  need(in(p.crop_ratio, 0, 100) && p.crop_ratio > 0, "crop-ratio", p.crop_ratio, "(0, 100]");
-  need(in(p.cluster_distance, 0, 100), "cluster-distance", p.cluster_distance, "[0, 100]");
-  need(in(p.cluster_angle, 0, 180), "cluster-angle", p.cluster_angle, "[0, 180] degrees");
-  need(p.peaks_per_ref >= 1 && p.peaks_per_ref <= 16, "peaks-per-ref", p.peaks_per_ref, "[1, 16]");
-  need(in(p.peak_ratio, 0, 1), "peak-ratio", p.peak_ratio, "[0, 1]");
-  need(in(p.normal_ratio, 0, 10) && p.normal_ratio > 0, "normal-ratio", p.normal_ratio, "(0, 10]");
+  for (const auto& [ok, problem] : rules)
+    if (!ok) return problem;
+  return std::nullopt;
+}
+
+void check(const DetectParams& p) {
+  if (const auto bad = find_param_problem(p))
+    throw InputError(fmt::format("detection parameter {} {} must be in {}", bad->name, bad->value,
+                                 bad->range));
 }
 
 DetectTimes& DetectTimes::operator+=(const DetectTimes& o) {

@@ -6,6 +6,8 @@
 #pragma once
 
 #include <cstdint>
+#include <optional>
+#include <string>
 #include <vector>
 
 #include <Eigen/Core>
@@ -33,6 +35,15 @@ struct DetectParams {
   double peak_ratio = 0.9;         // ... with at least this fraction of its best votes
   double normal_ratio = 0.2;       // depth normals: neighbours within this distance (fraction)
 };
+// The first parameter out of its range: its name (as in a --params file, docs/cli.md), its value
+// and the range allowed ("(0, 1]"). The caller that knows where the value came from (an option,
+// a file) names that in its message.
+struct ParamProblem {
+  std::string name;
+  double value = 0;
+  std::string range;
+};
+std::optional<ParamProblem> find_param_problem(const DetectParams& params);
 // InputError naming the parameter ("detection parameter ref-ratio ...") for a value out of range.
 void check(const DetectParams& params);
 

@@ -10,8 +10,9 @@
 #include "host/core/atomic_file.hpp"
 #include "host/core/read_file.hpp"
 #include "host/train/ppf_model_file.hpp"
+#include "host/core/timing.hpp"
 
-namespace binpick::pipeline {
+namespace binpick {
 namespace fs = std::filesystem;
 using nlohmann::json;
 
@@ -47,10 +48,6 @@ json inputs_record(const Mesh& mesh, const std::string& part, const PpfTrainPara
 }
 
 fs::path record_path(const fs::path& model) { return fs::path(model.string() + ".json"); }
-
-double since(std::chrono::steady_clock::time_point t) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
-}
 
 // The model in `path` if its record says it was made from `inputs` and the bytes still match
 // the checksum recorded; nothing otherwise (a stale or damaged model is simply retrained).
@@ -95,7 +92,7 @@ TrainedModel train_or_reuse(const Mesh& mesh, const std::string& part_descriptio
   TrainedModel out;
   out.path = path;
   if (try_reuse(path, inputs, out)) {
-    out.seconds = since(start);
+    out.seconds = seconds_since(start);
     return out;
   }
   if (path.has_parent_path()) fs::create_directories(path.parent_path());
@@ -105,8 +102,8 @@ TrainedModel train_or_reuse(const Mesh& mesh, const std::string& part_descriptio
   out.checksum = checksum_hex(bytes);
   const json record = {{"inputs", inputs}, {"model_checksum", out.checksum}};
   write_file_atomically(record_path(path), [&](std::ostream& s) { s << record.dump(1) << "\n"; });
-  out.seconds = since(start);
+  out.seconds = seconds_since(start);
   return out;
 }
 
-}  // namespace binpick::pipeline
+}  // namespace binpick

@@ -11,7 +11,7 @@
 #include "host/formats/mesh/load_model.hpp"
 #include "host/train/ppf_model.hpp"
 
-namespace binpick::pipeline {
+namespace binpick {
 
 // A part as the pipeline verbs take it: the --model argument and its options.
 struct PartSpec {
@@ -41,4 +41,4 @@ struct TrainedModel {
 TrainedModel train_or_reuse(const Mesh& mesh, const std::string& part_description,
                             const PpfTrainParams& params, const std::filesystem::path& path);
 
-}  // namespace binpick::pipeline
+}  // namespace binpick

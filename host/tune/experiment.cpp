@@ -11,14 +11,11 @@
 #include "host/core/error.hpp"
 #include "host/detect/detect_step.hpp"
 #include "synth/synthesize.hpp"
+#include "host/core/timing.hpp"
 
-namespace binpick::pipeline {
+namespace binpick {
 namespace fs = std::filesystem;
 namespace {
-
-double since(std::chrono::steady_clock::time_point t) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
-}
 
 fs::path dataset_dir(const ExperimentOptions& o, double noise) { return o.out / noise_dir_name(noise); }
 fs::path results_csv(const ExperimentOptions& o, double noise) {
@@ -109,7 +106,7 @@ ExperimentResult run_experiment(const Model& part, const ExperimentOptions& o, s
     log << fmt::format("synth  {}: {} bins made, {} already there\n", s.out.string(),
                        made.bins_made, made.bins_skipped) << std::flush;
   }
-  r.synth_s = since(start);
+  r.synth_s = seconds_since(start);
 
   const TrainedModel model = train_or_reuse(part.mesh, description, o.train, o.out / "model.ppfm");
   r.model = model.path;
@@ -127,7 +124,7 @@ ExperimentResult run_experiment(const Model& part, const ExperimentOptions& o, s
     log << fmt::format("detect {}: {}\n", results_csv(o, noise).string(), summary_line(b)) << std::flush;
     inputs.push_back({dataset_dir(o, noise), results_csv(o, noise)});
   }
-  r.detect_s = since(start);
+  r.detect_s = seconds_since(start);
 
   start = std::chrono::steady_clock::now();
   eval::ReportOptions report;
@@ -135,7 +132,7 @@ ExperimentResult run_experiment(const Model& part, const ExperimentOptions& o, s
   report.pictures = o.pictures;
   r.evaluations = eval::evaluate_inputs(inputs, report.eval);
   r.report = eval::write_report(r.evaluations, report);
-  r.eval_s = since(start);
+  r.eval_s = seconds_since(start);
   log << fmt::format("eval   {}\n", r.report.html.string()) << std::flush;
   return r;
 }
@@ -160,4 +157,4 @@ std::string results_table(const std::vector<eval::DatasetEvaluation>& evaluation
   return t;
 }
 
-}  // namespace binpick::pipeline
+}  // namespace binpick

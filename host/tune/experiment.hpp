@@ -20,7 +20,7 @@
 #include "host/train/ppf_model.hpp"
 #include "host/train/model_store.hpp"
 
-namespace binpick::pipeline {
+namespace binpick {
 
 struct ExperimentOptions {
   PartSpec part;
@@ -71,4 +71,4 @@ ExperimentResult run_experiment(const Model& part, const ExperimentOptions& opti
 std::string results_table(const std::vector<eval::DatasetEvaluation>& evaluations,
                           const eval::EvalOptions& at = {});
 
-}  // namespace binpick::pipeline
+}  // namespace binpick

@@ -19,7 +19,7 @@
 #include "host/tune/tune_table.hpp"
 #include "synth/synthesize.hpp"
 
-namespace binpick::pipeline {
+namespace binpick {
 namespace fs = std::filesystem;
 namespace {
 
@@ -167,4 +167,4 @@ TuneResult run_tune(const Model& part, const TuneOptions& o, std::ostream& out) 
   return r;
 }
 
-}  // namespace binpick::pipeline
+}  // namespace binpick

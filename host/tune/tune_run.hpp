@@ -20,7 +20,7 @@
 #include "host/train/model_store.hpp"
 #include "host/tune/tune_search.hpp"
 
-namespace binpick::pipeline {
+namespace binpick {
 
 struct TuneOptions {
   PartSpec part;
@@ -50,4 +50,4 @@ struct TuneResult {
 // `part` is the model options.part names, loaded.
 TuneResult run_tune(const Model& part, const TuneOptions& options, std::ostream& out);
 
-}  // namespace binpick::pipeline
+}  // namespace binpick

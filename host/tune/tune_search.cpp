@@ -7,7 +7,7 @@
 
 #include "host/core/error.hpp"
 
-namespace binpick::pipeline {
+namespace binpick {
 
 bool better(const TuneScore& a, const TuneScore& b, double budget_ms) {
   const bool a_in = a.ms_per_hypothesis <= budget_ms, b_in = b.ms_per_hypothesis <= budget_ms;
@@ -76,4 +76,4 @@ SearchResult coordinate_descent(const TunePoint& start, const SearchOptions& o,
   return r;
 }
 
-}  // namespace binpick::pipeline
+}  // namespace binpick

@@ -13,7 +13,7 @@
 
 #include "host/tune/tune_space.hpp"
 
-namespace binpick::pipeline {
+namespace binpick {
 
 struct TuneScore {
   double top = 0, all = 0;                // precision at the loose point (10 %, 15 deg)
@@ -66,4 +66,4 @@ SearchResult coordinate_descent(const TunePoint& start, const SearchOptions& opt
 // Upper bound of the measurements a search can make (for a progress bar).
 std::size_t max_measurements(const SearchOptions& options);
 
-}  // namespace binpick::pipeline
+}  // namespace binpick

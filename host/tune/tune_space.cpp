@@ -4,7 +4,7 @@
 
 #include "host/detect/detect_params_file.hpp"
 
-namespace binpick::pipeline {
+namespace binpick {
 namespace {
 
 TuneAxis detect_axis(std::string name, std::vector<double> values, double DetectParams::*member) {
@@ -42,4 +42,4 @@ const std::vector<TuneAxis>& tune_axes() {
   return axes;
 }
 
-}  // namespace binpick::pipeline
+}  // namespace binpick

@@ -11,7 +11,7 @@
 #include "host/detect/detector.hpp"
 #include "kernels/binpick_shared.h"
 
-namespace binpick::pipeline {
+namespace binpick {
 
 struct TunePoint {
   DetectParams detect;
@@ -37,4 +37,4 @@ struct TuneAxis {
 // cheap detection parameters first, the ones that need a model of their own last.
 const std::vector<TuneAxis>& tune_axes();
 
-}  // namespace binpick::pipeline
+}  // namespace binpick

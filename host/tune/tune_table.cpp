@@ -4,7 +4,7 @@
 
 #include "host/core/atomic_file.hpp"
 
-namespace binpick::pipeline {
+namespace binpick {
 
 std::string tune_table_header() {
   return fmt::format("{:>3} {:>2} {:<16} {:>5} {:>6} {:>5} {:>5} {:>4} {:>4}  {:>6} {:>6} {:>6} "
@@ -42,4 +42,4 @@ void write_tune_csv(const std::filesystem::path& path, const std::vector<TuneRow
   });
 }
 
-}  // namespace binpick::pipeline
+}  // namespace binpick

@@ -9,7 +9,7 @@
 
 #include "host/tune/tune_search.hpp"
 
-namespace binpick::pipeline {
+namespace binpick {
 
 // Column headings for the printed table.
 std::string tune_table_header();
@@ -21,4 +21,4 @@ std::string tune_table_row(const TuneRow& row, bool best);
 void write_tune_csv(const std::filesystem::path& path, const std::vector<TuneRow>& rows,
                     std::size_t best);
 
-}  // namespace binpick::pipeline
+}  // namespace binpick

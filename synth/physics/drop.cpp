@@ -8,6 +8,7 @@
 #include <random>
 #include <string>
 
+#include "host/core/timing.hpp"
 #include "synth/physics/bin_world.hpp"
 #include "synth/physics/bullet_units.hpp"
 #include "synth/physics/drop_layout.hpp"
@@ -24,10 +25,6 @@ constexpr int kStepsPerCheck = 6;
 constexpr int kChecksPerProgress = 5;
 
 using Clock = std::chrono::steady_clock;
-
-double seconds_since(Clock::time_point start) {
-  return std::chrono::duration<double>(Clock::now() - start).count();
-}
 
 void append_message(std::string& message, const std::string& text) {
   if (!message.empty()) message += "; ";

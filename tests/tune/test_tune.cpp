@@ -19,7 +19,6 @@
 #include "tests/support/cli_run.hpp"
 
 using namespace binpick;
-using namespace binpick::pipeline;
 namespace fs = std::filesystem;
 
 namespace {
