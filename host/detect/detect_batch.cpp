@@ -115,6 +115,7 @@ BatchSummary detect_dataset(Detector& detector, const BatchOptions& opt, std::os
   prepare_parts(opt.out, fingerprint);
 
   BatchSummary summary;
+  summary.program_build_s = detector.program_build_seconds();
   Progress progress("detect", scenes.size());
   for (std::size_t s = 0; s < scenes.size(); ++s) {
     const int scene = scenes[s];
@@ -170,11 +171,15 @@ BatchSummary detect_dataset(Detector& detector, const BatchOptions& opt, std::os
 std::string summary_line(const BatchSummary& s) {
   const DetectTimes& t = s.times;
   const double h = double(std::max<std::size_t>(t.hypotheses, 1));
+  const std::string builds =
+      s.program_build_s > 0 ? fmt::format("; OpenCL programs built once in {:.2f} s (not counted above)",
+                                          s.program_build_s)
+                            : "";
   return fmt::format(
       "{} scenes ({} done before), {} images, {} hypotheses, {} rows; ms per hypothesis: "
-      "preparation {:.1f}, voting {:.1f}, clustering {:.1f}, total {:.1f}",
+      "preparation {:.1f}, voting {:.1f}, clustering {:.1f}, total {:.1f}{}",
       s.scenes, s.skipped, s.images, t.hypotheses, s.rows, t.prepare_ms / h, t.vote_ms / h,
-      t.cluster_ms / h, (t.prepare_ms + t.vote_ms + t.cluster_ms) / h);
+      t.cluster_ms / h, (t.prepare_ms + t.vote_ms + t.cluster_ms) / h, builds);
 }
 
 }  // namespace binpick

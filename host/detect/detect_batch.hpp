@@ -31,6 +31,7 @@ struct BatchOptions {
 struct BatchSummary {
   std::size_t scenes = 0, skipped = 0, images = 0, rows = 0;
   DetectTimes times;  // of the scenes run now (not the skipped ones)
+  double program_build_s = 0;  // the detector's OpenCL program builds, outside every image's time
 };
 
 // The scene ids of DATASET/SPLIT (directories named by a number), ascending. InputError if the
@@ -52,7 +53,7 @@ std::vector<bop::ResultRow> detection_rows(const std::vector<Detection>& detecti
 BatchSummary detect_dataset(Detector& detector, const BatchOptions& opt, std::ostream* log);
 
 // "N scenes (K skipped), H hypotheses; ms per hypothesis: preparation P, voting V,
-// clustering C, total T".
+// clustering C, total T", then the program builds' seconds if the detector paid any.
 std::string summary_line(const BatchSummary& s);
 
 }  // namespace binpick

@@ -67,6 +67,9 @@ Detector::Detector(const PpfModel& model, const DetectParams& params, ocl::Devic
   check(params_);
   require(model.diameter > 0 && model.voxel_size > 0 && !model.cloud.points.empty(),
           "the PPF model is empty");
+  program_build_s_ = dev_.prebuild({"depth_to_points.cl", "scene_lowpass.cl", "scene_normals.cl",
+                                    "hypotheses.cl", "scene_crop.cl", "voxel_subsample.cl",
+                                    "device_scan.cl", "ppf_vote.cl", "pose_cluster.cl"});
   device_model_ = upload_model(dev_, model_);
 }
 

@@ -77,6 +77,9 @@ class Detector {
            ocl::Device& dev = ocl::Device::shared());
 
   const PpfModel& model() const { return model_; }
+  // Seconds the constructor spent building the OpenCL programs of detection (0 if this process
+  // had built them before): paid once, and kept out of every image's time.
+  double program_build_seconds() const { return program_build_s_; }
   const DetectParams& params() const { return params_; }
 
   // A depth image (BOP: raw * depth_scale mm). Detections best first (votes; ties: height
@@ -109,6 +112,7 @@ class Detector {
   void vote_and_cluster(const PointCloud& subsampled, Detection& d, DetectTimes& t);
 
   ocl::Device& dev_;
+  double program_build_s_ = 0;
   const PpfModel& model_;
   DetectParams params_;
   DeviceModel device_model_;

@@ -25,7 +25,8 @@ std::uint32_t exclusive_scan(ocl::Device& dev, const ocl::Buffer<std::uint32_t>&
   cl::Kernel chunks = dev.kernel("device_scan.cl", "scan_chunks");
   cl::Kernel totals = dev.kernel("device_scan.cl", "scan_chunk_sums");
   cl::Kernel add = dev.kernel("device_scan.cl", "scan_add_offsets");
-  ocl::launch(dev, chunks, blocks, in, count, chunk, out, sums);
+  // One work item per chunk, unpadded: a chunk past the last writes its (zero) sum.
+  ocl::launch_tasks(dev, chunks, blocks, in, count, chunk, out, sums);
   ocl::launch(dev, totals, 1, sums, static_cast<std::uint32_t>(blocks), out, count);
   ocl::launch(dev, add, n, out, count, chunk, sums);
   return sums.read(dev).back();

@@ -11,6 +11,7 @@
 #include <Eigen/Geometry>
 
 #include "host/core/error.hpp"
+#include "host/detect/detector.hpp"
 #include "host/detect/ppf_pose.hpp"
 #include "host/detect/ppf_vote.hpp"
 #include "host/train/ppf_features.hpp"
@@ -187,4 +188,17 @@ TEST(PpfVote, BadInputIsAnInputError) {
   scene.normals.pop_back();
   EXPECT_THROW(vote_peaks(dev, dm, scene, {0}, {}), InputError);
   EXPECT_TRUE(vote_peaks(dev, dm, PointCloud{}, {}, {}).empty());
+}
+
+// The detector builds every program of detection when it is made, so no image's time includes a
+// compile; a second detector on the same device builds nothing.
+TEST(Detector, BuildsItsProgramsOnceWhenMade) {
+  std::mt19937 rng(41);
+  const PpfModel m = random_model(60, rng);
+  ocl::Device dev;  // a device of its own: nothing is built in it yet
+  const Detector first(m, DetectParams{}, dev);
+  EXPECT_GT(first.program_build_seconds(), 0.0);
+  EXPECT_EQ(dev.prebuild({"depth_to_points.cl", "scene_normals.cl", "ppf_vote.cl", "pose_cluster.cl"}), 0.0);
+  const Detector second(m, DetectParams{}, dev);
+  EXPECT_EQ(second.program_build_seconds(), 0.0);
 }

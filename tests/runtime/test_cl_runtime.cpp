@@ -94,3 +94,13 @@ TEST(DepthToPoints, MismatchedSizeAndBadCameraAreInputErrors) {
   cam.fx = NAN;
   EXPECT_THROW(depth_to_points(test_device(), ok, cam), InputError);
 }
+
+// Programs are built once per device: prebuild pays for the build and says how long it took;
+// asking again costs nothing.
+TEST(ClRuntime, PrebuildBuildsEachProgramOnce) {
+  ocl::Device dev;  // a device of its own: nothing is built in it yet
+  EXPECT_GT(dev.prebuild({"scene_lowpass.cl", "depth_to_points.cl"}), 0.0);
+  EXPECT_EQ(dev.prebuild({"depth_to_points.cl", "scene_lowpass.cl"}), 0.0);
+  EXPECT_EQ(dev.prebuild({}), 0.0);
+  EXPECT_THROW(dev.prebuild({"no_such_program.cl"}), DeviceError);
+}

@@ -64,7 +64,7 @@ TEST(ScanKernels, scan_chunks_matches_reference) {
       ocl::Buffer<u32> in_buf = upload(dev, in);
       ocl::Buffer<u32> out = guarded_buffer(dev, std::vector<u32>(c.n + 1, kCanary), kGuard, kCanary);
       ocl::Buffer<u32> sums = guarded_buffer(dev, std::vector<u32>(c.blocks + 1, kCanary), kGuard, kCanary);
-      ocl::launch(dev, k, c.blocks, in_buf, u32(c.n), c.chunk, out, sums);
+      ocl::launch_tasks(dev, k, c.blocks, in_buf, u32(c.n), c.chunk, out, sums);
       const ScanChunksResult want = scan_chunks_reference(in, c.chunk, c.blocks);
       const std::vector<u32> got_out = out.read(dev), got_sums = sums.read(dev);
       const std::string at = "n " + std::to_string(c.n) + " blocks " + std::to_string(c.blocks) +
@@ -144,7 +144,7 @@ TEST(ScanKernels, SequenceOfTheThreeStepsIsTheExclusiveScan) {
   for (const Case& c : cases()) {
     const std::vector<u32> in = random_values(rng, c.n, 3);
     ocl::Buffer<u32> in_buf = upload(dev, in), out(dev, c.n + 1), sums(dev, c.blocks + 1);
-    ocl::launch(dev, chunks, c.blocks, in_buf, u32(c.n), c.chunk, out, sums);
+    ocl::launch_tasks(dev, chunks, c.blocks, in_buf, u32(c.n), c.chunk, out, sums);
     ScanChunksResult want = scan_chunks_reference(in, c.chunk, c.blocks);
     ASSERT_EQ(sums.read(dev, c.blocks), want.sums);
     ASSERT_EQ(out.read(dev, c.n), want.out);

@@ -65,24 +65,12 @@ template <class T>
 const T& arg(const T& v) { return v; }
 }  // namespace detail
 
-// Binds args to kernel parameters 0, 1, 2, ... and runs `global` work items (none if 0).
-// Kernels guard their tail themselves (`if (i >= n) return;`), so no rounding is needed.
-template <class... Args>
-void launch(Device& dev, cl::Kernel& kernel, std::size_t global, const Args&... args) {
-  if (global == 0) return;
-  const std::string name = kernel.getInfo<CL_KERNEL_FUNCTION_NAME>();
-  guarded("launching kernel " + name, [&] {
-    cl_uint index = 0;
-    (kernel.setArg(index++, detail::arg(args)), ...);
-    dev.queue().enqueueNDRangeKernel(kernel, cl::NullRange, cl::NDRange(global), cl::NullRange);
-  });
-}
-
 // Like launch, with work groups of `local` work items: the global size is rounded up to a
-// multiple of it (kernels guard their tail). PoCL compiles a kernel once per work-group size;
-// left to choose (cl::NullRange) it derives the size from the global size, so a kernel launched
-// on sizes that change every call (a list of pixels) may be compiled again and again (~100 ms
-// each for the normals kernel). A fixed local size compiles once.
+// multiple of it, and kernels guard their tail (`if (i >= n) return;`, never the global size).
+// PoCL compiles a kernel once per work-group size; left to choose (cl::NullRange) it derives the
+// size from the global size, so a kernel launched on sizes that change every call (a crop, the
+// poses of one hypothesis) is compiled again for each new size, ~100 ms each on a fresh machine.
+// A fixed local size compiles once.
 template <class... Args>
 void launch_local(Device& dev, cl::Kernel& kernel, std::size_t global, std::size_t local,
                   const Args&... args) {
@@ -96,6 +84,16 @@ void launch_local(Device& dev, cl::Kernel& kernel, std::size_t global, std::size
     dev.queue().enqueueNDRangeKernel(kernel, cl::NullRange, cl::NDRange(padded),
                                      cl::NDRange(local));
   });
+}
+
+// The work-group size of launch: one size for every kernel and every global size (see above).
+inline constexpr std::size_t kWorkGroupSize = 64;
+
+// Binds args to kernel parameters 0, 1, 2, ... and runs `global` work items (none if 0), in work
+// groups of kWorkGroupSize.
+template <class... Args>
+void launch(Device& dev, cl::Kernel& kernel, std::size_t global, const Args&... args) {
+  launch_local(dev, kernel, global, kWorkGroupSize, args...);
 }
 
 // Like launch, with one work item per work group: for work items that are independent tasks of

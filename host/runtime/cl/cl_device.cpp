@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cctype>
+#include <chrono>
 #include <cstdlib>
 
 #include "host/runtime/cl/cl_error.hpp"
@@ -134,6 +135,21 @@ const cl::Program& Device::program(std::string_view program_file) {
   if (auto it = programs_.find(program_file); it != programs_.end()) return it->second;
   cl::Program program = build("kernels/" + std::string(program_file), resolved_source(program_file));
   return programs_.emplace(std::string(program_file), std::move(program)).first->second;
+}
+
+double Device::prebuild(std::initializer_list<std::string_view> program_files) {
+  const auto start = std::chrono::steady_clock::now();
+  bool built = false;
+  for (std::string_view file : program_files) {
+    {
+      std::lock_guard lock(programs_mutex_);
+      if (programs_.find(file) != programs_.end()) continue;
+    }
+    program(file);
+    built = true;
+  }
+  return built ? std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count()
+               : 0.0;
 }
 
 cl::Kernel Device::kernel(std::string_view program_file, std::string_view kernel_name) {

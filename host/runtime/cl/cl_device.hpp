@@ -6,6 +6,7 @@
 // preferred, then any device.
 #pragma once
 
+#include <initializer_list>
 #include <map>
 #include <mutex>
 #include <string>
@@ -46,6 +47,12 @@ class Device {
   // kernel_name from kernels/program_file, building (and caching) the program on first use.
   // A failed build throws DeviceError carrying the compiler's log.
   cl::Kernel kernel(std::string_view program_file, std::string_view kernel_name);
+
+  // Builds (and caches) the programs of these kernels/ files now, so that a stage's first launch
+  // is not charged for a compile: PoCL compiles a program in about a second the first time on a
+  // machine (then loads it from its disk cache). Returns the seconds spent; 0 if every program
+  // was built before in this process.
+  double prebuild(std::initializer_list<std::string_view> program_files);
 
   // Builds OpenCL C source (label names it in errors); throws DeviceError with the build log.
   cl::Program build(std::string_view label, const std::string& source);
