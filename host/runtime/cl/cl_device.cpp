@@ -7,6 +7,7 @@
 
 #include "host/runtime/cl/cl_error.hpp"
 #include "host/core/error.hpp"
+#include "host/core/timing.hpp"
 
 namespace binpick::ocl {
 namespace {
@@ -148,8 +149,7 @@ double Device::prebuild(std::initializer_list<std::string_view> program_files) {
     program(file);
     built = true;
   }
-  return built ? std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count()
-               : 0.0;
+  return built ? seconds_since(start) : 0.0;
 }
 
 cl::Kernel Device::kernel(std::string_view program_file, std::string_view kernel_name) {
