@@ -18,8 +18,7 @@ constexpr double head_across_flats = 16;
 constexpr double head_height = 6.5;
 
 Eigen::Vector3d ring_point(int i, double radius, double z) {
-  const Eigen::Vector2d d = unit_circle_point(i, samples);
-  return {radius * d.x(), radius * d.y(), z};
+  return binpick::ring_point(i, samples, radius, z);
 }
 
 // Hex corners sit at multiples of 60 degrees; sample i lies on the side between the corners
@@ -39,22 +38,6 @@ Eigen::Vector3d hex_side_normal(int side) {
   return {std::cos(angle), std::sin(angle), 0};
 }
 
-void add_surface_of_revolution(PartBuilder& b, double r0, double z0, double r1, double z1) {
-  // Outward normal of the profile segment from (r0, z0) to (r1, z1), rotated to each sample.
-  const Eigen::Vector2d profile_normal = Eigen::Vector2d(z1 - z0, r0 - r1).normalized();
-  for (int i = 0; i < samples; ++i) {
-    auto normal_at = [&](int k) {
-      const Eigen::Vector2d d = unit_circle_point(k, samples);
-      return Eigen::Vector3d(profile_normal.x() * d.x(), profile_normal.x() * d.y(),
-                             profile_normal.y());
-    };
-    b.quad(b.vertex(ring_point(i, r0, z0), normal_at(i)),
-           b.vertex(ring_point(i + 1, r0, z0), normal_at(i + 1)),
-           b.vertex(ring_point(i + 1, r1, z1), normal_at(i + 1)),
-           b.vertex(ring_point(i, r1, z1), normal_at(i)));
-  }
-}
-
 }  // namespace
 
 PartShape make_bolt_shape() {
@@ -69,8 +52,8 @@ PartShape make_bolt_shape() {
     head.push_back(hex_point(i, head_top));
   }
   b.convex_polygon(tip, -Eigen::Vector3d::UnitZ());
-  add_surface_of_revolution(b, tip_radius, 0, shank_radius, chamfer);
-  add_surface_of_revolution(b, shank_radius, chamfer, shank_radius, head_bottom);
+  add_surface_of_revolution(b, samples, tip_radius, 0, shank_radius, chamfer);
+  add_surface_of_revolution(b, samples, shank_radius, chamfer, shank_radius, head_bottom);
 
   // Underside of the head: the ring between the shank and the hexagon.
   const Eigen::Vector3d down = -Eigen::Vector3d::UnitZ();

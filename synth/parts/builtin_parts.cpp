@@ -12,15 +12,25 @@ struct BuiltinPart {
   const char* name;
   const char* description;
   PartShape (*make_shape)();
+  double diameter;  // mm, exact after normalized()
 };
 
 constexpr BuiltinPart parts[] = {
     {"bracket", "L-bracket: two plates at 90 degrees, unequal legs, a round hole in each",
-     &make_bracket_shape},
+     &make_bracket_shape, builtin_part_diameter},
     {"bolt", "hex bolt: hexagonal head on a round shank with a chamfered tip (sixfold symmetric)",
-     &make_bolt_shape},
+     &make_bolt_shape, builtin_part_diameter},
     {"tee", "equal tee pipe fitting: hollow run with a hollow branch at 90 degrees",
-     &make_tee_shape},
+     &make_tee_shape, builtin_part_diameter},
+    // A sheet-metal part at its real size: scaled to 52 mm it would be 0.6 mm thick.
+    {"plate",
+     "sheet-metal plate, 1.5 mm thick and 120 mm across, with two round holes and a slot "
+     "(no symmetry)",
+     &make_plate_shape, 120},
+    {"shaft",
+     "stepped shaft: four round steps of different diameters, 4.6 times as long as wide "
+     "(symmetric about its axis only)",
+     &make_shaft_shape, builtin_part_diameter},
 };
 
 const BuiltinPart& find_part(const std::string& name) {
@@ -33,8 +43,9 @@ const BuiltinPart& find_part(const std::string& name) {
 }
 
 // The shape moved so its bounding box is centred on the origin and scaled about the origin to
-// the nominal diameter; its symmetries follow (a symmetry S becomes T S T^-1).
-PartShape normalized(PartShape shape) {
+// the part's nominal diameter; its symmetries follow (a symmetry S becomes T S T^-1).
+PartShape normalized(const BuiltinPart& part) {
+  PartShape shape = part.make_shape();
   const Eigen::Vector3f centre = bounding_box(shape.mesh.positions).center();
   translate_mesh(shape.mesh, -centre);
   for (auto& s : shape.symmetries.continuous) s.offset -= centre.cast<double>();
@@ -42,7 +53,7 @@ PartShape normalized(PartShape shape) {
     const Eigen::Vector3d c = centre.cast<double>();
     m.block<3, 1>(0, 3) += m.topLeftCorner<3, 3>() * c - c;
   }
-  const double factor = builtin_part_diameter / exact_diameter(shape.mesh.positions);
+  const double factor = part.diameter / exact_diameter(shape.mesh.positions);
   scale_mesh(shape.mesh, factor);
   shape.symmetries = shape.symmetries.scaled(factor);
   return shape;
@@ -56,16 +67,16 @@ std::vector<std::string> builtin_part_names() {
   return names;
 }
 
+double builtin_part_nominal_diameter(const std::string& name) { return find_part(name).diameter; }
+
 std::string builtin_part_description(const std::string& name) {
   return find_part(name).description;
 }
 
-Mesh make_builtin_part(const std::string& name) {
-  return normalized(find_part(name).make_shape()).mesh;
-}
+Mesh make_builtin_part(const std::string& name) { return normalized(find_part(name)).mesh; }
 
 PartSymmetries builtin_part_symmetries(const std::string& name) {
-  return normalized(find_part(name).make_shape()).symmetries;
+  return normalized(find_part(name)).symmetries;
 }
 
 }  // namespace binpick

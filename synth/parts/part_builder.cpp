@@ -69,4 +69,25 @@ Eigen::Vector2d unit_circle_point(int i, int n) {
   return {std::cos(angle), std::sin(angle)};
 }
 
+Eigen::Vector3d ring_point(int i, int n, double radius, double z) {
+  const Eigen::Vector2d d = unit_circle_point(i, n);
+  return {radius * d.x(), radius * d.y(), z};
+}
+
+void add_surface_of_revolution(PartBuilder& b, int n, double r0, double z0, double r1, double z1) {
+  // Outward normal of the profile segment from (r0, z0) to (r1, z1), rotated to each sample.
+  const Eigen::Vector2d profile_normal = Eigen::Vector2d(z1 - z0, r0 - r1).normalized();
+  for (int i = 0; i < n; ++i) {
+    auto normal_at = [&](int k) {
+      const Eigen::Vector2d d = unit_circle_point(k, n);
+      return Eigen::Vector3d(profile_normal.x() * d.x(), profile_normal.x() * d.y(),
+                             profile_normal.y());
+    };
+    b.quad(b.vertex(ring_point(i, n, r0, z0), normal_at(i)),
+           b.vertex(ring_point(i + 1, n, r0, z0), normal_at(i + 1)),
+           b.vertex(ring_point(i + 1, n, r1, z1), normal_at(i + 1)),
+           b.vertex(ring_point(i, n, r1, z1), normal_at(i)));
+  }
+}
+
 }  // namespace binpick

@@ -41,4 +41,14 @@ class PartBuilder {
 // to coincide (seams on an axis plane) do.
 Eigen::Vector2d unit_circle_point(int i, int n);
 
+// Point at sample i of n around the z axis, at this radius and height.
+Eigen::Vector3d ring_point(int i, int n, double radius, double z);
+
+// The band swept by the profile segment from (radius r0, height z0) to (r1, z1) about the z
+// axis, in n quads, with the segment's true normal turned to each sample. The outside is on the
+// right of the segment walked from (r0, z0) to (r1, z1) with r to the right and z up, so a
+// profile walked from the bottom up gives outward bands (a flat ring if z0 == z1; use
+// convex_polygon for a disc, whose centre would be a degenerate quad here).
+void add_surface_of_revolution(PartBuilder& b, int n, double r0, double z0, double r1, double z1);
+
 }  // namespace binpick

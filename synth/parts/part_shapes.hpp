@@ -1,5 +1,5 @@
 // The shapes of the built-in parts at their natural size (mm, before builtin_parts.cpp centres
-// them and scales them to the nominal diameter), with the symmetries they have in that frame.
+// them and scales them to their nominal diameters), with the symmetries they have in that frame.
 #pragma once
 
 #include "host/core/mesh.hpp"
@@ -20,5 +20,13 @@ PartShape make_bolt_shape();
 
 // Equal tee pipe fitting: a hollow run along x with a hollow branch along +z.
 PartShape make_tee_shape();
+
+// Sheet-metal plate 1.5 thick in the xy plane, with two round holes and a slot laid out
+// without symmetry.
+PartShape make_plate_shape();
+
+// Stepped shaft along z, centred on the origin, with different steps at its two ends: only its
+// axis is a symmetry.
+PartShape make_shaft_shape();
 
 }  // namespace binpick

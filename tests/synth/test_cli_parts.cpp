@@ -85,8 +85,8 @@ TEST_F(CliParts, OutWritesEveryPartAsGltfByDefault) {
   for (const auto& name : builtin_part_names()) {
     const fs::path path = dir_ / "parts" / (name + ".gltf");
     EXPECT_NE(r.out.find(path.string()), std::string::npos) << r.out;
-    EXPECT_NEAR(exact_diameter(load_model(path.string(), {}).positions), builtin_part_diameter,
-                1e-4);
+    EXPECT_NEAR(exact_diameter(load_model(path.string(), {}).positions),
+                builtin_part_nominal_diameter(name), 1e-4);
   }
 }
 
