@@ -121,8 +121,7 @@ std::vector<Scaling> scale_with_model_points(const Mesh& mesh, const BenchOption
     for (int r = 0; r < o.repeats; ++r) {
       DetectTimes t;
       for (const auto& s : scenes) (void)detector.detect(s.depth, s.camera, &t);
-      per_rep.push_back((t.prepare_ms + t.vote_ms + t.cluster_ms) /
-                        double(std::max<std::size_t>(t.hypotheses, 1)));
+      per_rep.push_back(t.total_ms() / double(std::max<std::size_t>(t.hypotheses, 1)));
     }
     detect.points.push_back({v, points, median(per_rep), entries});
   }

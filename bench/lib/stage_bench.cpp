@@ -84,7 +84,7 @@ StageRun run_stages(const PpfModel& model, const DetectParams& params,
       const auto found = detector.detect(scene.depth, scene.camera, &t, r == 0 ? &clouds : nullptr);
       add(reps[r], t);
       if (r != 0) continue;
-      const double seconds = (t.prepare_ms + t.vote_ms + t.cluster_ms) / 1e3;
+      const double seconds = t.total_ms() / 1e3;
       const auto rows = detection_rows(found, scene.scene_id, 0, 1, seconds);
       run.rows.insert(run.rows.end(), rows.begin(), rows.end());
       for (std::size_t k = 0; k < clouds.size(); ++k) {

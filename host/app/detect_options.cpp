@@ -57,12 +57,26 @@ void add_detect_cli_options(CLI::App* verb, DetectCliOptions& a, const std::stri
       verb->add_option("--normal-ratio", p.normal_ratio,
                        help("depth normals: neighbours within this fraction of the diameter"))
           ->capture_default_str();
+  o["candidates"] =
+      verb->add_option("--candidates", a.candidates,
+                       help("best pose clusters per hypothesis refined and verified, in [1, 64]"))
+          ->capture_default_str();
+  o["refine-iterations"] =
+      verb->add_option("--refine-iterations", a.refine_iterations,
+                       help("ICP steps per candidate pose, in [0, 100] (0: verify the voted pose)"))
+          ->capture_default_str();
+  o["verify-tolerance"] =
+      verb->add_option("--verify-tolerance", p.verify_tolerance,
+                       help("depth agreement of a verified model point, fraction of the diameter"))
+          ->capture_default_str();
 }
 
 DetectParams resolve(const DetectCliOptions& a) {
   DetectParams p = a.params;
   p.hypotheses = narrow(a.hypotheses, "--hypotheses");
   p.peaks_per_ref = narrow(a.peaks_per_ref, "--peaks-per-ref");
+  p.candidates = narrow(a.candidates, "--candidates");
+  p.refine_iterations = narrow(a.refine_iterations, "--refine-iterations");
   if (!a.params_file.empty()) {
     std::set<std::string> given;
     for (const auto& [name, option] : a.options)

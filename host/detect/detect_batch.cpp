@@ -97,8 +97,17 @@ std::vector<bop::ResultRow> detection_rows(const std::vector<Detection>& detecti
                                            int im_id, int obj_id, double seconds) {
   std::vector<bop::ResultRow> rows;
   for (const Detection& d : detections)
-    rows.push_back({scene_id, im_id, obj_id, double(d.votes), d.R, d.t, seconds});
+    rows.push_back({scene_id, im_id, obj_id, d.score, d.R, d.t, seconds});
   return rows;
+}
+
+std::string detection_line(std::size_t rank, const Detection& d) {
+  std::string line = fmt::format(
+      "#{} hypothesis {} candidate {}: score {:.3f} ({} of {} visible model points agree), "
+      "{} votes",
+      rank, d.index, d.candidate, d.score, d.inliers, d.visible, d.votes);
+  if (!d.reason.empty()) line += "; " + d.reason;
+  return line;
 }
 
 BatchSummary detect_dataset(Detector& detector, const BatchOptions& opt, std::ostream* log) {
@@ -145,11 +154,11 @@ BatchSummary detect_dataset(Detector& detector, const BatchOptions& opt, std::os
       rows.insert(rows.end(), image_rows.begin(), image_rows.end());
       ++summary.images;
       if (opt.verbose && log) {
-        std::string line = fmt::format("scene {} image {}: {} hypotheses, best {} votes;", scene,
-                                       im_id, times.hypotheses,
-                                       found.empty() ? 0 : found.front().votes);
+        std::string line = fmt::format("scene {} image {}: {} hypotheses;", scene, im_id,
+                                       times.hypotheses);
         for (const StageTime& st : times.stages) line += fmt::format(" {} {:.1f}", st.stage, st.ms);
         *log << line << " ms\n";
+        for (std::size_t r = 0; r < found.size(); ++r) *log << "  " << detection_line(r, found[r]) << "\n";
       }
       summary.times += times;
     }
@@ -177,9 +186,9 @@ std::string summary_line(const BatchSummary& s) {
                             : "";
   return fmt::format(
       "{} scenes ({} done before), {} images, {} hypotheses, {} rows; ms per hypothesis: "
-      "preparation {:.1f}, voting {:.1f}, clustering {:.1f}, total {:.1f}{}",
+      "preparation {:.1f}, voting {:.1f}, clustering {:.1f}, refinement {:.1f}, total {:.1f}{}",
       s.scenes, s.skipped, s.images, t.hypotheses, s.rows, t.prepare_ms / h, t.vote_ms / h,
-      t.cluster_ms / h, (t.prepare_ms + t.vote_ms + t.cluster_ms) / h, builds);
+      t.cluster_ms / h, t.refine_ms / h, t.total_ms() / h, builds);
 }
 
 }  // namespace binpick

@@ -49,11 +49,15 @@ bp_camera image_camera(const Eigen::Matrix3d& K, double depth_scale, std::uint32
 std::vector<bop::ResultRow> detection_rows(const std::vector<Detection>& detections, int scene_id,
                                            int im_id, int obj_id, double seconds);
 
+// One detection for --verbose: rank, hypothesis, score and its counts, votes, and the reason of
+// a 0 score or a refinement cut short.
+std::string detection_line(std::size_t rank, const Detection& d);
+
 // Runs the batch; progress on stderr, the log (verbose lines) to `log` if given.
 BatchSummary detect_dataset(Detector& detector, const BatchOptions& opt, std::ostream* log);
 
 // "N scenes (K skipped), H hypotheses; ms per hypothesis: preparation P, voting V,
-// clustering C, total T", then the program builds' seconds if the detector paid any.
+// clustering C, refinement F, total T", then the program builds' seconds if the detector paid any.
 std::string summary_line(const BatchSummary& s);
 
 }  // namespace binpick

@@ -2,11 +2,14 @@
 
 #include <algorithm>
 #include <cmath>
+#include <span>
 
 #include <fmt/format.h>
 
 #include "host/core/error.hpp"
+#include "host/detect/cloud_image.hpp"
 #include "host/detect/ppf_pose.hpp"
+#include "host/detect/pose_refine.hpp"
 #include "host/detect/scene_cloud.hpp"
 #include "host/detect/scene_crop.hpp"
 #include "host/detect/scene_neighbourhood.hpp"
@@ -41,6 +44,9 @@ std::optional<ParamProblem> find_param_problem(const DetectParams& p) {
       {p.peaks_per_ref >= 1 && p.peaks_per_ref <= 16, {"peaks-per-ref", double(p.peaks_per_ref), "[1, 16]"}},
       {in(p.peak_ratio, 0, 1), {"peak-ratio", p.peak_ratio, "[0, 1]"}},
       {in(p.normal_ratio, 0, 10) && p.normal_ratio > 0, {"normal-ratio", p.normal_ratio, "(0, 10]"}},
+      {p.candidates >= 1 && p.candidates <= 64, {"candidates", double(p.candidates), "[1, 64]"}},
+      {p.refine_iterations <= 100, {"refine-iterations", double(p.refine_iterations), "[0, 100]"}},
+      {in(p.verify_tolerance, 0, 1) && p.verify_tolerance > 0, {"verify-tolerance", p.verify_tolerance, "(0, 1]"}},
   };
   for (const auto& [ok, problem] : rules)
     if (!ok) return problem;
@@ -57,6 +63,7 @@ DetectTimes& DetectTimes::operator+=(const DetectTimes& o) {
   prepare_ms += o.prepare_ms;
   vote_ms += o.vote_ms;
   cluster_ms += o.cluster_ms;
+  refine_ms += o.refine_ms;
   hypotheses += o.hypotheses;
   stages.insert(stages.end(), o.stages.begin(), o.stages.end());
   return *this;
@@ -69,26 +76,17 @@ Detector::Detector(const PpfModel& model, const DetectParams& params, ocl::Devic
           "the PPF model is empty");
   program_build_s_ = dev_.prebuild({"depth_to_points.cl", "scene_lowpass.cl", "scene_normals.cl",
                                     "hypotheses.cl", "scene_crop.cl", "voxel_subsample.cl",
-                                    "device_scan.cl", "ppf_vote.cl", "pose_cluster.cl"});
+                                    "device_scan.cl", "ppf_vote.cl", "pose_cluster.cl",
+                                    "pose_fit.cl"});
   device_model_ = upload_model(dev_, model_);
+  fit_model_ = upload_fit_model(dev_, model_.cloud);
+  fit_geometry_.diameter = model_.diameter;
+  fit_geometry_.voxel_size = model_.voxel_size;
+  fit_geometry_.centroid = model_centroid(model_.cloud);
 }
 
-Detection Detector::detect_neighbourhood(const PointCloud& neighbourhood, DetectTimes* times) {
-  DetectTimes t;
-  Stopwatch clock;
-  Detection d;
-  d.neighbourhood = neighbourhood.points.size();
-  // The scene is subsampled like the model (its voxel), so that densities, and so votes, match.
-  const VoxelSubsample sub = voxel_subsample(dev_, neighbourhood, model_.voxel_size);
-  const double ms = clock.lap();
-  t.prepare_ms += ms;
-  t.stages.push_back({"subsample", ms});
-  vote_and_cluster(sub.cloud, d, t);
-  if (times) *times += t;
-  return d;
-}
-
-void Detector::vote_and_cluster(const PointCloud& subsampled, Detection& d, DetectTimes& t) {
+std::vector<PoseCluster> Detector::vote_and_cluster(const PointCloud& subsampled, Detection& d,
+                                                    DetectTimes& t) {
   auto& dev = dev_;
   Stopwatch clock;
   const std::vector<std::uint32_t> refs =
@@ -111,20 +109,64 @@ void Detector::vote_and_cluster(const PointCloud& subsampled, Detection& d, Dete
   ClusterOptions co;
   co.max_distance = float(params_.cluster_distance * model_.diameter);
   co.max_angle_deg = float(params_.cluster_angle);
-  const std::vector<PoseCluster> clusters = cluster_poses(dev, poses, co, &t.stages);
+  co.centre = fit_geometry_.centroid.cast<float>();
+  std::vector<PoseCluster> clusters = cluster_poses(dev, poses, co, &t.stages);
   t.cluster_ms += t.stages[t.stages.size() - 2].ms + t.stages.back().ms;
   d.clusters = clusters.size();
+  if (clusters.size() > params_.candidates) clusters.resize(params_.candidates);
   if (!clusters.empty()) {
     d.R = clusters.front().q.toRotationMatrix();
     d.t = clusters.front().t;
     d.votes = clusters.front().votes;
   }
+  return clusters;
 }
 
-std::vector<Detection> Detector::finish(std::vector<Detection> detections) const {
+std::vector<Detection> Detector::refine_and_rank(
+    std::vector<Detection> detections, const std::vector<std::vector<PoseCluster>>& candidates,
+    const ocl::Buffer<float>& points, const bp_camera& cam, DetectTimes& t) {
+  Stopwatch clock;
+  std::vector<PoseToRefine> poses;
+  std::vector<std::pair<std::size_t, std::uint32_t>> owner;  // (detection, candidate)
+  for (std::size_t k = 0; k < candidates.size(); ++k)
+    for (std::uint32_t c = 0; c < candidates[k].size(); ++c) {
+      poses.push_back({candidates[k][c].q.toRotationMatrix(), candidates[k][c].t});
+      owner.emplace_back(k, c);
+    }
+  RefineOptions ro;
+  ro.iterations = params_.refine_iterations;
+  ro.tolerance_ratio = float(params_.verify_tolerance);
+  const auto sums = [&](const std::vector<bp_pose_fit>& fits) {
+    return pose_fit_sums(dev_, points, cam, fit_model_, fits);
+  };
+  const std::vector<RefinedPose> refined =
+      refine_and_verify(sums, cam, fit_geometry_, fit_model_.size, poses, ro);
+  std::vector<bool> taken(detections.size(), false);
+  for (std::size_t i = 0; i < refined.size(); ++i) {
+    const auto [k, c] = owner[i];
+    Detection& d = detections[k];
+    const RefinedPose& r = refined[i];
+    // The best score; ties go to the more voted cluster, which comes first.
+    if (taken[k] && r.score <= d.score) continue;
+    taken[k] = true;
+    d.R = r.R;
+    d.t = r.t;
+    d.score = r.score;
+    d.votes = candidates[k][c].votes;
+    d.candidate = c;
+    d.visible = r.visible;
+    d.inliers = r.inliers;
+    d.reason = r.reason;
+  }
+  const double ms = clock.lap();
+  t.refine_ms += ms;
+  t.stages.push_back({"refine+verify", ms});
   std::erase_if(detections, [](const Detection& d) { return d.votes == 0; });
   std::stable_sort(detections.begin(), detections.end(),
-                   [](const Detection& a, const Detection& b) { return a.votes > b.votes; });
+                   [](const Detection& a, const Detection& b) {
+                     if (a.score != b.score) return a.score > b.score;
+                     return a.votes > b.votes;
+                   });
   return detections;
 }
 
@@ -159,6 +201,7 @@ std::vector<Detection> Detector::detect(const DepthImage& depth, const bp_camera
   t.prepare_ms += clock.lap();
 
   std::vector<Detection> detections;
+  std::vector<std::vector<PoseCluster>> candidates;
   for (std::size_t k = 0; k < hyps.size(); ++k) {
     CropOptions crop;
     crop.centre = hyps[k].point;
@@ -169,7 +212,7 @@ std::vector<Detection> Detector::detect(const DepthImage& depth, const bp_camera
     t.prepare_ms += clock.lap();
     Detection d;
     d.neighbourhood = sample.cropped;
-    vote_and_cluster(sample.cloud, d, t);
+    candidates.push_back(vote_and_cluster(sample.cloud, d, t));
     clock.lap();
     if (neighbourhoods) neighbourhoods->push_back(sample.cloud);
     d.hypothesis = hyps[k];
@@ -177,8 +220,9 @@ std::vector<Detection> Detector::detect(const DepthImage& depth, const bp_camera
     detections.push_back(d);
   }
   t.hypotheses += hyps.size();
+  detections = refine_and_rank(std::move(detections), candidates, scene.device->points, cam, t);
   if (times) *times += t;
-  return finish(std::move(detections));
+  return detections;
 }
 
 std::vector<Detection> Detector::detect(const PointCloud& input, DetectTimes* times) {
@@ -197,23 +241,35 @@ std::vector<Detection> Detector::detect(const PointCloud& input, DetectTimes* ti
   t.stages.push_back({"cloud hypotheses", prep_ms});
 
   std::vector<Detection> detections;
+  std::vector<std::vector<PoseCluster>> candidates;
   for (std::size_t k = 0; k < hyps.size(); ++k) {
     CropOptions crop;
     crop.centre = hyps[k].point;
     crop.radius = float(params_.crop_ratio * model_.diameter);
     const PointCloud neighbourhood = crop_sphere(cloud, crop);
-    const double crop_ms = clock.lap();
-    t.prepare_ms += crop_ms;
-    t.stages.push_back({"crop", crop_ms});
-    Detection d = detect_neighbourhood(neighbourhood, &t);
+    Detection d;
+    d.neighbourhood = neighbourhood.points.size();
+    // The scene is subsampled like the model (its voxel), so that densities, and so votes, match.
+    const VoxelSubsample sub = voxel_subsample(dev_, neighbourhood, model_.voxel_size);
+    const double ms = clock.lap();
+    t.prepare_ms += ms;
+    t.stages.push_back({"crop+subsample", ms});
+    candidates.push_back(vote_and_cluster(sub.cloud, d, t));
     clock.lap();
     d.hypothesis = hyps[k];
     d.index = static_cast<std::uint32_t>(k);
     detections.push_back(d);
   }
   t.hypotheses += hyps.size();
+  // Verification needs what the sensor saw along each ray: the cloud seen through a virtual
+  // camera (scene_cloud.hpp).
+  const CloudImage image = cloud_point_image(cloud, 0.5f * model_.voxel_size);
+  const ocl::Buffer<float> points(dev_, std::span<const float>(image.points.xyzw),
+                                  CL_MEM_READ_ONLY);
+  t.prepare_ms += clock.lap();
+  detections = refine_and_rank(std::move(detections), candidates, points, image.camera, t);
   if (times) *times += t;
-  return finish(std::move(detections));
+  return detections;
 }
 
 }  // namespace binpick

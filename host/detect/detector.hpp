@@ -15,6 +15,7 @@
 #include "host/detect/hypotheses.hpp"
 #include "host/detect/ppf_vote.hpp"
 #include "host/detect/pose_cluster.hpp"
+#include "host/detect/pose_fit.hpp"
 #include "host/core/timing.hpp"
 #include "host/core/mesh.hpp"
 #include "host/train/ppf_model.hpp"
@@ -34,6 +35,9 @@ struct DetectParams {
   std::uint32_t peaks_per_ref = 3; // accumulator peaks per reference point
   double peak_ratio = 0.9;         // ... with at least this fraction of its best votes
   double normal_ratio = 0.2;       // depth normals: neighbours within this distance (fraction)
+  std::uint32_t candidates = 4;    // best pose clusters per hypothesis refined and verified
+  std::uint32_t refine_iterations = 10;  // ICP steps per candidate (0: verify the voted pose)
+  double verify_tolerance = 0.04;  // depth agreement of a verified model point (fraction)
 };
 // The first parameter out of its range: its name (as in a --params file, docs/cli.md), its value
 // and the range allowed ("(0, 1]"). The caller that knows where the value came from (an option,
@@ -53,7 +57,11 @@ struct Detection {
   std::uint32_t index = 0;          // the hypothesis' rank by height (0 = highest)
   Eigen::Matrix3d R = Eigen::Matrix3d::Identity();
   Eigen::Vector3d t = Eigen::Vector3d::Zero();
-  std::uint64_t votes = 0;          // of the best cluster: the score
+  double score = 0;                 // verified score in [0, 1] (pose_refine.hpp): the ranking
+  std::uint64_t votes = 0;          // of the pose's cluster
+  std::uint32_t candidate = 0;      // which of the hypothesis' clusters (0 = most voted)
+  std::uint32_t visible = 0, inliers = 0;  // model points seen at the pose, and agreeing
+  std::string reason;               // why the score is 0 or refinement stopped early
   // neighbourhood: points in the crop (from a depth image: pixels with data, whether or not
   // they have a normal, since normals are computed only for the points subsampling keeps).
   std::size_t neighbourhood = 0, subsampled = 0, refs = 0, peaks = 0, clusters = 0;
@@ -64,9 +72,11 @@ struct DetectTimes {
   double prepare_ms = 0;  // scene preparation, highest points, crops, subsampling
   double vote_ms = 0;     // features, votes, peaks
   double cluster_ms = 0;  // poses, compatibility, grouping
+  double refine_ms = 0;   // refinement and verification
   std::size_t hypotheses = 0;
   StageTimings stages;    // every stage in order, for --verbose
   DetectTimes& operator+=(const DetectTimes& o);
+  double total_ms() const { return prepare_ms + vote_ms + cluster_ms + refine_ms; }
 };
 
 class Detector {
@@ -82,8 +92,8 @@ class Detector {
   double program_build_seconds() const { return program_build_s_; }
   const DetectParams& params() const { return params_; }
 
-  // A depth image (BOP: raw * depth_scale mm). Detections best first (votes; ties: height
-  // order); a hypothesis without any vote gives no detection. InputError for an image that
+  // A depth image (BOP: raw * depth_scale mm). Detections best first (verified score; ties:
+  // votes, then height order); a hypothesis without any vote gives no detection. InputError for an image that
   // does not match the camera or has no valid pixel.
   // If neighbourhoods is given, each hypothesis' subsampled neighbourhood (what it voted on) is
   // appended to it in hypothesis order, for the benchmark (which hands the same crops to
@@ -97,25 +107,30 @@ class Detector {
   // InputError for NaN or infinite values or an empty cloud.
   std::vector<Detection> detect(const PointCloud& cloud, DetectTimes* times = nullptr);
 
-  // Steps 3-5 on one neighbourhood (points with normals): subsample, vote, cluster. votes = 0
-  // if nothing voted.
-  Detection detect_neighbourhood(const PointCloud& neighbourhood, DetectTimes* times = nullptr);
-
-  // Steps 4-5 only, on a neighbourhood already subsampled at the model's voxel (as detect()
-  // hands out); counts as one hypothesis in times. The benchmark varies the reference ratio on
-  // these fixed crops.
+  // Voting and clustering only, on a neighbourhood already subsampled at the model's voxel (as
+  // detect() hands out): the most voted cluster, unrefined, score 0; counts as one hypothesis in
+  // times. The benchmark varies the reference ratio on these fixed crops.
   Detection detect_subsampled(const PointCloud& subsampled, DetectTimes* times = nullptr);
 
  private:
-  std::vector<Detection> finish(std::vector<Detection> detections) const;
-  // Steps 4-5 on a subsampled neighbourhood with normals: reference points, votes, clusters.
-  void vote_and_cluster(const PointCloud& subsampled, Detection& d, DetectTimes& t);
+  // Reference points, votes, clusters of a subsampled neighbourhood with normals: the best
+  // `candidates` clusters, most voted first.
+  std::vector<PoseCluster> vote_and_cluster(const PointCloud& subsampled, Detection& d,
+                                            DetectTimes& t);
+  // Refines and verifies every hypothesis' candidates against a point image on the device
+  // (one batch for all), keeps each hypothesis' best and ranks them.
+  std::vector<Detection> refine_and_rank(std::vector<Detection> detections,
+                                         const std::vector<std::vector<PoseCluster>>& candidates,
+                                         const ocl::Buffer<float>& points, const bp_camera& cam,
+                                         DetectTimes& t);
 
   ocl::Device& dev_;
   double program_build_s_ = 0;
   const PpfModel& model_;
   DetectParams params_;
   DeviceModel device_model_;
+  DeviceFitModel fit_model_;
+  FitGeometry fit_geometry_;
 };
 
 }  // namespace binpick

@@ -148,8 +148,12 @@ std::vector<PoseCluster> cluster_poses(ocl::Device& dev, const std::vector<PoseC
     for (std::uint32_t i : order) kept.push_back(input[i]);
     poses = &kept;
   }
-  const PoseCompatibility m = pose_compatibility(dev, *poses, opt);
-  std::vector<PoseCluster> clusters = group_poses(*poses, m);
+  // Compare the posed centres, not the posed origins (see ClusterOptions::centre).
+  std::vector<PoseCandidate> centred = *poses;
+  for (PoseCandidate& p : centred) p.t += p.q * opt.centre;
+  const PoseCompatibility m = pose_compatibility(dev, centred, opt);
+  std::vector<PoseCluster> clusters = group_poses(centred, m);
+  for (PoseCluster& c : clusters) c.t -= c.q * opt.centre.cast<double>();
   if (timings) timings->push_back({"cluster", clock.lap()});
   return clusters;
 }

@@ -26,6 +26,10 @@ namespace binpick {
 struct ClusterOptions {
   float max_distance = 7.5f;  // mm (14.4 % of a 52 mm diameter)
   float max_angle_deg = 20.0f;
+  // Model-frame point whose posed positions are compared (cluster_poses): the model's centroid.
+  // A CAD origin far from the part would otherwise turn a small rotation difference into a large
+  // translation difference and split one pose into several clusters.
+  Eigen::Vector3f centre = Eigen::Vector3f::Zero();
 };
 void check(const ClusterOptions& opt);
 
@@ -62,8 +66,9 @@ struct PoseCluster {
 std::vector<PoseCluster> group_poses(const std::vector<PoseCandidate>& poses,
                                      const PoseCompatibility& compatibility);
 
-// Both steps: at most kMaxClusterPoses candidates, the most voted (ties: lower index) if there
-// are more. Appends the stage "cluster" to timings if given.
+// Both steps on the poses moved to opt.centre (t + R centre, then back for the clusters' t):
+// at most kMaxClusterPoses candidates, the most voted (ties: lower index) if there are more.
+// Appends the stage "cluster" to timings if given.
 std::vector<PoseCluster> cluster_poses(ocl::Device& dev, const std::vector<PoseCandidate>& poses,
                                        const ClusterOptions& opt,
                                        StageTimings* timings = nullptr);

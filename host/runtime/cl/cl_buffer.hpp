@@ -80,7 +80,11 @@ void launch_local(Device& dev, cl::Kernel& kernel, std::size_t global, std::size
   const std::string name = kernel.getInfo<CL_KERNEL_FUNCTION_NAME>();
   guarded("launching kernel " + name, [&] {
     cl_uint index = 0;
-    (kernel.setArg(index++, detail::arg(args)), ...);
+    try {
+      ((kernel.setArg(index, detail::arg(args)), ++index), ...);
+    } catch (const cl::Error& e) {
+      rethrow(e, "binding argument " + std::to_string(index) + " of kernel " + name);
+    }
     dev.queue().enqueueNDRangeKernel(kernel, cl::NullRange, cl::NDRange(padded),
                                      cl::NDRange(local));
   });

@@ -1,0 +1,134 @@
+#include "host/detect/pose_refine.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include <Eigen/Cholesky>
+#include <Eigen/Geometry>
+#include <fmt/format.h>
+
+#include "host/core/error.hpp"
+
+namespace binpick {
+namespace {
+
+// A step rotates by at most this (radians): a step is a linearisation, trusted only nearby.
+constexpr double kMaxStepAngle = 0.25;
+
+FitThresholds thresholds(const FitGeometry& g, const RefineOptions& opt, float gate) {
+  FitThresholds th;
+  th.gate = gate;
+  th.tolerance = opt.tolerance_ratio * g.diameter;
+  // The z-buffer cell is about 1.5 voxels wide: a sloped surface spans about that much depth in
+  // it, a surface hidden behind the part's near side lies farther back.
+  th.slack = std::max(2.0f * g.voxel_size, th.tolerance);
+  return th;
+}
+
+void apply_step(const Eigen::Matrix<double, 6, 1>& x, const Eigen::Vector3d& centre,
+                PoseToRefine& pose) {
+  Eigen::Vector3d w = x.head<3>();
+  if (w.norm() > kMaxStepAngle) w *= kMaxStepAngle / w.norm();
+  const Eigen::Matrix3d dR =
+      w.norm() > 0 ? Eigen::AngleAxisd(w.norm(), w.normalized()).toRotationMatrix()
+                   : Eigen::Matrix3d::Identity();
+  pose.R = dR * pose.R;
+  pose.t = dR * (pose.t - centre) + centre + x.tail<3>();
+  // Re-orthonormalise: many small steps in double drift only slightly, but a rotation it is.
+  pose.R = Eigen::Quaterniond(pose.R).normalized().toRotationMatrix();
+}
+
+}  // namespace
+
+void check(const RefineOptions& o) {
+  const auto bad = [](double v, double lo, double hi) { return !(v >= lo && v <= hi); };
+  if (o.iterations > 100) throw InputError(fmt::format("refine iterations {} must be in [0, 100]", o.iterations));
+  if (bad(o.gate_start_ratio, 1e-4, 10))
+    throw InputError(fmt::format("refine gate {} must be in [1e-4, 10]", o.gate_start_ratio));
+  if (bad(o.tolerance_ratio, 1e-4, 1))
+    throw InputError(fmt::format("verify tolerance {} must be in [1e-4, 1]", o.tolerance_ratio));
+  if (bad(o.min_support_ratio, 0, 1))
+    throw InputError(fmt::format("verify min support {} must be in [0, 1]", o.min_support_ratio));
+}
+
+Eigen::Matrix<double, 6, 1> gauss_newton_step(const FitSums& s) {
+  Eigen::Matrix<double, 6, 6> h = s.jtj;
+  const double trace = h.trace();
+  if (!(trace > 0) || !std::isfinite(trace)) return Eigen::Matrix<double, 6, 1>::Zero();
+  // Levenberg damping: directions the surface does not constrain (sliding along a plane,
+  // turning about a shaft's axis) stay where voting put them instead of drifting.
+  h.diagonal().array() += 1e-4 * trace / 6.0;
+  const Eigen::Matrix<double, 6, 1> x = h.ldlt().solve(s.jtr);
+  return x.allFinite() ? x : Eigen::Matrix<double, 6, 1>::Zero();
+}
+
+std::vector<RefinedPose> refine_and_verify(const FitSumsFn& sums_of, const bp_camera& cam,
+                                           const FitGeometry& g, std::uint32_t model_points,
+                                           const std::vector<PoseToRefine>& input,
+                                           const RefineOptions& opt) {
+  check(opt);
+  std::vector<PoseToRefine> poses = input;
+  std::vector<RefinedPose> out(poses.size());
+  std::vector<bool> active(poses.size(), true);
+  const float tolerance = opt.tolerance_ratio * g.diameter;
+  const float gate_start = opt.gate_start_ratio * g.diameter;
+  const float gate_end = std::min(gate_start, 2.0f * tolerance);
+  std::vector<bp_pose_fit> fits(poses.size());
+  std::vector<std::size_t> index;  // fits[i] is pose index[i]
+  for (std::uint32_t it = 0; it < opt.iterations; ++it) {
+    const float gate = opt.iterations == 1
+                           ? gate_end
+                           : float(gate_start * std::pow(double(gate_end) / gate_start,
+                                                         double(it) / (opt.iterations - 1)));
+    fits.clear();
+    index.clear();
+    for (std::size_t k = 0; k < poses.size(); ++k) {
+      if (!active[k]) continue;
+      fits.push_back(make_pose_fit(poses[k].R, poses[k].t, cam, g, thresholds(g, opt, gate)));
+      index.push_back(k);
+    }
+    if (fits.empty()) break;
+    const std::vector<FitSums> sums = sums_of(fits);
+    for (std::size_t i = 0; i < fits.size(); ++i) {
+      const std::size_t k = index[i];
+      if (sums[i].used < opt.min_pairs) {
+        out[k].reason = fmt::format("refinement stopped after {} steps: {} point pairs, fewer than {}",
+                                    it, sums[i].used, opt.min_pairs);
+        active[k] = false;
+        continue;
+      }
+      const Eigen::Vector3d centre(fits[i].centre[0], fits[i].centre[1], fits[i].centre[2]);
+      apply_step(gauss_newton_step(sums[i]), centre, poses[k]);
+      out[k].iterations = it + 1;
+    }
+  }
+
+  fits.clear();
+  for (const PoseToRefine& p : poses)
+    fits.push_back(make_pose_fit(p.R, p.t, cam, g, thresholds(g, opt, gate_end)));
+  const std::vector<FitSums> sums = sums_of(fits);
+  const double min_support = double(opt.min_support_ratio) * model_points;
+  for (std::size_t k = 0; k < poses.size(); ++k) {
+    RefinedPose& r = out[k];
+    const FitSums& s = sums[k];
+    r.R = poses[k].R;
+    r.t = poses[k].t;
+    r.visible = s.visible();
+    r.missing = s.count[BP_FIT_MISSING];
+    r.inliers = s.count[BP_FIT_INLIER];
+    r.see_through = s.count[BP_FIT_SEE_THROUGH];
+    r.occluded = s.count[BP_FIT_OCCLUDED];
+    if (r.visible == 0) {
+      r.score = 0;
+      r.reason = "no model surface visible at this pose";
+    } else if (r.visible == r.missing) {
+      r.score = 0;
+      r.reason = "no depth where the model would be seen";
+    } else {
+      r.score = r.inliers / std::max(double(r.visible - r.missing), std::max(min_support, 1.0));
+    }
+  }
+  return out;
+}
+
+}  // namespace binpick

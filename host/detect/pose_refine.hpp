@@ -1,0 +1,72 @@
+// Refinement and verification of candidate poses against the measured depth (docs/pipeline.md,
+// "Refinement and the verified score").
+//
+// Refinement: point-to-plane ICP with projective association. The model points visible at the
+// current pose are paired with the measured point at their pixel; pairs farther apart along the
+// ray than a gate are dropped, the rest weighted by Tukey's biweight of their point-to-plane
+// residual, and one damped Gauss-Newton step solves for a small rotation about the posed
+// centroid and a translation. The gate shrinks geometrically from a wide one (a pose one
+// 12-degree alpha bin off moves the part's rim by about a fifth of its diameter) to twice the
+// inlier tolerance over the iterations, so that the first steps pull a rough pose in and the
+// last ones fit only the surface that agrees.
+//
+// Verification: at the refined pose, the score is
+//     inliers / max(visible - missing, min_support)
+// visible = model points facing the camera and not hidden by the model itself, missing = those
+// where the sensor has no depth (neutral), inliers = those whose measured depth is within the
+// tolerance. Model surface where the sensor sees through it or something lies in front of it
+// counts against the pose. min_support (a fraction of the model's points) keeps a pose that
+// shows the camera only a sliver (a plate edge on) from scoring high on a handful of points.
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "host/detect/pose_fit.hpp"
+
+namespace binpick {
+
+struct RefineOptions {
+  std::uint32_t iterations = 10;  // ICP steps; 0: verify only
+  float gate_start_ratio = 0.2f;  // first association gate, fraction of the diameter
+  float tolerance_ratio = 0.04f;  // inlier tolerance, fraction of the diameter
+  float min_support_ratio = 0.1f; // score's least denominator, fraction of the model's points
+  std::uint32_t min_pairs = 12;   // fewer associated points: stop refining (the step is unsound)
+};
+void check(const RefineOptions& opt);
+
+struct RefinedPose {
+  Eigen::Matrix3d R = Eigen::Matrix3d::Identity();
+  Eigen::Vector3d t = Eigen::Vector3d::Zero();
+  double score = 0;            // in [0, 1]
+  std::uint32_t visible = 0, missing = 0, inliers = 0, see_through = 0, occluded = 0;
+  std::uint32_t iterations = 0;  // ICP steps taken
+  std::string reason;          // why the score is 0 or refinement stopped early; empty if neither
+};
+
+// The sums of the given fits against one scene: pose_fit_sums on a device scene, or the
+// reference (tests).
+using FitSumsFn = std::function<std::vector<FitSums>(const std::vector<bp_pose_fit>&)>;
+
+struct PoseToRefine {
+  Eigen::Matrix3d R = Eigen::Matrix3d::Identity();
+  Eigen::Vector3d t = Eigen::Vector3d::Zero();
+};
+
+// Refines all poses together (one kernel launch per iteration for all of them) and scores them.
+// geometry.diameter, voxel_size > 0; model_points = the model's point count (for min_support).
+std::vector<RefinedPose> refine_and_verify(const FitSumsFn& sums, const bp_camera& cam,
+                                           const FitGeometry& geometry,
+                                           std::uint32_t model_points,
+                                           const std::vector<PoseToRefine>& poses,
+                                           const RefineOptions& opt = {});
+
+// One damped Gauss-Newton step from the sums: (rotation vector about the pose's centre,
+// translation), zero when the system is empty.
+Eigen::Matrix<double, 6, 1> gauss_newton_step(const FitSums& sums);
+
+}  // namespace binpick

@@ -1,0 +1,65 @@
+/* One step of pose refinement and the verification counts, for many poses at once
+ * (kernels/pose_fit_shared.h says what is counted and why).
+ *
+ * pose_fit: one work group of BP_FIT_GROUP items per pose. The group clears the pose's z-buffer
+ * grid, writes every posed model point's depth into it (atomic_min on the float's bits, which
+ * order like the floats for positive values), then classifies every point against the grid
+ * and the measured point image and adds up the Gauss-Newton terms. Each work item writes its
+ * own partial sums (sums[pose * BP_FIT_GROUP + item]); the host adds the 64 in double, so the
+ * result does not depend on a float reduction order. The grid of a pose is touched only by its
+ * own group, so the group's barriers are enough. */
+#pragma OPENCL FP_CONTRACT OFF
+#include "binpick_shared.h"
+#include "pose_fit_shared.h"
+
+__kernel void pose_fit(__global const float4* points, const bp_camera cam,
+                       __global const float4* model_points, __global const float4* model_normals,
+                       const uint n_model, __global const bp_pose_fit* fits, const uint n_fits,
+                       __global uint* grids, __global bp_fit_sums* sums) {
+  const uint k = get_group_id(0);
+  const uint lid = get_local_id(0);
+  if (k >= n_fits) return; /* the whole group: the launch is n_fits groups exactly */
+  const bp_pose_fit f = fits[k];
+  const bp_camera c = cam;
+  __global uint* grid = grids + (size_t)k * BP_FIT_MAX_DIM * BP_FIT_MAX_DIM;
+  const uint cells = f.dim * f.dim;
+  for (uint i = lid; i < cells; i += BP_FIT_GROUP) grid[i] = 0x7f800000u; /* +inf */
+  barrier(CLK_GLOBAL_MEM_FENCE);
+
+  float q[3], nq[3];
+  uint pixel = 0u, cell = 0u;
+  for (uint j = lid; j < n_model; j += BP_FIT_GROUP) {
+    const float4 m = model_points[j], n = model_normals[j];
+    if (bp_fit_project(&f, &c, m.x, m.y, m.z, n.x, n.y, n.z, q, nq, &pixel, &cell))
+      atomic_min(&grid[cell], as_uint(q[2]));
+  }
+  barrier(CLK_GLOBAL_MEM_FENCE);
+
+  bp_fit_sums s;
+  for (int i = 0; i < 21; ++i) s.jtj[i] = 0.0f;
+  for (int i = 0; i < 6; ++i) s.jtr[i] = 0.0f;
+  for (uint i = 0; i < BP_FIT_CLASSES; ++i) s.count[i] = 0u;
+  s.cost = 0.0f;
+  s.used = 0u;
+  s.reserved[0] = s.reserved[1] = 0u;
+  float a[6];
+  float r = 0.0f;
+  for (uint j = lid; j < n_model; j += BP_FIT_GROUP) {
+    const float4 m = model_points[j], n = model_normals[j];
+    if (bp_fit_project(&f, &c, m.x, m.y, m.z, n.x, n.y, n.z, q, nq, &pixel, &cell) != 2) continue;
+    const float4 p = points[pixel];
+    const uint cls = bp_fit_classify(&f, q, nq, as_float(grid[cell]), p.x, p.y, p.z, p.w);
+    ++s.count[cls];
+    if (cls == BP_FIT_HIDDEN || cls == BP_FIT_MISSING) continue;
+    const float w = bp_fit_term(&f, q, nq, p.x, p.y, p.z, a, &r);
+    if (w == 0.0f) continue;
+    ++s.used;
+    int e = 0;
+    for (int row = 0; row < 6; ++row) {
+      for (int col = row; col < 6; ++col) s.jtj[e++] += w * a[row] * a[col];
+      s.jtr[row] += w * a[row] * r;
+    }
+    s.cost += w * r * r;
+  }
+  sums[(size_t)k * BP_FIT_GROUP + lid] = s;
+}

@@ -1,0 +1,122 @@
+/* Pose refinement and verification against a depth image (kernels/pose_fit.cl and its C++
+ * reference, host/detect/pose_fit.cpp), shared so that both classify every model point the
+ * same way. Valid OpenCL C 1.2 and C++20; include after binpick_shared.h.
+ *
+ * A pose is compared with the measured point image through the model's points: each point is
+ * posed, and if it faces the camera, projects into the image and is the nearest model surface in
+ * its cell of a coarse z-buffer of the posed model (so the far side of a concave part, hidden
+ * behind its near side, does not count), it is visible, and the measured point at its pixel
+ * says what the sensor saw there:
+ *   missing      no depth at that pixel: neutral (shadows, shiny metal, out of range);
+ *   inlier       measured point within `tolerance` of the model surface (bp_fit_classify);
+ *   see-through  otherwise, measured depth farther: the sensor looks through the part;
+ *   occluded     otherwise, measured depth nearer: something lies in front of the part.
+ * Visible points with a measured point within `gate` along the ray also give one point-to-plane
+ * term of Gauss-Newton ICP (projective association), weighted by Tukey's biweight. */
+#ifndef BINPICK_POSE_FIT_SHARED_H
+#define BINPICK_POSE_FIT_SHARED_H
+
+/* Work items per pose: one work group fits one pose. */
+#define BP_FIT_GROUP 64
+/* Largest z-buffer grid side (cells). */
+#define BP_FIT_MAX_DIM 64
+/* A model point faces the camera when the cosine between its normal and the ray to the camera
+ * is at least this (about 80 degrees): grazing surfaces are where depth sensors see least. */
+#define BP_FIT_MIN_COS 0.17f
+
+#define BP_FIT_HIDDEN 0u /* faces away, outside the image or grid, or behind the model itself */
+#define BP_FIT_MISSING 1u
+#define BP_FIT_INLIER 2u
+#define BP_FIT_SEE_THROUGH 3u
+#define BP_FIT_OCCLUDED 4u
+#define BP_FIT_CLASSES 5u
+
+/* One pose to fit; all 4-byte scalars (96 bytes). */
+typedef struct {
+  float r[9];       /* model -> camera rotation, row-major */
+  float t[3];       /* mm */
+  float centre[3];  /* camera frame: the posed model centroid, the pivot of the ICP update */
+  float gate;       /* mm: a measured point farther than this along the ray is not associated */
+  float tolerance;  /* mm: |measured - model depth| within this is an inlier */
+  float slack;      /* mm: a point within this of its z-buffer cell's nearest is not hidden */
+  float u0, v0;     /* pixel coordinates of the z-buffer grid's corner */
+  float cell;       /* z-buffer cell side, pixels */
+  bp_u32 dim;       /* cells per side, <= BP_FIT_MAX_DIM; 0: nothing can be visible */
+  bp_u32 reserved[2];
+} bp_pose_fit;
+
+/* What one work item (kernel) or one pose (reference) adds up. */
+typedef struct {
+  float jtj[21];    /* upper triangle of sum w a a^T, row by row; a = ((q - c) x n, n) */
+  float jtr[6];     /* sum w a r */
+  float cost;       /* sum w r^2 */
+  bp_u32 count[BP_FIT_CLASSES]; /* model points per class */
+  bp_u32 used;      /* terms with weight > 0 */
+  bp_u32 reserved[2];
+} bp_fit_sums;
+
+/* Posed model point q = R m + t and normal nq = R n; its pixel (row-major index) and z-buffer
+ * cell. Returns 0 if it falls outside the image or the grid, else 2 if it faces the camera and
+ * 1 if not (the z-buffer takes both: a wall seen edge on still hides what lies behind it). */
+BP_FN int bp_fit_project(const bp_pose_fit* f, const bp_camera* cam, float mx, float my, float mz,
+                         float nx, float ny, float nz, float* q, float* nq, bp_u32* pixel,
+                         bp_u32* cell) {
+  for (int i = 0; i < 3; ++i) {
+    q[i] = f->r[3 * i] * mx + f->r[3 * i + 1] * my + f->r[3 * i + 2] * mz + f->t[i];
+    nq[i] = f->r[3 * i] * nx + f->r[3 * i + 1] * ny + f->r[3 * i + 2] * nz;
+  }
+  if (!(q[2] > 0.0f)) return 0;
+  const float u = cam->fx * q[0] / q[2] + cam->cx;
+  const float v = cam->fy * q[1] / q[2] + cam->cy;
+  const float pu = BP_FLOOR(u + 0.5f), pv = BP_FLOOR(v + 0.5f);
+  if (!(pu >= 0.0f && pv >= 0.0f && pu < (float)cam->width && pv < (float)cam->height)) return 0;
+  const float gu = BP_FLOOR((u - f->u0) / f->cell), gv = BP_FLOOR((v - f->v0) / f->cell);
+  if (!(gu >= 0.0f && gv >= 0.0f && gu < (float)f->dim && gv < (float)f->dim)) return 0;
+  *pixel = (bp_u32)pv * cam->width + (bp_u32)pu;
+  *cell = (bp_u32)gv * f->dim + (bp_u32)gu;
+  /* Facing: -nq . q >= cos * |q| * |nq|. */
+  const float dot = -(nq[0] * q[0] + nq[1] * q[1] + nq[2] * q[2]);
+  const float len2 = (q[0] * q[0] + q[1] * q[1] + q[2] * q[2]) *
+                     (nq[0] * nq[0] + nq[1] * nq[1] + nq[2] * nq[2]);
+  return dot > 0.0f && dot * dot >= BP_FIT_MIN_COS * BP_FIT_MIN_COS * len2 ? 2 : 1;
+}
+
+/* The class of a visible model point q (normal nq) at depth q[2] whose cell's nearest model
+ * depth is zmin, given the measured point p there (w = 0: no data). An inlier lies within the
+ * tolerance of the model's tangent plane (a pixel spans a range of depths on a sloped surface,
+ * so the depth difference alone would reject a right pose's sloped faces) and not farther than
+ * three tolerances along the ray (the plane test is lenient near grazing). */
+BP_FN bp_u32 bp_fit_classify(const bp_pose_fit* f, const float* q, const float* nq, float zmin,
+                             float px, float py, float pz, float pw) {
+  if (q[2] > zmin + f->slack) return BP_FIT_HIDDEN;
+  if (pw == 0.0f) return BP_FIT_MISSING;
+  const float dz = pz - q[2];
+  const float r = nq[0] * (px - q[0]) + nq[1] * (py - q[1]) + nq[2] * (pz - q[2]);
+  if (r <= f->tolerance && -r <= f->tolerance && dz <= 3.0f * f->tolerance &&
+      -dz <= 3.0f * f->tolerance)
+    return BP_FIT_INLIER;
+  return dz > 0.0f ? BP_FIT_SEE_THROUGH : BP_FIT_OCCLUDED;
+}
+
+/* The ICP term of a visible point q (normal nq) and the measured point p: the point-to-plane
+ * residual r = nq . (p - q) and a = ((q - c) x nq, nq), so that a small rotation w about c and
+ * translation v change r by -a . (w, v). Returns the weight, 0 if p is beyond the gate. */
+BP_FN float bp_fit_term(const bp_pose_fit* f, const float* q, const float* nq, float px, float py,
+                        float pz, float* a, float* r) {
+  if (!(pz - q[2] <= f->gate && q[2] - pz <= f->gate)) return 0.0f;
+  const float res = nq[0] * (px - q[0]) + nq[1] * (py - q[1]) + nq[2] * (pz - q[2]);
+  const float u = res / f->gate;
+  if (!(u * u < 1.0f)) return 0.0f;
+  const float cx = q[0] - f->centre[0], cy = q[1] - f->centre[1], cz = q[2] - f->centre[2];
+  a[0] = cy * nq[2] - cz * nq[1];
+  a[1] = cz * nq[0] - cx * nq[2];
+  a[2] = cx * nq[1] - cy * nq[0];
+  a[3] = nq[0];
+  a[4] = nq[1];
+  a[5] = nq[2];
+  *r = res;
+  const float b = 1.0f - u * u;
+  return b * b;
+}
+
+#endif /* BINPICK_POSE_FIT_SHARED_H */

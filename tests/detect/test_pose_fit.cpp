@@ -1,0 +1,173 @@
+// Refinement and verification (kernels/pose_fit.cl, host/detect/pose_refine.cpp): the kernel
+// pose_fit against its C++ reference on random poses (class counts exactly, sums to a stated
+// tolerance), ICP converging from a pose one alpha bin off, the verified score preferring the
+// right pose to a more voted wrong one, and the degenerate cases' scores and reasons.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+#include <span>
+
+#include "host/core/error.hpp"
+#include "tests/detect/fit_scene.hpp"
+#include "tests/support/test_device.hpp"
+
+using namespace binpick;
+using binpick::test::FitScene;
+
+namespace {
+
+FitSumsFn device_sums(const FitScene& s, ocl::Device& dev, const DeviceFitModel& model,
+                      const ocl::Buffer<float>& points) {
+  return [&s, &dev, &model, &points](const std::vector<bp_pose_fit>& fits) {
+    return pose_fit_sums(dev, points, s.cam, model, fits);
+  };
+}
+
+Eigen::Matrix3d turn(double deg, const Eigen::Vector3d& axis) {
+  return Eigen::AngleAxisd(deg * 3.14159265358979 / 180, axis.normalized()).toRotationMatrix();
+}
+
+// The pose turned by `deg` about an axis through the posed centroid, then moved by `shift`.
+PoseToRefine off_pose(const FitScene& s, double deg, const Eigen::Vector3d& axis,
+                      const Eigen::Vector3d& shift) {
+  const Eigen::Vector3d c = s.R * s.geometry.centroid + s.t;
+  const Eigen::Matrix3d d = turn(deg, axis);
+  return {d * s.R, d * (s.t - c) + c + shift};
+}
+
+}  // namespace
+
+TEST(PoseFit, KernelMatchesReferenceOnRandomPoses) {
+  FitScene s = binpick::test::make_fit_scene(0.3);
+  for (std::size_t i = 0; i < s.image.xyzw.size() / 4; ++i)  // a band without depth
+    if ((i % s.cam.width) % 40 < 6) s.image.xyzw[i * 4 + 3] = 0.0f;
+  auto& dev = binpick::test::test_device();
+  const DeviceFitModel model = upload_fit_model(dev, s.model);
+  const ocl::Buffer<float> points(dev, std::span<const float>(s.image.xyzw));
+  std::mt19937 rng(7);
+  std::normal_distribution<double> N(0.0, 1.0);
+  std::vector<bp_pose_fit> fits;
+  for (int k = 0; k < 40; ++k) {
+    const PoseToRefine p = off_pose(s, 15 * std::fabs(N(rng)), {N(rng), N(rng), N(rng)},
+                                    4.0 * Eigen::Vector3d(N(rng), N(rng), N(rng)));
+    fits.push_back(make_pose_fit(p.R, p.t, s.cam, s.geometry, {6.0f + k % 5, 2.0f, 5.4f}));
+  }
+  // Degenerate: behind the camera, and far outside the image.
+  fits.push_back(make_pose_fit(s.R, s.t - Eigen::Vector3d(0, 0, 1000), s.cam, s.geometry, {6, 2, 5.4f}));
+  fits.push_back(make_pose_fit(s.R, s.t + Eigen::Vector3d(3000, 0, 0), s.cam, s.geometry, {6, 2, 5.4f}));
+  const std::vector<FitSums> got = pose_fit_sums(dev, points, s.cam, model, fits);
+  const std::vector<FitSums> want = pose_fit_sums_reference(s.image, s.cam, s.model, fits);
+  ASSERT_EQ(got.size(), want.size());
+  std::array<std::uint64_t, BP_FIT_CLASSES> seen{};
+  for (std::size_t k = 0; k < got.size(); ++k) {
+    EXPECT_EQ(got[k].count, want[k].count) << "pose " << k;
+    EXPECT_EQ(got[k].used, want[k].used) << "pose " << k;
+    // Floats summed per work item against doubles per point: relative 1e-4 of the magnitude.
+    const double scale = 1.0 + want[k].jtj.cwiseAbs().maxCoeff();
+    EXPECT_LT((got[k].jtj - want[k].jtj).cwiseAbs().maxCoeff(), 1e-4 * scale) << "pose " << k;
+    const double rscale = 1.0 + want[k].jtr.cwiseAbs().maxCoeff() + std::sqrt(scale * want[k].cost);
+    EXPECT_LT((got[k].jtr - want[k].jtr).cwiseAbs().maxCoeff(), 1e-4 * rscale) << "pose " << k;
+    EXPECT_NEAR(got[k].cost, want[k].cost, 1e-4 * (1.0 + want[k].cost));
+    for (unsigned c = 0; c < BP_FIT_CLASSES; ++c) seen[c] += got[k].count[c];
+  }
+  for (unsigned c = 0; c < BP_FIT_CLASSES; ++c) EXPECT_GT(seen[c], 0u) << "class " << c;
+  EXPECT_EQ(got[40].visible(), 0u);
+  EXPECT_EQ(got[41].visible(), 0u);
+  EXPECT_TRUE(pose_fit_sums(dev, points, s.cam, model, {}).empty());
+}
+
+TEST(PoseFit, HiddenSideOfTheModelIsNotVisible) {
+  // At the true pose nearly every visible point agrees (tolerance 1 mm): the far side of the
+  // L, turned towards the camera but behind its near leg, is hidden by the z-buffer instead of
+  // counting as occluded.
+  const FitScene s = binpick::test::make_fit_scene();
+  const std::vector<FitSums> sums = pose_fit_sums_reference(
+      s.image, s.cam, s.model, {make_pose_fit(s.R, s.t, s.cam, s.geometry, {5, 1, 5.4f})});
+  const FitSums& f = sums[0];
+  EXPECT_GT(f.visible(), s.model.points.size() / 5);
+  // What is left occluded lies in the L's inner corner, within the z-buffer's slack of the leg
+  // in front of it.
+  EXPECT_GT(f.count[BP_FIT_INLIER], 0.85 * f.visible());
+  EXPECT_GT(f.count[BP_FIT_HIDDEN], 3 * f.count[BP_FIT_OCCLUDED]);
+  EXPECT_EQ(f.count[BP_FIT_MISSING], 0u);
+}
+
+TEST(PoseRefine, ConvergesFromOneBinOff) {
+  for (const double noise : {0.0, 1.0}) {
+    const FitScene s = binpick::test::make_fit_scene(noise);
+    auto& dev = binpick::test::test_device();
+    const DeviceFitModel model = upload_fit_model(dev, s.model);
+    const ocl::Buffer<float> points(dev, std::span<const float>(s.image.xyzw));
+    // One 12-degree alpha bin about three different axes, and a few mm off.
+    const std::vector<PoseToRefine> start = {
+        off_pose(s, 12, {1, 0, 0}, {2, -1, 1}),
+        off_pose(s, 12, {0, 1, 1}, {-2, 0, 2}),
+        off_pose(s, 12, {1, -1, 2}, {0, 2, -2}),
+    };
+    const auto refined = refine_and_verify(device_sums(s, dev, model, points), s.cam, s.geometry,
+                                           model.size, start);
+    for (std::size_t k = 0; k < start.size(); ++k) {
+      SCOPED_TRACE(testing::Message() << "noise " << noise << " start " << k);
+      EXPECT_LT(binpick::test::rotation_error_deg(refined[k].R, s.R), 1.5);
+      const Eigen::Vector3d c = s.R * s.geometry.centroid + s.t;
+      const Eigen::Vector3d got = refined[k].R * s.geometry.centroid + refined[k].t;
+      EXPECT_LT((got - c).norm(), 1.0);
+      EXPECT_GT(refined[k].score, 0.85);
+      EXPECT_TRUE(refined[k].reason.empty()) << refined[k].reason;
+    }
+  }
+}
+
+TEST(PoseRefine, ScoreRanksTheRightPoseAboveAMoreVotedWrongOne) {
+  // The candidates come most voted first; the first is the part turned half a turn about its
+  // long axis in the same place (what a flat face's votes cannot tell apart), the second right.
+  const FitScene s = binpick::test::make_fit_scene(0.5);
+  auto& dev = binpick::test::test_device();
+  const DeviceFitModel model = upload_fit_model(dev, s.model);
+  const ocl::Buffer<float> points(dev, std::span<const float>(s.image.xyzw));
+  const std::vector<PoseToRefine> candidates = {off_pose(s, 180, s.R * Eigen::Vector3d::UnitZ(), {}),
+                                                off_pose(s, 8, {0, 1, 0}, {1, 1, 0})};
+  const auto refined = refine_and_verify(device_sums(s, dev, model, points), s.cam, s.geometry,
+                                         model.size, candidates);
+  EXPECT_GT(refined[1].score, 0.85);
+  EXPECT_LT(refined[0].score, refined[1].score - 0.2);
+}
+
+TEST(PoseRefine, DegenerateCasesScoreZeroWithAReason) {
+  const FitScene s = binpick::test::make_fit_scene();
+  auto& dev = binpick::test::test_device();
+  const DeviceFitModel model = upload_fit_model(dev, s.model);
+  // Only a few pixels of depth: too few pairs for a step, and the model where there is no depth.
+  FitScene sparse = s;
+  for (std::size_t i = 0; i < sparse.image.xyzw.size() / 4; ++i)
+    if (i % 997 != 0) sparse.image.xyzw[i * 4 + 3] = 0.0f;
+  const ocl::Buffer<float> points(dev, std::span<const float>(sparse.image.xyzw));
+  const std::vector<PoseToRefine> poses = {
+      {s.R, s.t},                                            // right, but hardly any depth
+      {s.R, s.t + Eigen::Vector3d(0, 0, -2000)},             // behind the camera
+      {s.R, s.t + Eigen::Vector3d(5000, 0, 0)},              // outside the image
+  };
+  const auto refined = refine_and_verify(device_sums(sparse, dev, model, points), s.cam,
+                                         s.geometry, model.size, poses);
+  EXPECT_NE(refined[0].reason.find("point pairs, fewer than"), std::string::npos)
+      << refined[0].reason;
+  EXPECT_LT(refined[0].score, 0.2);
+  for (int k : {1, 2}) {
+    EXPECT_EQ(refined[k].score, 0.0);
+    EXPECT_EQ(refined[k].reason, "no model surface visible at this pose");
+  }
+  // No depth at all where the part would be.
+  FitScene empty = s;
+  for (std::size_t i = 0; i < empty.image.xyzw.size() / 4; ++i) empty.image.xyzw[i * 4 + 3] = 0.0f;
+  const auto none = refine_and_verify(
+      [&](const std::vector<bp_pose_fit>& f) {
+        return pose_fit_sums_reference(empty.image, s.cam, s.model, f);
+      },
+      s.cam, s.geometry, model.size, {{s.R, s.t}});
+  EXPECT_EQ(none[0].score, 0.0);
+  EXPECT_EQ(none[0].reason, "no depth where the model would be seen");
+  RefineOptions bad;
+  bad.tolerance_ratio = 0;
+  EXPECT_THROW(check(bad), InputError);
+}
