@@ -13,19 +13,25 @@
  * outside the image or rejected add exact zeros, so every variant sums the same values in the
  * same (row-major) order and gives the same result. */
 static inline float4 normal_at(__global const float4* points, const uint width,
-                               const uint height, const uint i, const int radius,
-                               const float max_distance) {
+                               const uint height, const uint i, int radius,
+                               float max_distance, const float metric_radius,
+                               const float focal) {
   const float4 c = points[i];
   if (c.w == 0.0f) return (float4)(0.0f, 0.0f, 0.0f, 0.0f);
   const int u = (int)(i % width), v = (int)(i / width);
+  int step = 1;
+  if (metric_radius > 0.0f) {
+    bp_metric_window(c.z, metric_radius, focal, &radius, &step);
+    max_distance = fmin(max_distance, metric_radius);
+  }
   const float max2 = max_distance * max_distance;
   /* Coordinates relative to the centre point: small numbers, so the one-pass covariance
    * sum(q q^T)/n - m m^T loses nothing to cancellation at a depth of a metre. */
   float n = 0.0f, sx = 0.0f, sy = 0.0f, sz = 0.0f;
   float sxx = 0.0f, sxy = 0.0f, sxz = 0.0f, syy = 0.0f, syz = 0.0f, szz = 0.0f;
-  for (int dy = -radius; dy <= radius; ++dy) {
+  for (int dy = -radius; dy <= radius; dy += step) {
     const int y = clamp(v + dy, 0, (int)height - 1);
-    for (int dx = -radius; dx <= radius; ++dx) {
+    for (int dx = -radius; dx <= radius; dx += step) {
       const int x = clamp(u + dx, 0, (int)width - 1);
       const float4 p = points[y * (int)width + x];
       const bool use = y == v + dy && x == u + dx && p.w != 0.0f &&
@@ -65,23 +71,28 @@ static inline float4 normal_at(__global const float4* points, const uint width,
   return (float4)(nx, ny, nz, 1.0f);
 }
 
-/* Any radius. */
+/* Any radius; with metric_radius > 0 (mm) the window follows from it and the pixel's depth
+ * (bp_metric_window; focal in pixels) instead of `radius`, and neighbours lie within the smaller
+ * of metric_radius and max_distance. */
 __kernel void normals_from_points(__global const float4* points, const uint width,
                                   const uint height, const int radius, const float max_distance,
+                                  const float metric_radius, const float focal,
                                   __global float4* normals) {
   const uint i = get_global_id(0);
   if (i >= width * height) return;
-  normals[i] = normal_at(points, width, height, i, radius, max_distance);
+  normals[i] = normal_at(points, width, height, i, radius, max_distance, metric_radius, focal);
 }
 
-/* The common radii, with the radius a constant (same arguments; `radius` is ignored). */
+/* The common pixel radii, with the radius a constant (same arguments; `radius`, metric_radius
+ * and focal are ignored). */
 #define BP_NORMALS_FIXED(R)                                                                   \
   __kernel void normals_from_points_r##R(__global const float4* points, const uint width,    \
                                          const uint height, const int radius,                \
-                                         const float max_distance, __global float4* normals) { \
+                                         const float max_distance, const float metric_radius, \
+                                         const float focal, __global float4* normals) {      \
     const uint i = get_global_id(0);                                                          \
     if (i >= width * height) return;                                                          \
-    normals[i] = normal_at(points, width, height, i, R, max_distance);                        \
+    normals[i] = normal_at(points, width, height, i, R, max_distance, 0.0f, 0.0f);            \
   }
 BP_NORMALS_FIXED(1)
 BP_NORMALS_FIXED(2)
@@ -93,21 +104,24 @@ BP_NORMALS_FIXED(3)
  * equals the full-image kernel's value at that pixel. */
 __kernel void normals_at_pixels(__global const float4* points, const uint width,
                                 const uint height, const int radius, const float max_distance,
+                                const float metric_radius, const float focal,
                                 __global const uint* pixels, const uint count,
                                 __global float4* normals) {
   const uint j = get_global_id(0);
   if (j >= count) return;
-  normals[j] = normal_at(points, width, height, pixels[j], radius, max_distance);
+  normals[j] = normal_at(points, width, height, pixels[j], radius, max_distance, metric_radius,
+                         focal);
 }
 
 #define BP_NORMALS_AT_PIXELS_FIXED(R)                                                         \
   __kernel void normals_at_pixels_r##R(__global const float4* points, const uint width,      \
                                        const uint height, const int radius,                  \
-                                       const float max_distance, __global const uint* pixels, \
+                                       const float max_distance, const float metric_radius,  \
+                                       const float focal, __global const uint* pixels,       \
                                        const uint count, __global float4* normals) {         \
     const uint j = get_global_id(0);                                                          \
     if (j >= count) return;                                                                   \
-    normals[j] = normal_at(points, width, height, pixels[j], R, max_distance);                \
+    normals[j] = normal_at(points, width, height, pixels[j], R, max_distance, 0.0f, 0.0f);    \
   }
 BP_NORMALS_AT_PIXELS_FIXED(1)
 BP_NORMALS_AT_PIXELS_FIXED(2)

@@ -10,9 +10,11 @@
 #ifdef __OPENCL_VERSION__
 #define BP_SQRT sqrt
 #define BP_FABS fabs
+#define BP_CEIL ceil
 #else
 #define BP_SQRT std::sqrt
 #define BP_FABS std::fabs
+#define BP_CEIL std::ceil
 #endif
 
 /* "No pixel": no valid, not yet excluded pixel was left for a hypothesis. */
@@ -21,6 +23,20 @@
 /* A plane fit is degenerate (the window's points lie on a line or a point) when the middle
  * eigenvalue of the covariance is below this fraction of the largest. */
 #define BP_NORMAL_DEGENERATE_RATIO 1e-4f
+
+/* Normals over a metric neighbourhood: the window of a point at depth z covers `radius` mm,
+ * r = ceil(radius * focal / z) pixels (at most BP_NORMAL_MAX_METRIC_RADIUS), sampled every
+ * `step` pixels so that at most 2 BP_NORMAL_METRIC_HALF_SAMPLES + 1 rows and columns are read:
+ * the cost stays bounded however near or large the part. */
+#define BP_NORMAL_MAX_METRIC_RADIUS 96
+#define BP_NORMAL_METRIC_HALF_SAMPLES 6
+BP_FN void bp_metric_window(float z, float radius, float focal, int* r, int* step) {
+  float px = BP_CEIL(radius * focal / z);
+  if (!(px >= 1.0f)) px = 1.0f;
+  if (px > (float)BP_NORMAL_MAX_METRIC_RADIUS) px = (float)BP_NORMAL_MAX_METRIC_RADIUS;
+  *r = (int)px;
+  *step = (*r + BP_NORMAL_METRIC_HALF_SAMPLES - 1) / BP_NORMAL_METRIC_HALF_SAMPLES;
+}
 
 /* Cyclic Jacobi sweeps of the 3x3 eigen solver: convergence is quadratic, so 8 sweeps reach
  * float precision for any input; a fixed bound keeps the kernel's run time bounded. */

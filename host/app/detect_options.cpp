@@ -55,7 +55,7 @@ void add_detect_cli_options(CLI::App* verb, DetectCliOptions& a, const std::stri
           ->capture_default_str();
   o["normal-ratio"] =
       verb->add_option("--normal-ratio", p.normal_ratio,
-                       help("depth normals: neighbours within this fraction of the diameter"))
+                       help("scene normals: radius of the neighbourhood fitted, fraction of the diameter"))
           ->capture_default_str();
   o["candidates"] =
       verb->add_option("--candidates", a.candidates,

@@ -189,7 +189,9 @@ std::vector<Detection> Detector::detect(const DepthImage& depth, const bp_camera
   require(std::any_of(depth.raw.begin(), depth.raw.end(), [](std::uint16_t v) { return v > 0; }),
           "the depth image has no valid pixel (all zero)");
   ScenePrepOptions prep;
-  prep.normals.max_distance = float(params_.normal_ratio * model_.diameter);
+  prep.normals.metric_radius = float(params_.normal_ratio * model_.diameter);
+  prep.normals.max_distance = prep.normals.metric_radius;
+  prep.normals.focal = 0.5f * (cam.fx + cam.fy);
   prep.read_back = false;
   prep.normals_everywhere = false;  // only where the neighbourhoods need them, below
   const PreparedScene scene = prepare_scene(dev_, depth, cam, prep);
@@ -231,7 +233,8 @@ std::vector<Detection> Detector::detect(const PointCloud& input, DetectTimes* ti
   check_cloud(input);
   require(!input.points.empty(), "the point cloud is empty");
   PointCloud cloud = input;
-  if (cloud.normals.empty()) cloud.normals = cloud_normals(cloud, float(0.1 * model_.diameter));
+  if (cloud.normals.empty())
+    cloud.normals = cloud_normals(cloud, float(params_.normal_ratio * model_.diameter));
   CloudHypothesisOptions ho;
   ho.hypotheses.count = params_.hypotheses;
   ho.hypotheses.exclusion_radius = float(params_.exclusion_ratio * model_.diameter);

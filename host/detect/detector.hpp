@@ -34,7 +34,7 @@ struct DetectParams {
   double cluster_angle = 20.0;     // rotation threshold of pose clustering, degrees
   std::uint32_t peaks_per_ref = 3; // accumulator peaks per reference point
   double peak_ratio = 0.9;         // ... with at least this fraction of its best votes
-  double normal_ratio = 0.2;       // depth normals: neighbours within this distance (fraction)
+  double normal_ratio = 0.08;      // scene normals: radius of the plane fitted (fraction)
   std::uint32_t candidates = 4;    // best pose clusters per hypothesis refined and verified
   std::uint32_t refine_iterations = 10;  // ICP steps per candidate (0: verify the voted pose)
   double verify_tolerance = 0.04;  // depth agreement of a verified model point (fraction)
@@ -103,7 +103,7 @@ class Detector {
                                 std::vector<PointCloud>* neighbourhoods = nullptr);
 
   // A point cloud in the camera frame (z along the viewing axis: "highest" = smallest z). Without
-  // normals they are estimated (PCA within 10 % of the diameter, oriented to the camera).
+  // normals they are estimated (PCA within normal_ratio of the diameter, oriented to the camera).
   // InputError for NaN or infinite values or an empty cloud.
   std::vector<Detection> detect(const PointCloud& cloud, DetectTimes* times = nullptr);
 

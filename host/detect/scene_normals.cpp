@@ -26,18 +26,30 @@ void check(const NormalOptions& opt) {
                      std::to_string(opt.radius));
   if (!(opt.max_distance > 0))
     throw InputError("normal neighbour distance must be positive (mm)");
+  if (!(opt.metric_radius >= 0) || std::isinf(opt.metric_radius))
+    throw InputError("normal radius must be finite and >= 0 (mm)");
+  if (opt.metric_radius > 0 && !(opt.focal > 0 && std::isfinite(opt.focal)))
+    throw InputError("a metric normal radius needs the camera's focal length");
 }
+
+namespace {
+
+// The kernel of a window: radii 1 to 3 have kernels with the radius a compile-time constant
+// (vectorised: faster); metric windows and other radii take the generic one.
+std::string normals_kernel(const std::string& base, const NormalOptions& opt) {
+  return opt.metric_radius == 0 && opt.radius >= 1 && opt.radius <= 3
+             ? base + "_r" + std::to_string(opt.radius)
+             : base;
+}
+
+}  // namespace
 
 void enqueue_normals_from_points(ocl::Device& dev, const ocl::Buffer<float>& points,
                                  std::uint32_t width, std::uint32_t height,
                                  const NormalOptions& opt, ocl::Buffer<float>& normals) {
-  // Radii 1 to 3 have kernels with the radius a compile-time constant (vectorised: faster).
-  const std::string name = opt.radius >= 1 && opt.radius <= 3
-                               ? "normals_from_points_r" + std::to_string(opt.radius)
-                               : std::string("normals_from_points");
-  cl::Kernel k = dev.kernel("scene_normals.cl", name);
+  cl::Kernel k = dev.kernel("scene_normals.cl", normals_kernel("normals_from_points", opt));
   ocl::launch(dev, k, std::size_t(width) * height, points, cl_uint(width), cl_uint(height),
-              cl_int(opt.radius), opt.max_distance, normals);
+              cl_int(opt.radius), opt.max_distance, opt.metric_radius, opt.focal, normals);
 }
 
 PointImage normals_from_points(ocl::Device& dev, const PointImage& points,
@@ -57,15 +69,22 @@ namespace {
 void reference_normal_at(const PointImage& points, const NormalOptions& opt, int u, int v,
                          float* o) {
   const int w = int(points.width), h = int(points.height);
-  const float max2 = opt.max_distance * opt.max_distance;
   auto at = [&](int x, int y) { return &points.xyzw[4 * (std::size_t(y) * w + x)]; };
   const float* c = at(u, v);
   if (c[3] == 0.0f) return;
+  int radius = opt.radius, step = 1;
+  float max_distance = opt.max_distance;
+  if (opt.metric_radius > 0) {
+    bp_metric_window(c[2], opt.metric_radius, opt.focal, &radius, &step);
+    max_distance = std::min(max_distance, opt.metric_radius);
+  }
+  const float max2 = max_distance * max_distance;
   int n = 0;
   Eigen::Vector3d sum = Eigen::Vector3d::Zero();
   Eigen::Matrix3d sq = Eigen::Matrix3d::Zero();
-  for (int y = std::max(v - opt.radius, 0); y <= std::min(v + opt.radius, h - 1); ++y)
-    for (int x = std::max(u - opt.radius, 0); x <= std::min(u + opt.radius, w - 1); ++x) {
+  for (int y = v - radius; y <= v + radius; y += step)
+    for (int x = u - radius; x <= u + radius; x += step) {
+      if (x < 0 || y < 0 || x >= w || y >= h) continue;
       const float* p = at(x, y);
       // The same float predicate as the kernel, so both use the same neighbours.
       if (p[3] == 0.0f || bp_dist2(p[0], p[1], p[2], c[0], c[1], c[2]) > max2) continue;
@@ -113,15 +132,13 @@ std::vector<float> normals_at_pixels(ocl::Device& dev, const ocl::Buffer<float>&
   check(opt);
   check_pixels(width, height, pixels);
   if (pixels.empty()) return {};
-  const std::string name = opt.radius >= 1 && opt.radius <= 3
-                               ? "normals_at_pixels_r" + std::to_string(opt.radius)
-                               : std::string("normals_at_pixels");
-  cl::Kernel k = dev.kernel("scene_normals.cl", name);
+  cl::Kernel k = dev.kernel("scene_normals.cl", normals_kernel("normals_at_pixels", opt));
   ocl::Buffer<std::uint32_t> list(dev, std::span<const std::uint32_t>(pixels), CL_MEM_READ_ONLY);
   ocl::Buffer<float> out(dev, 4 * pixels.size(), CL_MEM_WRITE_ONLY);
   // Fixed work groups: list lengths change every call (see ocl::launch_local).
   ocl::launch_local(dev, k, pixels.size(), 32, points, cl_uint(width), cl_uint(height),
-                    cl_int(opt.radius), opt.max_distance, list, cl_uint(pixels.size()), out);
+                    cl_int(opt.radius), opt.max_distance, opt.metric_radius, opt.focal, list,
+                    cl_uint(pixels.size()), out);
   return out.read(dev);
 }
 

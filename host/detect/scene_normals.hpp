@@ -15,6 +15,12 @@ struct NormalOptions {
   // Neighbours farther than this (mm) from the centre point are ignored, so normals do not
   // bleed across depth discontinuities; about 20 % of the part diameter suits the paper's scene.
   float max_distance = 10.0f;
+  // > 0: a metric neighbourhood instead of `radius`: the points within this many mm (and within
+  // max_distance), found in a window that covers it at the point's depth (bp_metric_window in
+  // kernels/scene_shared.h; focal = the camera's focal length in pixels). A fixed pixel window
+  // shrinks in mm with distance and, a few pixels wide, turns sensor noise into normal noise.
+  float metric_radius = 0.0f;
+  float focal = 0.0f;
 };
 
 // Throws InputError unless points holds 4 floats per pixel of its width x height.

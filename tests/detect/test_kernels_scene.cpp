@@ -184,8 +184,8 @@ TEST(NormalKernels, normals_from_points_r_matches_reference) {
       ocl::Buffer<float> points = upload(dev, pts.xyzw);
       ocl::Buffer<float> out = guarded_buffer(dev, std::vector<float>(4 * n, kFloatCanary), kGuard, kFloatCanary);
       ocl::Buffer<float> out_generic(dev, 4 * n);
-      ocl::launch(dev, fixed, n, points, c.w, c.h, cl_int(radius), opt.max_distance, out);
-      ocl::launch(dev, generic, n, points, c.w, c.h, cl_int(radius), opt.max_distance, out_generic);
+      ocl::launch(dev, fixed, n, points, c.w, c.h, cl_int(radius), opt.max_distance, 0.0f, 0.0f, out);
+      ocl::launch(dev, generic, n, points, c.w, c.h, cl_int(radius), opt.max_distance, 0.0f, 0.0f, out_generic);
       const std::vector<float> got = out.read(dev), got_generic = out_generic.read(dev);
       for (std::size_t i = 4 * n; i < got.size(); ++i) ASSERT_EQ(got[i], kFloatCanary);
       for (std::size_t i = 0; i < 4 * n; ++i)
@@ -217,7 +217,7 @@ TEST(NormalKernels, normals_at_pixels_r_matches_reference) {
       const NormalOptions opt{radius, 20.0f};
       ocl::Buffer<float> points = upload(dev, pts.xyzw);
       ocl::Buffer<float> full_out(dev, 4 * n);
-      ocl::launch(dev, full, n, points, c.w, c.h, cl_int(radius), opt.max_distance, full_out);
+      ocl::launch(dev, full, n, points, c.w, c.h, cl_int(radius), opt.max_distance, 0.0f, 0.0f, full_out);
       const std::vector<float> whole = full_out.read(dev);
       // Lists of any order with repeats, lengths that are not multiples of the work group of 32.
       std::uniform_int_distribution<u32> P(0, u32(n - 1));
@@ -228,9 +228,9 @@ TEST(NormalKernels, normals_at_pixels_r_matches_reference) {
         ocl::Buffer<float> out = guarded_buffer(dev, std::vector<float>(4 * count, kFloatCanary), kGuard, kFloatCanary);
         ocl::Buffer<float> out_generic(dev, 4 * count);
         ocl::launch_local(dev, at_pixels, count, 32, points, c.w, c.h, cl_int(radius),
-                          opt.max_distance, list, u32(count), out);  // as the routine
+                          opt.max_distance, 0.0f, 0.0f, list, u32(count), out);  // as the routine
         ocl::launch_local(dev, generic, count, 32, points, c.w, c.h, cl_int(radius),
-                          opt.max_distance, list, u32(count), out_generic);
+                          opt.max_distance, 0.0f, 0.0f, list, u32(count), out_generic);
         const std::vector<float> got = out.read(dev), got_generic = out_generic.read(dev);
         for (std::size_t i = 4 * count; i < got.size(); ++i) ASSERT_EQ(got[i], kFloatCanary);
         const std::vector<float> want = normals_at_pixels_reference(pts, pixels, opt);
@@ -278,13 +278,13 @@ TEST(NormalKernels, DegenerateImagesGiveNoNormal) {
       cl::Kernel at_pixels = dev.kernel("scene_normals.cl", fixed_kernel("normals_at_pixels_r", radius));
       ocl::Buffer<float> points = upload(dev, pts.xyzw);
       ocl::Buffer<float> out = guarded_buffer(dev, std::vector<float>(4 * n, kFloatCanary), kGuard, kFloatCanary);
-      ocl::launch_local(dev, fixed, n, 64, points, pts.width, pts.height, cl_int(radius), opt.max_distance, out);
+      ocl::launch_local(dev, fixed, n, 64, points, pts.width, pts.height, cl_int(radius), opt.max_distance, 0.0f, 0.0f, out);
       std::vector<u32> pixels(n);
       for (u32 i = 0; i < n; ++i) pixels[i] = i;
       ocl::Buffer<u32> list = upload(dev, pixels);
       ocl::Buffer<float> out_px = guarded_buffer(dev, std::vector<float>(4 * n, kFloatCanary), kGuard, kFloatCanary);
       ocl::launch_local(dev, at_pixels, n, 32, points, pts.width, pts.height, cl_int(radius),
-                        opt.max_distance, list, u32(n), out_px);
+                        opt.max_distance, 0.0f, 0.0f, list, u32(n), out_px);
       const std::vector<float> got = out.read(dev), got_px = out_px.read(dev);
       std::vector<float> want = normals_from_points_reference(pts, opt).xyzw;
       for (std::size_t i = 0; i < 4 * n; ++i) {

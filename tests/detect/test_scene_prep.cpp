@@ -70,7 +70,21 @@ float angle_deg(const float* a, const float* b) {
 // Eigenvalues of the window covariance (tests/support/kernel_refs.hpp): to tell an
 // ill-conditioned pixel.
 Eigen::Vector3d window_eigenvalues(const PointImage& pts, int u, int v, const NormalOptions& o) {
-  return binpick::test::normal_window_eigenvalues(pts, u, v, o.radius, o.max_distance);
+  if (o.metric_radius == 0)
+    return binpick::test::normal_window_eigenvalues(pts, u, v, o.radius, o.max_distance);
+  int radius = 0, step = 1;
+  bp_metric_window(pts.xyzw[4 * (std::size_t(v) * pts.width + u) + 2], o.metric_radius, o.focal,
+                   &radius, &step);
+  return binpick::test::normal_window_eigenvalues(pts, u, v, radius,
+                                                  std::min(o.max_distance, o.metric_radius), step);
+}
+
+// Options of the parity tests: a pixel window of `radius`, or (radius < 0) a metric one of
+// -radius mm.
+NormalOptions normal_options(int radius, float focal) {
+  NormalOptions o{std::max(radius, 0), 20.0f};
+  if (radius < 0) o.metric_radius = float(-radius), o.focal = focal;
+  return o;
 }
 
 }  // namespace
@@ -102,13 +116,15 @@ TEST(Jacobi3, MatchesEigenOnRandomSymmetricMatrices) {
 TEST(Normals, MatchReferenceOnRandomImages) {
   std::mt19937 rng(1);
   int compared = 0, ill = 0;
+  // Negative radii: metric windows of that many mm (about 1 to 7 pixels, or strided beyond).
   for (auto [w, h, noise, radius] : {std::tuple{1u, 1u, 0.0f, 2}, {7u, 5u, 0.5f, 1},
                                      {64u, 48u, 0.0f, 2}, {160u, 120u, 0.5f, 2},
-                                     {160u, 120u, 2.0f, 3}}) {
+                                     {160u, 120u, 2.0f, 3}, {160u, 120u, 0.5f, -12},
+                                     {120u, 90u, 2.0f, -60}, {7u, 5u, 0.5f, -8}}) {
     const bp_camera cam = camera(w, h, 150.0f);
     const DepthImage depth = random_depth(rng, cam, noise);
     const PointImage pts = depth_to_points_reference(depth, cam);
-    const NormalOptions opt{radius, 20.0f};
+    const NormalOptions opt = normal_options(radius, cam.fx);
     const PointImage got = normals_from_points(test_device(), pts, opt);
     const PointImage want = normals_from_points_reference(pts, opt);
     ASSERT_EQ(got.xyzw.size(), want.xyzw.size());
@@ -181,6 +197,8 @@ TEST(Normals, DegenerateInputsGiveNoNormal) {
   EXPECT_THROW(normals_from_points(test_device(), p, {-1, 10.0f}), InputError);
   EXPECT_THROW(normals_from_points(test_device(), p, {2, 0.0f}), InputError);
   EXPECT_THROW(normals_from_points(test_device(), p, {2, NAN}), InputError);
+  EXPECT_THROW(normals_from_points(test_device(), p, {2, 10.0f, NAN, 500.0f}), InputError);
+  EXPECT_THROW(normals_from_points(test_device(), p, {2, 10.0f, 5.0f, 0.0f}), InputError);
 }
 
 TEST(Lowpass, MatchesReferenceOnRandomImages) {
@@ -300,10 +318,11 @@ TEST(Normals, AtPixelsEqualTheFullImageKernel) {
   std::mt19937 rng(11);
   for (auto [w, h, noise, radius] : {std::tuple{1u, 1u, 0.0f, 2}, {7u, 5u, 0.5f, 1},
                                      {160u, 120u, 0.5f, 2}, {120u, 90u, 2.0f, 3},
-                                     {64u, 48u, 0.5f, 5}}) {
+                                     {64u, 48u, 0.5f, 5}, {160u, 120u, 0.5f, -15},
+                                     {120u, 90u, 1.0f, -50}}) {
     const bp_camera cam = camera(w, h, 150.0f);
     const PointImage pts = depth_to_points_reference(random_depth(rng, cam, noise), cam);
-    const NormalOptions opt{radius, 20.0f};
+    const NormalOptions opt = normal_options(radius, cam.fx);
     const PointImage full = normals_from_points(test_device(), pts, opt);
     const PointImage ref = normals_from_points_reference(pts, opt);
     std::vector<std::uint32_t> pixels;

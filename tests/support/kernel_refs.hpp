@@ -436,13 +436,14 @@ inline std::vector<float> lowpass_cols_reference(const std::vector<float>& point
 // smallest nearly equal (the normal's direction is undetermined) or the middle one near the
 // degeneracy threshold. Zero if fewer than 3 neighbours count.
 inline Eigen::Vector3d normal_window_eigenvalues(const PointImage& pts, int u, int v, int radius,
-                                                 float max_distance) {
+                                                 float max_distance, int step = 1) {
   const float* c = &pts.xyzw[4 * (std::size_t(v) * pts.width + u)];
   Eigen::Vector3d sum = Eigen::Vector3d::Zero();
   Eigen::Matrix3d sq = Eigen::Matrix3d::Zero();
   int n = 0;
-  for (int y = std::max(v - radius, 0); y <= std::min(v + radius, int(pts.height) - 1); ++y)
-    for (int x = std::max(u - radius, 0); x <= std::min(u + radius, int(pts.width) - 1); ++x) {
+  for (int y = v - radius; y <= v + radius; y += step)
+    for (int x = u - radius; x <= u + radius; x += step) {
+      if (x < 0 || y < 0 || x >= int(pts.width) || y >= int(pts.height)) continue;
       const float* p = &pts.xyzw[4 * (std::size_t(y) * pts.width + x)];
       if (p[3] == 0 || bp_dist2(p[0], p[1], p[2], c[0], c[1], c[2]) > max_distance * max_distance)
         continue;
