@@ -42,7 +42,9 @@ PpfModel train_ppf_model(const Mesh& mesh, const PpfTrainParams& params, PpfTrai
   st.sample_s = clock.lap_seconds();
 
   // Stored exactly as the table saw them (unit normals), for detection to use.
-  model.cloud = with_unit_normals(voxel_subsample(dev, dense, model.voxel_size).cloud);
+  // Both faces: a wall thinner than a voxel (sheet metal, a tube) must be seen from either side.
+  model.cloud =
+      with_unit_normals(voxel_subsample(dev, dense, model.voxel_size, VoxelFaces::both).cloud);
   st.subsample_s = clock.lap_seconds();
   if (model.cloud.points.size() > kMaxPpfModelPoints)
     throw InputError("voxel ratio " + std::to_string(params.voxel_ratio) + " gives " +

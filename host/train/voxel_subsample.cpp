@@ -35,6 +35,11 @@ VoxelSubsample gather(const PointCloud& cloud, std::vector<std::uint32_t> kept) 
   return out;
 }
 
+void check_faces(const PointCloud& cloud, VoxelFaces faces) {
+  if (faces == VoxelFaces::both && cloud.normals.size() != cloud.points.size())
+    throw InputError("voxel subsampling of both faces needs a normal per point");
+}
+
 }  // namespace
 
 VoxelGrid voxel_grid(const PointCloud& cloud, float voxel_size) {
@@ -65,15 +70,19 @@ VoxelGrid voxel_grid(const PointCloud& cloud, float voxel_size) {
   return g;
 }
 
-VoxelSubsample voxel_subsample(ocl::Device& dev, const PointCloud& cloud, float voxel_size) {
+VoxelSubsample voxel_subsample(ocl::Device& dev, const PointCloud& cloud, float voxel_size,
+                               VoxelFaces faces) {
   const VoxelGrid g = voxel_grid(cloud, voxel_size);
+  check_faces(cloud, faces);
   const std::size_t n = cloud.points.size();
   if (n == 0) return gather(cloud, {});
   const auto count = static_cast<std::uint32_t>(n);
+  const bool both = faces == VoxelFaces::both;
   ocl::Buffer<cl_float4> points(dev, std::span<const cl_float4>(pack_float4(cloud.points)),
                                 CL_MEM_READ_ONLY);
   ocl::Buffer<std::uint32_t> cell_of(dev, n), dist_bits(dev, n), keep(dev, n), position(dev, n + 1);
-  ocl::Buffer<std::uint32_t> best_dist(dev, g.cells()), best_index(dev, g.cells());
+  const std::size_t slots = (both ? 2 : 1) * g.cells();
+  ocl::Buffer<std::uint32_t> best_dist(dev, slots), best_index(dev, slots);
   best_dist.fill(dev, 0xffffffffu);
   best_index.fill(dev, 0xffffffffu);
   const cl_float4 origin{{g.origin.x(), g.origin.y(), g.origin.z(), 0.0f}};
@@ -86,17 +95,34 @@ VoxelSubsample voxel_subsample(ocl::Device& dev, const PointCloud& cloud, float 
   ocl::launch(dev, distance, n, points, count, origin, g.inv_voxel, dims, cell_of, dist_bits,
               best_dist);
   ocl::launch(dev, index, n, cell_of, dist_bits, count, best_dist, best_index);
-  ocl::launch(dev, flags, n, cell_of, count, best_index, keep);
+  if (both) {
+    const auto cells = static_cast<std::uint32_t>(g.cells());
+    ocl::Buffer<cl_float4> normals(dev, std::span<const cl_float4>(pack_float4(cloud.normals)),
+                                   CL_MEM_READ_ONLY);
+    ocl::Buffer<std::uint32_t> cell2_of(dev, n);
+    cl::Kernel side = dev.kernel("voxel_subsample.cl", "voxel_opposite_side");
+    cl::Kernel index2 = dev.kernel("voxel_subsample.cl", "voxel_best_index_opposite");
+    cl::Kernel flags2 = dev.kernel("voxel_subsample.cl", "voxel_keep_flags_faces");
+    ocl::launch(dev, side, n, normals, cell_of, count, cells, best_index, cell2_of, best_dist,
+                dist_bits);
+    ocl::launch(dev, index2, n, cell2_of, dist_bits, count, best_dist, best_index);
+    ocl::launch(dev, flags2, n, cell_of, count, cells, best_index, keep);
+  } else {
+    ocl::launch(dev, flags, n, cell_of, count, best_index, keep);
+  }
   const std::uint32_t kept_count = exclusive_scan(dev, keep, n, position);
   ocl::Buffer<std::uint32_t> kept(dev, kept_count);
   ocl::launch(dev, compact, n, keep, position, count, kept);
   return gather(cloud, kept.read(dev));
 }
 
-VoxelSubsample voxel_subsample_reference(const PointCloud& cloud, float voxel_size) {
+VoxelSubsample voxel_subsample_reference(const PointCloud& cloud, float voxel_size,
+                                         VoxelFaces faces) {
   const VoxelGrid g = voxel_grid(cloud, voxel_size);
+  check_faces(cloud, faces);
   // cell -> (distance squared in voxel units, index): the smallest pair wins.
   std::map<std::uint64_t, std::pair<float, std::uint32_t>> best;
+  std::vector<std::pair<std::uint64_t, float>> cell_dist(cloud.points.size());
   for (std::uint32_t i = 0; i < cloud.points.size(); ++i) {
     const Eigen::Vector3f f = (cloud.points[i] - g.origin) * g.inv_voxel;
     std::uint64_t c[3];
@@ -107,11 +133,27 @@ VoxelSubsample voxel_subsample_reference(const PointCloud& cloud, float voxel_si
       dist2 = a == 0 ? d * d : dist2 + d * d;
     }
     const std::uint64_t cell = (c[2] * g.dims[1] + c[1]) * g.dims[0] + c[0];
+    cell_dist[i] = {cell, dist2};
     auto [it, inserted] = best.try_emplace(cell, dist2, i);
     if (!inserted && std::pair(dist2, i) < it->second) it->second = {dist2, i};
   }
   std::vector<std::uint32_t> kept;
   for (const auto& [cell, b] : best) kept.push_back(b.second);
+  if (faces == VoxelFaces::both) {
+    // The second round: among points facing away from their voxel's winner.
+    std::map<std::uint64_t, std::pair<float, std::uint32_t>> opposite;
+    for (std::uint32_t i = 0; i < cloud.points.size(); ++i) {
+      const auto [cell, dist2] = cell_dist[i];
+      const Eigen::Vector3f& a = cloud.normals[i];
+      const Eigen::Vector3f& b = cloud.normals[best.at(cell).second];
+      // The kernel's float expression, term by term.
+      const float dot = a.x() * b.x() + a.y() * b.y() + a.z() * b.z();
+      if (!(dot < 0.0f)) continue;
+      auto [it, inserted] = opposite.try_emplace(cell, dist2, i);
+      if (!inserted && std::pair(dist2, i) < it->second) it->second = {dist2, i};
+    }
+    for (const auto& [cell, b] : opposite) kept.push_back(b.second);
+  }
   std::sort(kept.begin(), kept.end());
   return gather(cloud, std::move(kept));
 }

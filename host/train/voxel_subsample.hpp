@@ -5,7 +5,8 @@
 // minimum corner; every occupied voxel keeps exactly one point, the one nearest the voxel's
 // centre (ties: the lowest index), with its own normal. Keeping a real point (not a mean) keeps
 // true surface normals, and the choice does not depend on thread order. Survivors stay in
-// input order. A thin wall narrower than a voxel keeps only one of its sides in that voxel.
+// input order. A thin wall narrower than a voxel keeps only one of its sides in that voxel,
+// unless both faces are asked for (VoxelFaces::both, below).
 #pragma once
 
 #include <cstdint>
@@ -35,11 +36,18 @@ struct VoxelGrid {
 // 2^27 voxels (a cloud far larger than its voxels: an outlier, or a voxel size in wrong units).
 VoxelGrid voxel_grid(const PointCloud& cloud, float voxel_size);
 
-// Device routine. Throws InputError for non-finite points or normals, bad voxel size.
-// An empty cloud gives an empty result.
-VoxelSubsample voxel_subsample(ocl::Device& dev, const PointCloud& cloud, float voxel_size);
+// One point per voxel (the scene), or up to two: the winner and, if any point of the voxel has
+// a normal pointing away from the winner's (dot < 0), the one nearest the centre among those
+// (the model: both faces of a wall thinner than a voxel; kernels/voxel_subsample.cl).
+enum class VoxelFaces { one, both };
+
+// Device routine. Throws InputError for non-finite points or normals, bad voxel size, or
+// VoxelFaces::both without normals. An empty cloud gives an empty result.
+VoxelSubsample voxel_subsample(ocl::Device& dev, const PointCloud& cloud, float voxel_size,
+                               VoxelFaces faces = VoxelFaces::one);
 
 // Plain C++ reference with the same result.
-VoxelSubsample voxel_subsample_reference(const PointCloud& cloud, float voxel_size);
+VoxelSubsample voxel_subsample_reference(const PointCloud& cloud, float voxel_size,
+                                         VoxelFaces faces = VoxelFaces::one);
 
 }  // namespace binpick

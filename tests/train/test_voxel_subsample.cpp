@@ -2,6 +2,7 @@
 // (kernels/device_scan.cl) against their C++ references.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <random>
 #include <set>
@@ -96,6 +97,46 @@ TEST(VoxelSubsample, IsDeterministic) {
   const PointCloud cloud = random_cloud(rng, 30000, 50.0f);
   const auto a = voxel_subsample(test_device(), cloud, 1.0f), b = voxel_subsample(test_device(), cloud, 1.0f);
   EXPECT_EQ(a.kept, b.kept);
+}
+
+TEST(VoxelSubsample, BothFacesMatchReferenceOnRandomClouds) {
+  std::mt19937 rng(3);
+  for (auto [n, extent, voxel] : {std::tuple{1u, 10.0f, 1.0f}, {60u, 10.0f, 3.0f},
+                                  {5000u, 100.0f, 5.0f}, {20000u, 52.0f, 2.6f}}) {
+    const PointCloud cloud = random_cloud(rng, n, extent);
+    const VoxelSubsample got = voxel_subsample(test_device(), cloud, voxel, VoxelFaces::both);
+    expect_same(got, voxel_subsample_reference(cloud, voxel, VoxelFaces::both));
+    const VoxelSubsample one = voxel_subsample(test_device(), cloud, voxel);
+    // Random normals: most voxels holding several points gain a second.
+    EXPECT_GE(got.kept.size(), one.kept.size());
+    if (n == 20000) EXPECT_GT(got.kept.size(), one.kept.size() * 5 / 4);  // 2.5 a voxel
+    EXPECT_TRUE(std::includes(got.kept.begin(), got.kept.end(), one.kept.begin(), one.kept.end()));
+  }
+  PointCloud no_normals;
+  no_normals.points = {{0, 0, 0}};
+  EXPECT_THROW(voxel_subsample(test_device(), no_normals, 1.0f, VoxelFaces::both), InputError);
+}
+
+TEST(VoxelSubsample, ThinSheetKeepsBothFacesOnlyWhenAsked) {
+  // A 1 mm sheet in 4 mm voxels: top face up, bottom face down, in the same voxels.
+  PointCloud sheet;
+  for (int x = 0; x < 40; ++x)
+    for (int y = 0; y < 40; ++y)
+      for (float z : {0.0f, 1.0f}) {
+        sheet.points.emplace_back(0.5f * x, 0.5f * y, z);
+        sheet.normals.emplace_back(0.0f, 0.0f, z > 0 ? 1.0f : -1.0f);
+      }
+  auto faces = [](const VoxelSubsample& s) {
+    int up = 0, down = 0;
+    for (const auto& n : s.cloud.normals) (n.z() > 0 ? up : down)++;
+    return std::pair(up, down);
+  };
+  const auto [up1, down1] = faces(voxel_subsample(test_device(), sheet, 4.0f));
+  EXPECT_EQ(up1 + down1, 25);  // 5 x 5 voxels, one face each
+  EXPECT_TRUE(up1 == 0 || down1 == 0);  // the face nearer the voxel layer's centre everywhere
+  const auto [up2, down2] = faces(voxel_subsample(test_device(), sheet, 4.0f, VoxelFaces::both));
+  EXPECT_EQ(up2, 25);
+  EXPECT_EQ(down2, 25);
 }
 
 TEST(VoxelSubsample, EmptyAndSinglePointClouds) {
