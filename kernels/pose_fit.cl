@@ -41,15 +41,18 @@ __kernel void pose_fit(__global const float4* points, const bp_camera cam,
   for (uint i = 0; i < BP_FIT_CLASSES; ++i) s.count[i] = 0u;
   s.cost = 0.0f;
   s.used = 0u;
-  s.reserved[0] = s.reserved[1] = 0u;
+  s.agreement = 0.0f;
+  s.reserved = 0u;
   float a[6];
   float r = 0.0f;
   for (uint j = lid; j < n_model; j += BP_FIT_GROUP) {
     const float4 m = model_points[j], n = model_normals[j];
     if (bp_fit_project(&f, &c, m.x, m.y, m.z, n.x, n.y, n.z, q, nq, &pixel, &cell) != 2) continue;
     const float4 p = points[pixel];
-    const uint cls = bp_fit_classify(&f, q, nq, as_float(grid[cell]), p.x, p.y, p.z, p.w);
+    float agree = 0.0f;
+    const uint cls = bp_fit_classify(&f, q, nq, as_float(grid[cell]), p.x, p.y, p.z, p.w, &agree);
     ++s.count[cls];
+    s.agreement += agree;
     if (cls == BP_FIT_HIDDEN || cls == BP_FIT_MISSING) continue;
     const float w = bp_fit_term(&f, q, nq, p.x, p.y, p.z, a, &r);
     if (w == 0.0f) continue;

@@ -52,7 +52,8 @@ typedef struct {
   float cost;       /* sum w r^2 */
   bp_u32 count[BP_FIT_CLASSES]; /* model points per class */
   bp_u32 used;      /* terms with weight > 0 */
-  bp_u32 reserved[2];
+  float agreement;  /* sum over inliers of 1 - (r / tolerance)^2: how well, not only whether */
+  bp_u32 reserved;
 } bp_fit_sums;
 
 /* Posed model point q = R m + t and normal nq = R n; its pixel (row-major index) and z-buffer
@@ -87,14 +88,18 @@ BP_FN int bp_fit_project(const bp_pose_fit* f, const bp_camera* cam, float mx, f
  * so the depth difference alone would reject a right pose's sloped faces) and not farther than
  * three tolerances along the ray (the plane test is lenient near grazing). */
 BP_FN bp_u32 bp_fit_classify(const bp_pose_fit* f, const float* q, const float* nq, float zmin,
-                             float px, float py, float pz, float pw) {
+                             float px, float py, float pz, float pw, float* agreement) {
+  *agreement = 0.0f;
   if (q[2] > zmin + f->slack) return BP_FIT_HIDDEN;
   if (pw == 0.0f) return BP_FIT_MISSING;
   const float dz = pz - q[2];
   const float r = nq[0] * (px - q[0]) + nq[1] * (py - q[1]) + nq[2] * (pz - q[2]);
   if (r <= f->tolerance && -r <= f->tolerance && dz <= 3.0f * f->tolerance &&
-      -dz <= 3.0f * f->tolerance)
+      -dz <= 3.0f * f->tolerance) {
+    const float u = r / f->tolerance;
+    *agreement = 1.0f - u * u;
     return BP_FIT_INLIER;
+  }
   return dz > 0.0f ? BP_FIT_SEE_THROUGH : BP_FIT_OCCLUDED;
 }
 

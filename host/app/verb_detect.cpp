@@ -16,6 +16,7 @@
 #include "host/detect/detect_batch.hpp"
 #include "host/detect/detector.hpp"
 #include "host/formats/mesh/point_cloud_ply.hpp"
+#include "host/core/atomic_file.hpp"
 #include "host/core/read_file.hpp"
 #include "host/train/ppf_model_file.hpp"
 #include "host/app/detect_options.hpp"
@@ -56,6 +57,9 @@ void run_detect(DetectArgs& a) {
     }
     const double seconds =
         seconds_since(start);
+    write_file_atomically(details_path(a.out), [&](std::ostream& o) {
+      o << kDetailsHeader << detail_rows(found, 0, 0);
+    });
     bop::write_results_csv(a.out, detection_rows(found, 0, 0, a.obj_id, seconds));
     BatchSummary s;
     s.scenes = s.images = 1;
@@ -63,6 +67,7 @@ void run_detect(DetectArgs& a) {
     s.times = times;
     if (a.verbose) {
       for (const StageTime& st : times.stages) std::cout << fmt::format("  {} {:.1f} ms\n", st.stage, st.ms);
+      for (std::size_t r = 0; r < found.size(); ++r) std::cout << "  " << detection_line(r, found[r]) << "\n";
     }
     std::cout << summary_line(s) << "\nwrote " << a.out << "\n";
     return;

@@ -31,6 +31,16 @@ fs::path part_file(const fs::path& out, int scene) {
   return parts_dir(out) / fmt::format("scene_{:06d}.csv", scene);
 }
 
+fs::path details_part_file(const fs::path& out, int scene) {
+  return parts_dir(out) / fmt::format("scene_{:06d}.details.csv", scene);
+}
+
+std::string csv_quoted(const std::string& text) {
+  std::string q = "\"";
+  for (char c : text) q += c == '"' ? std::string("\"\"") : std::string(1, c);
+  return q + "\"";
+}
+
 // Makes OUT.parts hold this run's fingerprint; a different one empties it first.
 void prepare_parts(const fs::path& out, const std::string& fingerprint) {
   const fs::path dir = parts_dir(out);
@@ -101,6 +111,22 @@ std::vector<bop::ResultRow> detection_rows(const std::vector<Detection>& detecti
   return rows;
 }
 
+fs::path details_path(const fs::path& out) {
+  fs::path p = out;
+  return p.replace_extension(".details.csv");
+}
+
+std::string detail_rows(const std::vector<Detection>& detections, int scene_id, int im_id) {
+  std::string text;
+  for (std::size_t r = 0; r < detections.size(); ++r) {
+    const Detection& d = detections[r];
+    text += fmt::format("{},{},{},{},{},{:.6f},{},{},{},{}\n", scene_id, im_id, r, d.index,
+                        d.candidate, d.score, d.votes, d.visible, d.inliers,
+                        d.reason.empty() ? "" : csv_quoted(d.reason));
+  }
+  return text;
+}
+
 std::string detection_line(std::size_t rank, const Detection& d) {
   std::string line = fmt::format(
       "#{} hypothesis {} candidate {}: score {:.3f} ({} of {} visible model points agree), "
@@ -137,6 +163,7 @@ BatchSummary detect_dataset(Detector& detector, const BatchOptions& opt, std::os
     const fs::path dir = opt.dataset / opt.split / fmt::format("{:06d}", scene);
     const bop::SceneCameras cameras = bop::read_scene_cameras(dir / "scene_camera.json");
     std::vector<bop::ResultRow> rows;
+    std::string details;
     for (const auto& [im_id, cam] : cameras) {
       const auto start = std::chrono::steady_clock::now();
       const fs::path depth_path = dir / "depth" / fmt::format("{:06d}.png", im_id);
@@ -152,6 +179,7 @@ BatchSummary detect_dataset(Detector& detector, const BatchOptions& opt, std::os
       }
       const auto image_rows = detection_rows(found, scene, im_id, opt.obj_id, seconds_since(start));
       rows.insert(rows.end(), image_rows.begin(), image_rows.end());
+      details += detail_rows(found, scene, im_id);
       ++summary.images;
       if (opt.verbose && log) {
         std::string line = fmt::format("scene {} image {}: {} hypotheses;", scene, im_id,
@@ -162,6 +190,8 @@ BatchSummary detect_dataset(Detector& detector, const BatchOptions& opt, std::os
       }
       summary.times += times;
     }
+    // The results part last: its presence marks the scene done.
+    write_file_atomically(details_part_file(opt.out, scene), [&](std::ostream& o) { o << details; });
     bop::write_results_csv(part_file(opt.out, scene), rows);
     progress.update(s + 1, fmt::format("scene {}", scene));
   }
@@ -172,6 +202,9 @@ BatchSummary detect_dataset(Detector& detector, const BatchOptions& opt, std::os
     all.insert(all.end(), rows.begin(), rows.end());
   }
   summary.rows = all.size();
+  std::string details = kDetailsHeader;
+  for (int scene : scenes) details += read_file_bytes(details_part_file(opt.out, scene));
+  write_file_atomically(details_path(opt.out), [&](std::ostream& o) { o << details; });
   bop::write_results_csv(opt.out, all);
   progress.finish(summary_line(summary));
   return summary;

@@ -1,5 +1,5 @@
 // Detection over the scenes of a BOP dataset (`binpick detect --dataset`), resumable: each
-// scene's rows go to OUT.parts/scene_NNNNNN.csv as soon as it is done, next to a fingerprint of
+// scene's rows go to OUT.parts/scene_NNNNNN.csv (and .details.csv) as soon as it is done, next to a fingerprint of
 // the run (model file checksum, object id, split and parameters). A rerun with the same
 // fingerprint skips the scenes already there; another fingerprint starts over. At the end all
 // requested scenes are merged, in scene order, into OUT (atomically). The parts stay, so a
@@ -48,6 +48,14 @@ bp_camera image_camera(const Eigen::Matrix3d& K, double depth_scale, std::uint32
 // The rows of one image (best first), with `time` its seconds.
 std::vector<bop::ResultRow> detection_rows(const std::vector<Detection>& detections, int scene_id,
                                            int im_id, int obj_id, double seconds);
+
+// Beside the results OUT (BOP's CSV, whose score column is the verified score), OUT with the
+// extension .details.csv: per detection its rank, hypothesis, candidate cluster, score, votes,
+// visible and agreeing model points, and the reason of a 0 score or a refinement cut short.
+std::filesystem::path details_path(const std::filesystem::path& out);
+inline constexpr const char* kDetailsHeader =
+    "scene_id,im_id,rank,hypothesis,candidate,score,votes,visible,inliers,reason\n";
+std::string detail_rows(const std::vector<Detection>& detections, int scene_id, int im_id);
 
 // One detection for --verbose: rank, hypothesis, score and its counts, votes, and the reason of
 // a 0 score or a refinement cut short.

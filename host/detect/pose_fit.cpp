@@ -24,6 +24,7 @@ void add_partial(const bp_fit_sums& s, FitSums& out) {
     out.jtr(row) += s.jtr[row];
   }
   out.cost += s.cost;
+  out.agreement += s.agreement;
   for (unsigned c = 0; c < BP_FIT_CLASSES; ++c) out.count[c] += s.count[c];
   out.used += s.used;
 }
@@ -133,8 +134,10 @@ std::vector<FitSums> pose_fit_sums_reference(const PointImage& image, const bp_c
     for (std::size_t j = 0; j < model.points.size(); ++j) {
       if (project(j) != 2) continue;
       const float* p = &image.xyzw[std::size_t(pixel) * 4];
-      const unsigned cls = bp_fit_classify(&f, q, nq, grid[cell], p[0], p[1], p[2], p[3]);
+      float agree = 0;
+      const unsigned cls = bp_fit_classify(&f, q, nq, grid[cell], p[0], p[1], p[2], p[3], &agree);
       ++s.count[cls];
+      s.agreement += agree;
       if (cls == BP_FIT_HIDDEN || cls == BP_FIT_MISSING) continue;
       const float w = bp_fit_term(&f, q, nq, p[0], p[1], p[2], a, &r);
       if (w == 0.0f) continue;

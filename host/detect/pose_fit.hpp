@@ -32,6 +32,7 @@ struct FitSums {
   Eigen::Matrix<double, 6, 6> jtj = Eigen::Matrix<double, 6, 6>::Zero();
   Eigen::Matrix<double, 6, 1> jtr = Eigen::Matrix<double, 6, 1>::Zero();
   double cost = 0;
+  double agreement = 0;  // sum over inliers of 1 - (r / tolerance)^2
   std::array<std::uint32_t, BP_FIT_CLASSES> count{};  // indexed by BP_FIT_HIDDEN ...
   std::uint32_t used = 0;
 

@@ -125,7 +125,10 @@ std::vector<RefinedPose> refine_and_verify(const FitSumsFn& sums_of, const bp_ca
       r.score = 0;
       r.reason = "no depth where the model would be seen";
     } else {
-      r.score = r.inliers / std::max(double(r.visible - r.missing), std::max(min_support, 1.0));
+      // Missing depth excuses at most half the visible surface: a pose parked over a shadow or
+      // beyond the sensor's range is otherwise judged on a few points.
+      const double support = std::max(double(r.visible - r.missing), 0.5 * r.visible);
+      r.score = s.agreement / std::max(support, std::max(min_support, 1.0));
     }
   }
   return out;

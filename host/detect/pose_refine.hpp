@@ -11,12 +11,15 @@
 // last ones fit only the surface that agrees.
 //
 // Verification: at the refined pose, the score is
-//     inliers / max(visible - missing, min_support)
+//     agreement / max(visible - missing, visible / 2, min_support)
 // visible = model points facing the camera and not hidden by the model itself, missing = those
-// where the sensor has no depth (neutral), inliers = those whose measured depth is within the
-// tolerance. Model surface where the sensor sees through it or something lies in front of it
-// counts against the pose. min_support (a fraction of the model's points) keeps a pose that
-// shows the camera only a sliver (a plate edge on) from scoring high on a handful of points.
+// where the sensor has no depth (neutral, but for at most half the visible surface: a pose
+// parked over a shadow would otherwise be judged on a few points), agreement = the sum over
+// inliers (measured point within the tolerance of the model's tangent plane) of
+// 1 - (distance / tolerance)^2, so that a closer fit scores higher. Model surface where the
+// sensor sees through it or something lies in front of it counts against the pose. min_support
+// (a fraction of the model's points) keeps a pose that shows the camera only a sliver (a plate
+// edge on) from scoring high on a handful of points.
 #pragma once
 
 #include <cstdint>

@@ -4,6 +4,9 @@
 // depth image, NaN points) with one clear message and no crash. Also the results CSV reader.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <sstream>
+
 #include <cmath>
 #include <fstream>
 #include <string>
@@ -128,6 +131,19 @@ TEST_F(DetectCli, WritesResultsBestFirstResumesAndIsDeterministic) {
   }
   const std::string first = test::slurp(out);
   EXPECT_TRUE(first.starts_with("scene_id,im_id,obj_id,score,R,t,time\n"));
+  for (const auto& row : rows) EXPECT_LE(row.score, 1.0);  // the verified score, not votes
+  // Beside it, one line a detection with its votes, in the same order.
+  const std::string details = test::slurp(out.parent_path() / "results.details.csv");
+  EXPECT_TRUE(details.starts_with("scene_id,im_id,rank,hypothesis,candidate,score,votes,"));
+  EXPECT_EQ(std::count(details.begin(), details.end(), '\n'), std::ptrdiff_t(rows.size() + 1));
+  std::istringstream lines(details);
+  std::string line;
+  std::getline(lines, line);
+  for (const auto& row : rows) {
+    ASSERT_TRUE(std::getline(lines, line));
+    EXPECT_TRUE(line.starts_with(fmt::format("{},{},", row.scene_id, row.im_id))) << line;
+    EXPECT_NE(line.find(fmt::format(",{:.6f},", row.score)), std::string::npos) << line;
+  }
 
   // A rerun resumes: every scene was done before, the merged CSV is the same bytes.
   r = test::run_binpick(cmd);

@@ -14,10 +14,12 @@
 #include "host/formats/bop/bop_files.hpp"
 #include "host/formats/bop/results_csv.hpp"
 #include "host/detect/detector.hpp"
+#include "host/eval/metrics/pose_error.hpp"
 #include "host/app/model_options.hpp"
 #include "host/formats/mesh/load_model.hpp"
 #include "host/train/ppf_model.hpp"
 #include "host/train/surface_sampling.hpp"
+#include "synth/parts/builtin_parts.hpp"
 #include "tests/support/cli_run.hpp"
 
 using namespace binpick;
@@ -29,20 +31,11 @@ struct PoseError {
 };
 
 // The error of an estimated model-to-camera pose against a true one, the smallest over the
-// part's discrete symmetries (rotation error = angle of R_gt^T R_est, in degrees).
+// part's symmetries (eval's definition: rotation error = angle of R_gt^T R_est, in degrees).
 PoseError pose_error(const Eigen::Matrix3d& R, const Eigen::Vector3d& t, const Eigen::Matrix3d& Rg,
                      const Eigen::Vector3d& tg, const PartSymmetries& sym) {
-  std::vector<Eigen::Matrix4d> all = sym.discrete;
-  all.push_back(Eigen::Matrix4d::Identity());
-  PoseError best;
-  for (const Eigen::Matrix4d& S : all) {
-    const Eigen::Matrix3d Rs = Rg * S.block<3, 3>(0, 0);
-    const Eigen::Vector3d ts = Rg * S.block<3, 1>(0, 3) + tg;
-    const double c = std::clamp(((Rs.transpose() * R).trace() - 1) / 2, -1.0, 1.0);
-    const double deg = std::acos(c) * 180 / std::numbers::pi;
-    if (deg < best.deg) best = {(t - ts).norm(), deg};
-  }
-  return best;
+  const eval::PoseError e = eval::symmetric_pose_error(Rg, tg, R, t, sym);
+  return {e.translation_mm, e.rotation_deg};
 }
 
 struct Scene {
@@ -106,7 +99,11 @@ TEST_P(DetectKnownPose, FoundWithinFivePercentAndFiveDegrees) {
   }
 }
 
-INSTANTIATE_TEST_SUITE_P(BuiltinParts, DetectKnownPose, ::testing::Values("bracket", "bolt", "tee"));
+// Not the plate yet: a flat sheet fits any plane (the floor) as well as itself, and upside down
+// as well as the right way up, wherever its holes do not tell; verification does not yet look
+// for the free space a part's holes and outline predict.
+INSTANTIATE_TEST_SUITE_P(BuiltinParts, DetectKnownPose,
+                         ::testing::Values("bracket", "bolt", "tee", "shaft"));
 
 // Synthetic bins through the command line, as a user runs it.
 TEST(DetectSynthBins, TopVotedHypothesisIsRightInMostBins) {
@@ -147,4 +144,58 @@ TEST(DetectSynthBins, TopVotedHypothesisIsRightInMostBins) {
   }
   std::cout << report;
   EXPECT_GE(right * 3, bins * 2) << report;  // at least two thirds of the bins
+}
+
+// Noisy bins of every built-in part through the command line: a fixed seed, so the counts are
+// deterministic and the floors, set just under what was measured when they were written, catch a
+// drop at once. "Right" as in the report's loose operating point: within 10 % of the diameter
+// and 15 degrees of a part (symmetric poses equal).
+TEST(DetectSynthBins, NoisyBinsOfEveryPartKeepTheirPrecision) {
+  int top_right = 0, images = 0, all_right = 0, hypotheses = 0;
+  std::string report;
+  for (const std::string& name : builtin_part_names()) {
+    const auto dir = test::fresh_temp_dir("detect_noisy_" + name);
+    const std::string data = (dir / "data").string(), ppfm = (dir / "part.ppfm").string();
+    const std::string csv = (dir / "results.csv").string();
+    auto r = test::run_binpick(fmt::format(
+        "synth --model builtin:{} --out {} --bins 3 --objects 35 --noise 0.02 --seed 5", name, data));
+    ASSERT_EQ(r.status, 0) << r.err;
+    r = test::run_binpick(fmt::format("train --model builtin:{} --out {}", name, ppfm));
+    ASSERT_EQ(r.status, 0) << r.err;
+    r = test::run_binpick(fmt::format("detect --model {} --dataset {} --out {}", ppfm, data, csv));
+    ASSERT_EQ(r.status, 0) << r.err;
+    const Model part = cli::load_part({"builtin:" + name, {}});
+    const double d = builtin_part_nominal_diameter(name);
+    const auto rows = bop::read_results_csv(csv);
+    int part_top = 0, part_all = 0;
+    for (int scene = 0; scene < 3; ++scene) {
+      const auto gt = bop::read_scene_gt(dir / "data" / "test" / fmt::format("{:06d}", scene) / "scene_gt.json");
+      bool first = true;
+      for (const auto& row : rows) {
+        if (row.scene_id != scene) continue;
+        PoseError best;
+        for (const auto& g : gt.at(0)) {
+          const PoseError e = pose_error(row.R, row.t, g.model_to_camera.R, g.model_to_camera.t,
+                                         part.symmetries);
+          if (e.t < best.t) best = e;
+        }
+        const bool ok = best.t < 0.1 * d && best.deg < 15.0;
+        part_all += ok;
+        ++hypotheses;
+        if (first) part_top += ok, ++images;
+        first = false;
+      }
+    }
+    top_right += part_top;
+    all_right += part_all;
+    report += fmt::format("{}: top-ranked right in {} of 3 bins, {} hypotheses right\n", name,
+                          part_top, part_all);
+    std::filesystem::remove_all(dir);
+  }
+  std::cout << report;
+  EXPECT_EQ(images, 15) << report;
+  // Measured: bracket 2/3 top, 14/15 all; bolt 3, 15; tee 3, 13; shaft 3, 12; plate 0, 0 (a flat
+  // sheet fits any plane, and upside down: see DetectKnownPose).
+  EXPECT_GE(top_right, 11) << report;
+  EXPECT_GE(all_right, 53) << report;
 }

@@ -69,6 +69,8 @@ TEST(PoseFit, KernelMatchesReferenceOnRandomPoses) {
     const double rscale = 1.0 + want[k].jtr.cwiseAbs().maxCoeff() + std::sqrt(scale * want[k].cost);
     EXPECT_LT((got[k].jtr - want[k].jtr).cwiseAbs().maxCoeff(), 1e-4 * rscale) << "pose " << k;
     EXPECT_NEAR(got[k].cost, want[k].cost, 1e-4 * (1.0 + want[k].cost));
+    EXPECT_NEAR(got[k].agreement, want[k].agreement, 1e-5 * (1.0 + want[k].agreement));
+    EXPECT_LE(got[k].agreement, got[k].count[BP_FIT_INLIER] + 1e-3);
     for (unsigned c = 0; c < BP_FIT_CLASSES; ++c) seen[c] += got[k].count[c];
   }
   for (unsigned c = 0; c < BP_FIT_CLASSES; ++c) EXPECT_GT(seen[c], 0u) << "class " << c;
