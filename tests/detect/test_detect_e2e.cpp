@@ -105,22 +105,31 @@ TEST_P(DetectKnownPose, FoundWithinFivePercentAndFiveDegrees) {
 INSTANTIATE_TEST_SUITE_P(BuiltinParts, DetectKnownPose,
                          ::testing::Values("bracket", "bolt", "tee", "shaft"));
 
+// Bins of a built-in part made, trained on and detected in through the command line, as a user
+// runs it, into dir: the results rows.
+static void synth_train_detect(const std::string& name, const std::filesystem::path& dir,
+                        const std::string& synth_options, std::vector<bop::ResultRow>& rows) {
+  const std::string data = (dir / "data").string(), ppfm = (dir / "part.ppfm").string();
+  const std::string csv = (dir / "results.csv").string();
+  auto r = test::run_binpick(
+      fmt::format("synth --model builtin:{} --out {} {}", name, data, synth_options));
+  ASSERT_EQ(r.status, 0) << r.err;
+  r = test::run_binpick(fmt::format("train --model builtin:{} --out {}", name, ppfm));
+  ASSERT_EQ(r.status, 0) << r.err;
+  r = test::run_binpick(fmt::format("detect --model {} --dataset {} --out {}", ppfm, data, csv));
+  ASSERT_EQ(r.status, 0) << r.err;
+  rows = bop::read_results_csv(csv);
+}
+
 // Synthetic bins through the command line, as a user runs it.
 TEST(DetectSynthBins, TopVotedHypothesisIsRightInMostBins) {
   int right = 0, bins = 0;
   std::string report;
   for (const std::string name : {"bracket", "bolt", "tee"}) {
     const auto dir = test::fresh_temp_dir("detect_bins_" + name);
-    const std::string data = (dir / "data").string(), ppfm = (dir / "part.ppfm").string();
-    const std::string csv = (dir / "results.csv").string();
-    auto r = test::run_binpick(fmt::format("synth --model builtin:{} --out {} --bins 2 --objects 35", name, data));
-    ASSERT_EQ(r.status, 0) << r.err;
-    r = test::run_binpick(fmt::format("train --model builtin:{} --out {}", name, ppfm));
-    ASSERT_EQ(r.status, 0) << r.err;
-    r = test::run_binpick(fmt::format("detect --model {} --dataset {} --out {}", ppfm, data, csv));
-    ASSERT_EQ(r.status, 0) << r.err;
+    std::vector<bop::ResultRow> rows;
+    ASSERT_NO_FATAL_FAILURE(synth_train_detect(name, dir, "--bins 2 --objects 35", rows));
     const Model part = cli::load_part({"builtin:" + name, {}});
-    const auto rows = bop::read_results_csv(csv);
     for (int scene = 0; scene < 2; ++scene) {
       ++bins;
       const auto gt = bop::read_scene_gt(dir / "data" / "test" / fmt::format("{:06d}", scene) / "scene_gt.json");
@@ -155,18 +164,11 @@ TEST(DetectSynthBins, NoisyBinsOfEveryPartKeepTheirPrecision) {
   std::string report;
   for (const std::string& name : builtin_part_names()) {
     const auto dir = test::fresh_temp_dir("detect_noisy_" + name);
-    const std::string data = (dir / "data").string(), ppfm = (dir / "part.ppfm").string();
-    const std::string csv = (dir / "results.csv").string();
-    auto r = test::run_binpick(fmt::format(
-        "synth --model builtin:{} --out {} --bins 3 --objects 35 --noise 0.02 --seed 5", name, data));
-    ASSERT_EQ(r.status, 0) << r.err;
-    r = test::run_binpick(fmt::format("train --model builtin:{} --out {}", name, ppfm));
-    ASSERT_EQ(r.status, 0) << r.err;
-    r = test::run_binpick(fmt::format("detect --model {} --dataset {} --out {}", ppfm, data, csv));
-    ASSERT_EQ(r.status, 0) << r.err;
+    std::vector<bop::ResultRow> rows;
+    ASSERT_NO_FATAL_FAILURE(
+        synth_train_detect(name, dir, "--bins 3 --objects 35 --noise 0.02 --seed 5", rows));
     const Model part = cli::load_part({"builtin:" + name, {}});
     const double d = builtin_part_nominal_diameter(name);
-    const auto rows = bop::read_results_csv(csv);
     int part_top = 0, part_all = 0;
     for (int scene = 0; scene < 3; ++scene) {
       const auto gt = bop::read_scene_gt(dir / "data" / "test" / fmt::format("{:06d}", scene) / "scene_gt.json");

@@ -1,5 +1,6 @@
 // Voxel subsampling (kernels/voxel_subsample.cl) and the device prefix sum it uses
-// (kernels/device_scan.cl) against their C++ references.
+// (kernels/device_scan.cl) against their C++ references; with both faces (the kernels
+// voxel_opposite_side, voxel_best_index_opposite and voxel_keep_flags_faces) too.
 #include <gtest/gtest.h>
 
 #include <algorithm>
