@@ -1,6 +1,7 @@
 // `binpick eval`: compares detection results (BOP results CSV) with a dataset's ground truth and
-// writes a report directory: report.html, report.json, curves.csv, hypotheses.csv, the
-// precision figure and pictures of the first scenes (docs/pipeline.md).
+// writes a report directory: report.html, report.json, curves.csv, score_curves.csv,
+// hypotheses.csv, the precision and score threshold figures and pictures of the first scenes
+// (docs/pipeline.md).
 #include <filesystem>
 #include <iostream>
 #include <memory>
@@ -53,6 +54,9 @@ void print_summary(const std::vector<eval::DatasetEvaluation>& evaluations,
         100 * s.strict.top, 100 * s.strict.all, s.median_translation_pct_all,
         s.median_rotation_deg_all, s.ms_per_hypothesis);
   }
+  for (const auto& e : evaluations)
+    std::cout << fmt::format("{:<24} {}\n", e.dataset.label,
+                             eval::calibration_line(e.summary.score_loose, o.loose));
 }
 
 void run_eval(const EvalArgs& args) {
@@ -85,8 +89,9 @@ void add_eval_verb(CLI::App& app) {
   auto* verb = app.add_subcommand(
       "eval",
       "Evaluate detection results against a dataset's ground truth: translation and rotation "
-      "errors, precision curves (all hypotheses and top-voted per image), pictures; writes "
-      "report.html, report.json, curves.csv, hypotheses.csv and PNGs into --out");
+      "errors, precision curves (all hypotheses and top-ranked per image), precision against "
+      "score threshold (is the score calibrated?), pictures; writes report.html, report.json, "
+      "curves.csv, score_curves.csv, hypotheses.csv and PNGs into --out");
   verb->add_option("--dataset", args->datasets,
                    "BOP dataset directory (repeat, each followed by its --results, for one curve "
                    "per noise level)");

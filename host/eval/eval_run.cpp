@@ -11,6 +11,7 @@
 #include "host/eval/report/precision_plot.hpp"
 #include "host/eval/report/report_pictures.hpp"
 #include "host/eval/report/report_tables.hpp"
+#include "host/eval/report/score_plot.hpp"
 #include "host/eval/report/report_html.hpp"
 
 namespace binpick::eval {
@@ -30,6 +31,7 @@ std::vector<DatasetEvaluation> evaluate_inputs(const std::vector<EvalInput>& inp
       throw InputError(in.results.string() + ": " + err.what());
     }
     e.curves = figure7_curves(e.summary.results);
+    e.score_curve = score_curve(e.summary.results, options.loose);
     out.push_back(std::move(e));
   }
   const bool all_known = std::all_of(out.begin(), out.end(),
@@ -51,16 +53,26 @@ ReportFiles write_report(const std::vector<DatasetEvaluation>& evaluations,
                      (ec ? ": " + ec.message() : ""));
   ReportFiles files;
   files.curves_csv = options.out / "curves.csv";
+  files.score_curves_csv = options.out / "score_curves.csv";
   files.hypotheses_csv = options.out / "hypotheses.csv";
   files.json = options.out / "report.json";
   files.html = options.out / "report.html";
 
   std::vector<LabelledCurves> curves;
   for (const auto& e : evaluations) curves.push_back({e.dataset.label, e.curves});
+  std::vector<LabelledScoreCurve> score_curves;
+  for (const auto& e : evaluations) {
+    score_curves.push_back({e.dataset.label, e.score_curve, e.summary.score_loose});
+    if (auto w = score_range_warning(e.dataset.label, e.summary.score_loose); !w.empty())
+      files.warnings.push_back(std::move(w));
+  }
   write_curves_csv(files.curves_csv, curves);
+  write_score_curves_csv(files.score_curves_csv, score_curves);
   write_hypotheses_csv(files.hypotheses_csv, evaluations);
   write_report_json(files.json, evaluations, options.eval);
 
+  const bool any_plottable = std::any_of(score_curves.begin(), score_curves.end(),
+                                         [](const auto& c) { return plottable(c.curve); });
   if (const auto gnuplot = find_gnuplot()) {
     try {
       plot_figure7(*gnuplot, options.out / "precision.png", curves);
@@ -68,8 +80,20 @@ ReportFiles write_report(const std::vector<DatasetEvaluation>& evaluations,
     } catch (const std::exception& e) {
       files.warnings.push_back(std::string("no precision plot: ") + e.what());
     }
+    // Nothing to draw when no dataset has rows, all with scores in [0, 1] (the warnings above
+    // name the datasets whose scores are not).
+    if (any_plottable) {
+      try {
+        plot_score_threshold(*gnuplot, options.out / "score_threshold.png", score_curves,
+                             options.eval.loose);
+        files.score_plot = options.out / "score_threshold.png";
+      } catch (const std::exception& e) {
+        files.warnings.push_back(std::string("no score threshold plot: ") + e.what());
+      }
+    }
   } else {
-    files.warnings.push_back("no precision plot: gnuplot is not on PATH (Debian: gnuplot-nox)");
+    files.warnings.push_back(
+        "no precision and score threshold plots: gnuplot is not on PATH (Debian: gnuplot-nox)");
   }
 
   std::vector<PicturedImage> pictured;

@@ -22,6 +22,7 @@ struct DatasetEvaluation {
   std::filesystem::path results;
   EvalSummary summary;
   std::array<PrecisionCurve, 4> curves;  // figure7_curves(summary.results)
+  ScoreCurve score_curve;                 // score_curve(summary.results, options.loose)
 };
 
 // Loads and evaluates each pair; InputError names the failing pair. With every dataset's noise
@@ -36,13 +37,16 @@ struct ReportOptions {
 };
 
 struct ReportFiles {
-  std::filesystem::path html, json, curves_csv, hypotheses_csv;
-  std::filesystem::path plot;   // empty if gnuplot was not available or failed
+  std::filesystem::path html, json, curves_csv, score_curves_csv, hypotheses_csv;
+  std::filesystem::path plot;        // precision.png; empty if gnuplot was not available or failed
+  std::filesystem::path score_plot;  // score_threshold.png; empty likewise, or if no dataset's
+                                     // scores are in [0, 1]
   std::vector<std::string> warnings;
 };
 
-// Writes report.html, report.json, curves.csv, hypotheses.csv, precision.png and pictures/*.png
-// into options.out, each atomically, report.html last.
+// Writes report.html, report.json, curves.csv, score_curves.csv, hypotheses.csv, precision.png,
+// score_threshold.png and pictures/*.png into options.out, each atomically, report.html last.
+// Results whose scores are outside [0, 1] get a warning (score_range_warning), not an error.
 ReportFiles write_report(const std::vector<DatasetEvaluation>& evaluations,
                          const ReportOptions& options);
 

@@ -142,17 +142,25 @@ std::string results_table(const std::vector<eval::DatasetEvaluation>& evaluation
   const auto point = [](const char* which, const eval::OperatingPoint& p) {
     return fmt::format("{} {:g}%/{:g}deg", which, p.translation_pct, p.rotation_deg);
   };
-  std::string t = fmt::format("{:>7} {:>5} {:>6}  {:^17}  {:^17}  {:>8}\n", "", "", "",
+  // wrong@90%: of the poses the score threshold keeping 90 % of the right ones accepts, the
+  // fraction that is wrong (at the loose point, whose group it sits in).
+  const std::string wrong = fmt::format("wrong@{:g}%", 100 * at.score_keep);
+  std::string t = fmt::format("{:>7} {:>5} {:>6}  {:^28}  {:^17}  {:>8}\n", "", "", "",
                               point("loose", at.loose), point("strict", at.strict), "");
-  t += fmt::format("{:>7} {:>5} {:>6}  {:>8} {:>8}  {:>8} {:>8}  {:>8}\n", "noise", "bins",
-                   "hyps", "top", "all", "top", "all", "ms/hyp");
+  t += fmt::format("{:>7} {:>5} {:>6}  {:>8} {:>8} {:>10}  {:>8} {:>8}  {:>8}\n", "noise", "bins",
+                   "hyps", "top", "all", wrong, "top", "all", "ms/hyp");
   for (const auto& e : evaluations) {
     const auto& s = e.summary;
     const std::string noise = e.dataset.noise >= 0 ? fmt::format("{:.3g}", e.dataset.noise)
                                                    : e.dataset.label;
-    t += fmt::format("{:>7} {:>5} {:>6}  {:>7.1f}% {:>7.1f}%  {:>7.1f}% {:>7.1f}%  {:>8.1f}\n",
+    // "-" without a right pose: no threshold keeps any.
+    const std::string wrong_cell = s.score_loose.any_right
+                                       ? fmt::format("{:.1f}%", 100 * s.score_loose.wrong_fraction)
+                                       : std::string("-");
+    t += fmt::format("{:>7} {:>5} {:>6}  {:>7.1f}% {:>7.1f}% {:>10}  {:>7.1f}% {:>7.1f}%  "
+                     "{:>8.1f}\n",
                      noise, s.images, s.hypotheses, 100 * s.loose.top, 100 * s.loose.all,
-                     100 * s.strict.top, 100 * s.strict.all, s.ms_per_hypothesis);
+                     wrong_cell, 100 * s.strict.top, 100 * s.strict.all, s.ms_per_hypothesis);
   }
   return t;
 }

@@ -6,7 +6,8 @@
 //   OUT/noise_0.00/            dataset (BOP) per noise level
 //   OUT/model.ppfm (+ .json)   the trained model and what it was trained from
 //   OUT/results/noise_0.00.csv detection results (BOP results CSV)
-//   OUT/report/                report.html, report.json, curves.csv, precision.png, pictures/
+//   OUT/report/                report.html, report.json, curves.csv, score_curves.csv,
+//                              precision.png, score_threshold.png, pictures/
 #pragma once
 
 #include <cstdint>
@@ -66,7 +67,8 @@ struct ExperimentResult {
 ExperimentResult run_experiment(const Model& part, const ExperimentOptions& options,
                                 std::ostream& log);
 
-// The final table: noise, bins, hypotheses, precision top/all at both operating points, ms per
+// The final table: noise, bins, hypotheses, precision top/all at both operating points, the
+// wrong fraction at the score threshold keeping 90 % of right poses (loose point), ms per
 // hypothesis; one row per evaluation.
 std::string results_table(const std::vector<eval::DatasetEvaluation>& evaluations,
                           const eval::EvalOptions& at = {});

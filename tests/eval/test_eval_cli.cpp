@@ -45,7 +45,7 @@ struct Fixture {
   Fixture() {
     write_tiny_dataset(dataset);
     bop::ResultRow row;
-    row.R = kPart.R, row.t = kPart.t + Eigen::Vector3d(0, 0, 1), row.score = 42, row.time = 0.2;
+    row.R = kPart.R, row.t = kPart.t + Eigen::Vector3d(0, 0, 1), row.score = 0.8, row.time = 0.2;
     bop::write_results_csv(results, {row});
   }
   std::string args(const fs::path& csv, const std::string& pictures = "1") const {
@@ -60,8 +60,14 @@ TEST(EvalCli, WritesTheReportAndPrintsTheSummary) {
   ASSERT_EQ(r.status, 0) << r.err;
   EXPECT_NE(r.out.find("wrote "), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("100.0%"), std::string::npos) << r.out;
-  for (const char* name : {"report.html", "report.json", "curves.csv", "hypotheses.csv",
-                           "precision.png", "pictures/d0_000000_000000_detections.png"})
+  EXPECT_NE(r.out.find("score: threshold 0.8 keeps 90 % of right poses (1 of 1); 0.0 % of the "
+                       "poses it accepts are wrong (0 of 1)\n"),
+            std::string::npos)
+      << r.out;
+  EXPECT_EQ(r.err, "");
+  for (const char* name : {"report.html", "report.json", "curves.csv", "score_curves.csv",
+                           "hypotheses.csv", "precision.png", "score_threshold.png",
+                           "pictures/d0_000000_000000_detections.png"})
     EXPECT_GT(fs::file_size(f.out / name), 0u) << name;
 
   const auto j = run_binpick(f.args(f.results) + " --json");
@@ -70,6 +76,28 @@ TEST(EvalCli, WritesTheReportAndPrintsTheSummary) {
   EXPECT_EQ(json["datasets"][0]["hypotheses"].get<int>(), 1);
   EXPECT_DOUBLE_EQ(json["datasets"][0]["precision"]["strict"]["top"].get<double>(), 1.0);
   EXPECT_NEAR(json["datasets"][0]["ms_per_hypothesis"].get<double>(), 200.0, 1e-9);
+  EXPECT_DOUBLE_EQ(
+      json["datasets"][0]["score_calibration"]["loose"]["threshold"].get<double>(), 0.8);
+}
+
+// Results of an older detect hold vote counts: still a report (exit 0), with a warning that
+// names the problem, and no score plot.
+TEST(EvalCli, VoteCountScoresAreAWarning) {
+  Fixture f;
+  bop::ResultRow row;
+  row.R = kPart.R, row.t = kPart.t, row.score = 4211, row.time = 0.2;
+  bop::write_results_csv(f.dir / "votes.csv", {row});
+  const auto r = run_binpick(f.args(f.dir / "votes.csv"));
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.err.find("binpick: warning: ds: 1 of 1 scores are outside [0, 1] (highest 4211)"),
+            std::string::npos)
+      << r.err;
+  EXPECT_NE(r.out.find("score: threshold 4211 keeps 90 % of right poses (1 of 1)"),
+            std::string::npos)
+      << r.out;
+  EXPECT_NE(r.out.find("[scores not in [0, 1]]"), std::string::npos) << r.out;
+  EXPECT_FALSE(fs::exists(f.out / "score_threshold.png"));
+  EXPECT_GT(fs::file_size(f.out / "score_curves.csv"), 0u);
 }
 
 // Exit status 2, the message on stderr, and nothing written under --out.

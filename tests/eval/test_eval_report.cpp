@@ -1,5 +1,6 @@
 // The report of `binpick eval`: files written and non-empty, pictures that show what they say,
-// datasets ordered and labelled by noise, on a small hand-made dataset (no rendering needed).
+// datasets ordered and labelled by noise, the score calibration (and a warning, not a plot, for
+// results that hold vote counts), on a small hand-made dataset (no rendering needed).
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -68,15 +69,16 @@ void write_toy_dataset(const fs::path& root, double noise) {
   }
 }
 
-// A correct top hypothesis, one 20 degrees off and one 15 mm off.
+// A correct top hypothesis, one 20 degrees off and one 15 mm off; verified scores (in [0, 1]).
 std::vector<bop::ResultRow> toy_results() {
   const auto parts = toy_parts();
   std::vector<bop::ResultRow> rows(3);
-  rows[0].score = 900, rows[0].R = parts[0].model_to_camera.R, rows[0].t = parts[0].model_to_camera.t;
-  rows[1].score = 500;
+  rows[0].score = 0.9;
+  rows[0].R = parts[0].model_to_camera.R, rows[0].t = parts[0].model_to_camera.t;
+  rows[1].score = 0.5;
   rows[1].R = parts[1].model_to_camera.R * Eigen::AngleAxisd(0.35, Eigen::Vector3d::UnitX()).toRotationMatrix();
   rows[1].t = parts[1].model_to_camera.t;
-  rows[2].score = 300, rows[2].t = parts[1].model_to_camera.t + Eigen::Vector3d(15, 0, 0);
+  rows[2].score = 0.3, rows[2].t = parts[1].model_to_camera.t + Eigen::Vector3d(15, 0, 0);
   rows[2].R = parts[1].model_to_camera.R;
   for (auto& r : rows) r.time = 0.3;
   return rows;
@@ -98,16 +100,36 @@ TEST(EvalReport, WritesEveryFileAndReferencesThem) {
   EXPECT_NEAR(evaluations[0].summary.loose.all, 1.0 / 3.0, 1e-12);
   EXPECT_NEAR(evaluations[0].summary.ms_per_hypothesis, 100.0, 1e-9);
 
+  // The one right pose scores 0.9: the threshold keeping it accepts nothing wrong.
+  const ScoreCalibration& c = evaluations[0].summary.score_loose;
+  EXPECT_DOUBLE_EQ(c.threshold, 0.9);
+  EXPECT_EQ(c.accepted, 1u);
+  EXPECT_DOUBLE_EQ(c.wrong_fraction, 0.0);
+
   const ReportFiles files = write_report(evaluations, options);
-  for (const auto& f : {files.html, files.json, files.curves_csv, files.hypotheses_csv})
+  for (const auto& f :
+       {files.html, files.json, files.curves_csv, files.score_curves_csv, files.hypotheses_csv})
     EXPECT_TRUE(non_empty(f)) << f;
+  EXPECT_EQ(files.score_curves_csv, options.out / "score_curves.csv");
+  EXPECT_TRUE(files.warnings.empty()) << (files.warnings.empty() ? "" : files.warnings.front());
   const std::string html = test::slurp(files.html);
   const bool have_gnuplot = find_gnuplot().has_value();
   EXPECT_TRUE(have_gnuplot) << "gnuplot (Debian gnuplot-nox) draws the precision plot";
   if (have_gnuplot) {
     EXPECT_TRUE(non_empty(options.out / "precision.png"));
     EXPECT_NE(html.find("src=\"precision.png\""), std::string::npos);
+    EXPECT_EQ(files.score_plot, options.out / "score_threshold.png");
+    EXPECT_TRUE(non_empty(options.out / "score_threshold.png"));
+    EXPECT_NE(html.find("src=\"score_threshold.png\""), std::string::npos);
   }
+  // The score section, its table and the summary's columns; the wording of a ranked score.
+  EXPECT_NE(html.find("<h2>Precision against score threshold</h2>"), std::string::npos);
+  EXPECT_NE(html.find("href=\"score_curves.csv\""), std::string::npos);
+  EXPECT_NE(html.find("score threshold keeping<br>90 % of right poses"), std::string::npos);
+  EXPECT_NE(html.find("<td>0.9</td><td>0.0 % (0 of 1)</td></tr>"), std::string::npos) << html;
+  EXPECT_NE(html.find("top-ranked"), std::string::npos);
+  EXPECT_EQ(html.find("top-voted"), std::string::npos);
+  EXPECT_EQ(html.find("votes"), std::string::npos);
   for (const char* kind : {"depth", "intensity", "hypotheses", "detections", "closeup"}) {
     const std::string rel = std::string("pictures/d0_000000_000000_") + kind + ".png";
     EXPECT_TRUE(non_empty(options.out / rel)) << rel;
@@ -117,12 +139,52 @@ TEST(EvalReport, WritesEveryFileAndReferencesThem) {
   EXPECT_DOUBLE_EQ(json["datasets"][0]["precision"]["loose"]["top"].get<double>(), 1.0);
   EXPECT_EQ(json["datasets"][0]["hypotheses"].get<int>(), 3);
   EXPECT_DOUBLE_EQ(json["operating_points"]["strict"]["rotation_deg"].get<double>(), 5.0);
+  const auto& calibration = json["datasets"][0]["score_calibration"];
+  EXPECT_DOUBLE_EQ(calibration["keep"].get<double>(), 0.9);
+  EXPECT_EQ(calibration["scores_outside_unit"].get<int>(), 0);
+  EXPECT_DOUBLE_EQ(calibration["loose"]["threshold"].get<double>(), 0.9);
+  EXPECT_EQ(calibration["loose"]["accepted_wrong"].get<int>(), 0);
+  EXPECT_EQ(calibration["loose"]["right"].get<int>(), 1);
+  EXPECT_TRUE(calibration["strict"]["any_right"].get<bool>());
+  const std::string score_curves = test::slurp(files.score_curves_csv);
+  EXPECT_EQ(score_curves.rfind("label,threshold,accepted,precision,kept\n", 0), 0u);
+  // At 0.5: the right pose (0.9) and the one 20 degrees off (0.5); above 0.9 nothing.
+  EXPECT_NE(score_curves.find("\n\"ds\",0.5,2,0.5,1\n"), std::string::npos) << score_curves;
+  EXPECT_NE(score_curves.find("\n\"ds\",0.91,0,1,0\n"), std::string::npos) << score_curves;
   const std::string curves = test::slurp(files.curves_csv);
   EXPECT_EQ(curves.rfind("label,set,error,threshold,precision\n", 0), 0u);
   EXPECT_NE(curves.find("\"ds\",top,rotation_deg,60,1\n"), std::string::npos);
   // No temporary file of the atomic writes or of gnuplot is left behind.
   for (const auto& entry : fs::recursive_directory_iterator(options.out))
     EXPECT_EQ(entry.path().filename().string().find(".partial"), std::string::npos) << entry.path();
+}
+
+// Results of an older detect (vote counts): a warning in the report, no score plot, the
+// numbers still written and flagged.
+TEST(EvalReport, VoteCountScoresAreAWarningNotAPlot) {
+  const fs::path dir = test::fresh_temp_dir("eval_report_votes");
+  write_toy_dataset(dir / "ds", -1);
+  auto rows = toy_results();
+  rows[0].score = 900, rows[1].score = 500, rows[2].score = 300;
+  bop::write_results_csv(dir / "ds.csv", rows);
+  ReportOptions options;
+  options.out = dir / "report";
+  options.pictures = 0;
+  const auto evaluations = evaluate_inputs({{dir / "ds", dir / "ds.csv"}}, options.eval);
+  const ReportFiles files = write_report(evaluations, options);
+  ASSERT_FALSE(files.warnings.empty());
+  EXPECT_EQ(files.warnings[0].rfind("ds: 3 of 3 scores are outside [0, 1] (highest 900)", 0), 0u)
+      << files.warnings[0];
+  EXPECT_TRUE(files.score_plot.empty());
+  EXPECT_FALSE(fs::exists(options.out / "score_threshold.png"));
+  const std::string html = test::slurp(files.html);
+  EXPECT_NE(html.find("3 of 3 scores are outside [0, 1]"), std::string::npos);
+  EXPECT_NE(html.find("900 <span class=\"warn\">(scores not in [0, 1])</span>"), std::string::npos)
+      << html;
+  EXPECT_EQ(html.find("src=\"score_threshold.png\""), std::string::npos);
+  const auto json = nlohmann::json::parse(test::slurp(files.json));
+  EXPECT_EQ(json["datasets"][0]["score_calibration"]["scores_outside_unit"].get<int>(), 3);
+  EXPECT_DOUBLE_EQ(json["datasets"][0]["score_calibration"]["max_score"].get<double>(), 900);
 }
 
 TEST(EvalReport, CurvesAreOrderedAndLabelledByNoise) {

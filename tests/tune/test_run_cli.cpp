@@ -1,6 +1,7 @@
 // `binpick run` as a user runs it: two noise levels of tiny bins give one report (report.html,
-// report.json, precision.png, curves.csv: one curve per noise level), the results and the final
-// table; the same command again resumes (bins, model and detections reused). Bad options exit 2
+// report.json, precision.png, curves.csv: one curve per noise level; score_threshold.png,
+// score_curves.csv), the results and the final table with its score column; the same command
+// again resumes (bins, model and detections reused). Bad options exit 2
 // with one message and make nothing.
 #include <gtest/gtest.h>
 
@@ -44,7 +45,8 @@ TEST(RunCli, MakesOneReportWithACurvePerNoiseLevelAndResumes) {
   auto r = test::run_binpick(cmd);
   ASSERT_EQ(r.status, 0) << r.out << r.err;
 
-  for (const char* file : {"report.html", "report.json", "precision.png", "curves.csv"})
+  for (const char* file : {"report.html", "report.json", "precision.png", "curves.csv",
+                           "score_curves.csv", "score_threshold.png"})
     EXPECT_GT(fs::file_size(out / "report" / file), 0u) << file;
   EXPECT_EQ(curve_labels(test::slurp(out / "report" / "curves.csv")).size(), 2u);
   const auto json = nlohmann::json::parse(test::slurp(out / "report" / "report.json"));
@@ -62,6 +64,22 @@ TEST(RunCli, MakesOneReportWithACurvePerNoiseLevelAndResumes) {
   EXPECT_NE(r.out.find("ms/hyp"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("\n      0     2 "), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("\n   0.02     2 "), std::string::npos) << r.out;
+  // The score column (wrong fraction at the threshold keeping 90 % of right poses) lines up:
+  // its header ends where each row's cell ends, and the rows are as long as the header.
+  const std::size_t header = r.out.find("\n  noise ");
+  ASSERT_NE(header, std::string::npos) << r.out;
+  const std::string header_line =
+      r.out.substr(header + 1, r.out.find('\n', header + 1) - header - 1);
+  ASSERT_NE(header_line.find("wrong@90%"), std::string::npos) << header_line;
+  const std::size_t wrong_end = header_line.find("wrong@90%") + 9;
+  for (const char* row_start : {"\n      0     2 ", "\n   0.02     2 "}) {
+    const std::size_t at = r.out.find(row_start) + 1;
+    const std::string row = r.out.substr(at, r.out.find('\n', at) - at);
+    EXPECT_EQ(row.size(), header_line.size()) << row << "\n" << header_line;
+    const char last = row[wrong_end - 1];
+    EXPECT_TRUE(last == '%' || last == '-') << row << "\n" << header_line;
+    EXPECT_EQ(row[wrong_end], ' ') << row;
+  }
   EXPECT_NE(r.out.find((out / "report" / "report.html").string()), std::string::npos) << r.out;
 
   const std::string results = test::slurp(out / "results" / "noise_0.02.csv");

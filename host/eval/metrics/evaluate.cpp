@@ -72,6 +72,9 @@ void check(const EvalOptions& o) {
     if (!(p->translation_pct >= 0 && p->rotation_deg >= 0 && std::isfinite(p->translation_pct) &&
           std::isfinite(p->rotation_deg)))
       throw InputError("operating point thresholds must be finite and non-negative");
+  if (!(o.score_keep > 0 && o.score_keep <= 1))
+    throw InputError(fmt::format("the score calibration's kept fraction {:g} must be in (0, 1]",
+                                 o.score_keep));
 }
 
 EvalSummary evaluate(const Dataset& dataset, const std::vector<bop::ResultRow>& rows,
@@ -127,6 +130,8 @@ EvalSummary evaluate(const Dataset& dataset, const std::vector<bop::ResultRow>& 
   }
   s.loose = precision_at(s.results, options.loose);
   s.strict = precision_at(s.results, options.strict);
+  s.score_loose = calibrate(s.results, options.loose, options.score_keep);
+  s.score_strict = calibrate(s.results, options.strict, options.score_keep);
   s.median_translation_pct_all = median(te_all), s.median_rotation_deg_all = median(re_all);
   s.median_translation_pct_top = median(te_top), s.median_rotation_deg_top = median(re_top);
   s.ms_per_hypothesis = s.hypotheses ? total_ms / double(s.hypotheses) : 0.0;

@@ -1,6 +1,8 @@
 // Evaluation of detection results against a dataset's ground truth (paper section III-D): each
 // hypothesis is matched to the ground-truth part nearest in translation, its errors are
-// measured, and precision is counted for all hypotheses and for the top-voted one of each image. The numbers `binpick tune` optimises come from here.
+// measured, and precision is counted for all hypotheses and for the top-ranked one (highest
+// score) of each image; the score is calibrated against right and wrong (score_calibration.hpp).
+// The numbers `binpick tune` optimises come from here.
 #pragma once
 
 #include <cstddef>
@@ -8,6 +10,7 @@
 
 #include "host/formats/bop/results_csv.hpp"
 #include "host/eval/metrics/eval_dataset.hpp"
+#include "host/eval/metrics/score_calibration.hpp"
 
 namespace binpick::eval {
 
@@ -20,12 +23,13 @@ struct OperatingPoint {
 struct EvalOptions {
   OperatingPoint loose{10, 15};
   OperatingPoint strict{5, 5};
+  double score_keep = 0.9;  // the score calibration's threshold keeps this fraction of right rows
 };
 
 struct HypothesisResult {
   int scene_id = 0, im_id = 0, obj_id = 1;
   int rank = 0;          // 0 = the first row of its image in the file
-  double score = 0;
+  double score = 0;      // as detect writes it: the verified score in [0, 1]
   bool top = false;      // the highest score of its image (the first such row on ties)
   int gt_index = -1;     // the matched instance of scene_gt.json, -1 if the image has none of obj_id
   double translation_mm = 0, translation_pct = 0, rotation_deg = 0;  // +inf if unmatched
@@ -35,7 +39,7 @@ struct HypothesisResult {
 
 struct PrecisionAt {
   OperatingPoint at;
-  double all = 0, top = 0;  // fraction of hypotheses / of top-voted ones correct at `at`
+  double all = 0, top = 0;  // fraction of hypotheses / of top-ranked ones correct at `at`
 };
 
 struct EvalSummary {
@@ -47,9 +51,13 @@ struct EvalSummary {
   double median_translation_pct_all = 0, median_rotation_deg_all = 0;
   double median_translation_pct_top = 0, median_rotation_deg_top = 0;
   double ms_per_hypothesis = 0;
+  // calibrate(results, loose / strict, score_keep): the score threshold keeping that fraction of
+  // the right rows and the fraction of wrong ones it accepts.
+  ScoreCalibration score_loose, score_strict;
   std::vector<HypothesisResult> results;  // in file order
 };
 
+// Throws InputError for a negative or non-finite threshold, or score_keep outside (0, 1].
 void check(const EvalOptions& options);
 
 // Throws InputError for a row of a scene or image the dataset does not have, or of an obj_id

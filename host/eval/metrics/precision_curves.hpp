@@ -1,6 +1,6 @@
 // Precision as a function of one error threshold (the paper's Figure 7): for each threshold,
 // the fraction of hypotheses whose translation (or rotation) error alone is within it, over all
-// hypotheses (panels a, c) or over the top-voted one of each image (panels b, d).
+// hypotheses (panels a, c) or over the top-ranked one (highest score) of each image (panels b, d).
 #pragma once
 
 #include <array>

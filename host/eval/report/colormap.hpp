@@ -21,7 +21,7 @@ Rgb rank_colour(int rank);
 
 inline constexpr Rgb kCorrect{40, 220, 60};   // green
 inline constexpr Rgb kWrong{235, 40, 40};     // red
-inline constexpr Rgb kTopRing{255, 215, 0};   // gold: the top-voted detection
+inline constexpr Rgb kTopRing{255, 215, 0};   // gold: the top-ranked detection
 inline constexpr Rgb kScenePoints{70, 130, 255};   // blue, as the paper's Figure 3
 inline constexpr Rgb kModelPoints{255, 60, 200};   // pink, as the paper's Figure 3
 

@@ -10,16 +10,16 @@ namespace {
 
 constexpr const char* kPanelTitles[4] = {
     "(a) translation threshold, all hypotheses",
-    "(b) translation threshold, top-voted per image",
+    "(b) translation threshold, top-ranked per image",
     "(c) rotation threshold, all hypotheses",
-    "(d) rotation threshold, top-voted per image"};
+    "(d) rotation threshold, top-ranked per image"};
 
-// Curve colour i of n: viridis up to 0.9 (its last tenth is too pale on white).
+}  // namespace
+
+// Viridis up to 0.9: its last tenth is too pale on white.
 Rgb curve_colour(std::size_t i, std::size_t n) {
   return viridis(n > 1 ? 0.9 * double(i) / double(n - 1) : 0.0);
 }
-
-}  // namespace
 
 std::string figure7_script(const std::vector<LabelledCurves>& curves) {
   std::string s =

@@ -32,28 +32,66 @@ std::string swatch(const Rgb& c) {
   return fmt::format("<span class=\"swatch\" style=\"background:{}\"></span>", hex(c));
 }
 
+std::string op(const OperatingPoint& p) {
+  return fmt::format("({:g} %, {:g}&deg;)", p.translation_pct, p.rotation_deg);
+}
+
+// The calibrated threshold, or why there is none; flagged when the scores are not in [0, 1].
+std::string threshold_cell(const ScoreCalibration& c) {
+  if (!c.any_right) return "&ndash; (no right pose)";
+  std::string s = threshold_text(c.threshold);
+  if (c.outside_unit) s += " <span class=\"warn\">(scores not in [0, 1])</span>";
+  return s;
+}
+
+std::string wrong_cell(const ScoreCalibration& c) {
+  if (!c.any_right) return "&ndash;";
+  return fmt::format("{} ({} of {})", pct(c.wrong_fraction), c.accepted_wrong, c.accepted);
+}
+
 std::string summary_table(const std::vector<DatasetEvaluation>& evaluations, const EvalOptions& o) {
-  const auto op = [](const OperatingPoint& p) {
-    return fmt::format("({:g} %, {:g}&deg;)", p.translation_pct, p.rotation_deg);
-  };
   std::string s = fmt::format(
       "<table>\n<tr><th>dataset</th><th>images</th><th>hypotheses</th>"
       "<th>precision top<br>{0}</th><th>precision all<br>{0}</th>"
       "<th>precision top<br>{1}</th><th>precision all<br>{1}</th>"
       "<th>median translation error<br>top / all (% of d)</th>"
-      "<th>median rotation error<br>top / all (deg)</th><th>time per<br>hypothesis</th></tr>\n",
-      op(o.loose), op(o.strict));
+      "<th>median rotation error<br>top / all (deg)</th><th>time per<br>hypothesis</th>"
+      "<th>score threshold keeping<br>{2:g} % of right poses {0}</th>"
+      "<th>wrong among the<br>poses it accepts</th></tr>\n",
+      op(o.loose), op(o.strict), 100 * o.score_keep);
   for (const auto& e : evaluations) {
     const EvalSummary& m = e.summary;
     s += fmt::format(
         "<tr><td>{}</td><td>{} ({} with results)</td><td>{}{}</td><td>{}</td><td>{}</td><td>{}</td>"
-        "<td>{}</td><td>{} / {}</td><td>{} / {}</td><td>{}</td></tr>\n",
+        "<td>{}</td><td>{} / {}</td><td>{} / {}</td><td>{}</td><td>{}</td><td>{}</td></tr>\n",
         html_escaped(e.dataset.label), m.images, m.images_with_results, m.hypotheses,
         m.unmatched ? fmt::format(" ({} unmatched)", m.unmatched) : "", pct(m.loose.top),
         pct(m.loose.all), pct(m.strict.top), pct(m.strict.all), num(m.median_translation_pct_top, ""),
         num(m.median_translation_pct_all, ""), num(m.median_rotation_deg_top, ""),
-        num(m.median_rotation_deg_all, ""), num(m.ms_per_hypothesis, " ms"));
+        num(m.median_rotation_deg_all, ""), num(m.ms_per_hypothesis, " ms"),
+        threshold_cell(m.score_loose), wrong_cell(m.score_loose));
   }
+  return s + "</table>\n";
+}
+
+// Both operating points: the threshold, what it keeps, what it lets through, and whether that
+// meets the requirement (at most kScoreMaxWrong wrong).
+std::string calibration_table(const std::vector<DatasetEvaluation>& evaluations,
+                              const EvalOptions& o) {
+  std::string s = "<table>\n<tr><th>dataset</th><th>right at</th><th>score threshold</th>"
+                  "<th>right poses kept</th><th>wrong among accepted</th>"
+                  + fmt::format("<th>at most {:g} % wrong</th></tr>\n", 100 * kScoreMaxWrong);
+  for (const auto& e : evaluations)
+    for (const auto* c : {&e.summary.score_loose, &e.summary.score_strict}) {
+      const OperatingPoint& at = c == &e.summary.score_loose ? o.loose : o.strict;
+      s += fmt::format(
+          "<tr><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td></tr>\n",
+          html_escaped(e.dataset.label), op(at), threshold_cell(*c),
+          c->any_right ? fmt::format("{} ({} of {})", pct(c->kept), c->accepted_right, c->right)
+                       : std::string("none of ") + std::to_string(c->hypotheses),
+          wrong_cell(*c),
+          c->any_right ? (c->wrong_fraction <= kScoreMaxWrong ? "yes" : "<b>no</b>") : "&ndash;");
+    }
   return s + "</table>\n";
 }
 
@@ -65,7 +103,7 @@ std::string figure(const std::string& src, const std::string& alt, const std::st
 }
 
 std::string hypotheses_table(const DatasetEvaluation& e, const ImageKey& key, const OperatingPoint& at) {
-  std::string s = "<table>\n<tr><th>rank</th><th>score (votes)</th><th>top</th>"
+  std::string s = "<table>\n<tr><th>rank</th><th>score</th><th>top</th>"
                   "<th>matched part</th><th>translation error</th><th>rotation error</th>"
                   "<th>correct</th></tr>\n";
   for (const auto& r : e.summary.results) {
@@ -95,17 +133,40 @@ std::string pictures_section(const std::vector<DatasetEvaluation>& evaluations,
                               "positions.");
     s += figure(p.detections, "detections over the intensity image",
                 fmt::format("Detections: model points at each detected pose, {} correct at "
-                            "({:g} %, {:g}&deg;), {} wrong; {} ring: the top-voted one.",
+                            "({:g} %, {:g}&deg;), {} wrong; {} ring: the top-ranked one "
+                            "(highest score).",
                             swatch(kCorrect), o.loose.translation_pct, o.loose.rotation_deg,
                             swatch(kWrong), swatch(kTopRing)));
     if (!p.closeup.empty())
-      s += figure(p.closeup, "top-voted detection in the scene cloud", fmt::format("Top-voted detection: model points {} in the scene "
+      s += figure(p.closeup, "top-ranked detection in the scene cloud", fmt::format("Top-ranked detection: model points {} in the scene "
                                          "cloud {}, seen from the camera (left) and from 60&deg; "
                                          "aside (right).",
                                          swatch(kModelPoints), swatch(kScenePoints)));
     s += hypotheses_table(e, p.key, o.loose);
   }
   return s;
+}
+
+std::string score_section(const std::vector<DatasetEvaluation>& evaluations, const EvalOptions& o,
+                          const ReportFiles& files) {
+  std::string s = "<h2>Precision against score threshold</h2>\n";
+  s += fmt::format(
+      "<p>Can the score be trusted? A pose is accepted when its score is at least the threshold. "
+      "Over every hypothesis (an unmatched one is wrong), right and wrong at {0}: "
+      "<i>precision</i> = right accepted / accepted (1 where nothing is accepted), "
+      "<i>kept</i> = right accepted / all right. The calibrated threshold is the highest score "
+      "that keeps {1:g} % of the right poses (exact, not on a grid); the score is calibrated when "
+      "at most {2:g} % of the poses it accepts are wrong.</p>\n",
+      op(o.loose), 100 * o.score_keep, 100 * kScoreMaxWrong);
+  if (!files.score_plot.empty())
+    s += figure(files.score_plot.filename().string(), "precision against score threshold",
+                fmt::format("(a) Precision of the accepted poses and (b) fraction of the right "
+                            "poses kept, against the score threshold, right at {}; one curve per "
+                            "dataset, coloured as above (a precision curve ends where no pose "
+                            "scores that high); dots: each dataset's calibrated threshold; "
+                            "dashed: {:g} % precision (a) and {:g} % kept (b).",
+                            op(o.loose), 100 * (1 - kScoreMaxWrong), 100 * o.score_keep));
+  return s + calibration_table(evaluations, o);
 }
 
 }  // namespace
@@ -135,8 +196,11 @@ std::string report_html(const std::vector<DatasetEvaluation>& evaluations,
        "Translation error: distance between the translations, in % of the part diameter d; "
        "rotation error: angle of R<sub>gt</sub><sup>T</sup> R<sub>est</sub> (the smallest over "
        "the part's symmetries). A hypothesis is correct when both errors are within the "
-       "thresholds. <i>top</i>: the top-voted hypothesis of each image; <i>all</i>: every "
-       "hypothesis. Time per hypothesis: each image's time divided by its hypotheses.</p>\n";
+       "thresholds. <i>top</i>: the top-ranked hypothesis of each image (the highest score); "
+       "<i>all</i>: every hypothesis. Time per hypothesis: each image's time divided by its "
+       "hypotheses. Score: the detector's verified score in [0, 1] (the fraction of the model "
+       "surface visible at the pose that agrees with the measured depth); its calibration is "
+       "below.</p>\n";
   s += summary_table(evaluations, o);
   s += "<p>Inputs: ";
   for (std::size_t i = 0; i < evaluations.size(); ++i)
@@ -149,12 +213,15 @@ std::string report_html(const std::vector<DatasetEvaluation>& evaluations,
   if (!files.plot.empty())
     s += figure(files.plot.filename().string(), "precision curves",
                 "Precision as a function of the translation threshold (a, b) and of the rotation "
-                "threshold (c, d), over all hypotheses (a, c) and over the top-voted one per "
+                "threshold (c, d), over all hypotheses (a, c) and over the top-ranked one per "
                 "image (b, d); one curve per dataset (the paper's Figure 7).");
+  s += score_section(evaluations, o, files);
   s += fmt::format("<p>Data: <a href=\"{0}\">{0}</a> (the curves), <a href=\"{1}\">{1}</a> "
-                   "(every hypothesis), <a href=\"{2}\">{2}</a> (the numbers above).</p>\n",
-                   files.curves_csv.filename().string(), files.hypotheses_csv.filename().string(),
-                   files.json.filename().string());
+                   "(the score curves), <a href=\"{2}\">{2}</a> (every hypothesis), "
+                   "<a href=\"{3}\">{3}</a> (the numbers above).</p>\n",
+                   files.curves_csv.filename().string(),
+                   files.score_curves_csv.filename().string(),
+                   files.hypotheses_csv.filename().string(), files.json.filename().string());
   if (!pictures.empty()) s += "<h2>Scenes</h2>\n" + pictures_section(evaluations, o, pictures);
   return s + "</body>\n</html>\n";
 }

@@ -1,5 +1,6 @@
 // report.html: one page with the summary table (precision at both operating points, median
-// errors, time per hypothesis), the precision figure and the pictures, all by relative path.
+// errors, time per hypothesis, the score calibration), the precision figure, the precision
+// against score threshold and the pictures, all by relative path.
 #pragma once
 
 #include <filesystem>

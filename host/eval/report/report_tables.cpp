@@ -18,6 +18,17 @@ json operating_point(const PrecisionAt& p) {
           {"all", p.all}, {"top", p.top}};
 }
 
+json calibration(const ScoreCalibration& c) {
+  return {{"any_right", c.any_right},
+          {"right", c.right},
+          {"threshold", number(c.threshold)},
+          {"accepted", c.accepted},
+          {"accepted_right", c.accepted_right},
+          {"accepted_wrong", c.accepted_wrong},
+          {"kept", number(c.kept)},
+          {"wrong_fraction", number(c.wrong_fraction)}};
+}
+
 json summary_json(const DatasetEvaluation& e) {
   const EvalSummary& s = e.summary;
   return {{"label", e.dataset.label},
@@ -34,7 +45,13 @@ json summary_json(const DatasetEvaluation& e) {
             {"rotation_deg_all", number(s.median_rotation_deg_all)},
             {"translation_pct_top", number(s.median_translation_pct_top)},
             {"rotation_deg_top", number(s.median_rotation_deg_top)}}},
-          {"ms_per_hypothesis", number(s.ms_per_hypothesis)}};
+          {"ms_per_hypothesis", number(s.ms_per_hypothesis)},
+          {"score_calibration",
+           {{"keep", s.score_loose.keep},
+            {"scores_outside_unit", s.score_loose.outside_unit},
+            {"max_score", number(s.score_loose.max_score)},
+            {"loose", calibration(s.score_loose)},
+            {"strict", calibration(s.score_strict)}}}};
 }
 
 std::string csv_quoted(const std::string& s) {

@@ -13,7 +13,10 @@ namespace binpick::eval {
 
 // {"operating_points": {...}, "datasets": [{label, dataset, results, noise, images, ...,
 // "precision": {"loose": {"translation_pct", "rotation_deg", "all", "top"}, "strict": {...}},
-// "median": {...}, "ms_per_hypothesis"}]}. Non-finite numbers (no data) are null.
+// "median": {...}, "ms_per_hypothesis", "score_calibration": {"keep", "scores_outside_unit",
+// "max_score", "loose": {"any_right", "right", "threshold", "accepted", "accepted_right",
+// "accepted_wrong", "kept", "wrong_fraction"}, "strict": {...}}}]} (score_calibration.hpp).
+// Non-finite numbers (no data) are null.
 nlohmann::json report_json(const std::vector<DatasetEvaluation>& evaluations,
                            const EvalOptions& options);
 void write_report_json(const std::filesystem::path& path,

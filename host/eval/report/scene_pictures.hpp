@@ -1,6 +1,6 @@
 // The report's pictures of one image (the paper's Figures 3, 5 and 6): depth in false colour,
 // the intensity image, the hypothesis neighbourhoods on the scene, the detections drawn over it,
-// and a close-up of the top-voted detection (model points in the scene cloud, two viewpoints).
+// and a close-up of the top-ranked detection (model points in the scene cloud, two viewpoints).
 #pragma once
 
 #include <filesystem>
@@ -37,11 +37,11 @@ Canvas hypotheses_picture(const SceneView& view, const std::vector<const Hypothe
                           double radius);
 
 // Model points at each hypothesis's pose projected over the intensity image: green if correct
-// at `at`, red otherwise; the top-voted one ringed in gold; ranks labelled.
+// at `at`, red otherwise; the top-ranked one ringed in gold; ranks labelled.
 Canvas detections_picture(const SceneView& view, const std::vector<const HypothesisResult*>& hyps,
                           const ModelSamples& models, double diameter, const OperatingPoint& at);
 
-// Figure 3: scene points (blue) near the top-voted detection and the model at its pose (pink),
+// Figure 3: scene points (blue) near the top-ranked detection and the model at its pose (pink),
 // seen from the camera and from 60 degrees aside, side by side. Nothing if hyps has no top.
 Canvas closeup_picture(const SceneView& view, const std::vector<const HypothesisResult*>& hyps,
                        const ModelSamples& models, double diameter);
