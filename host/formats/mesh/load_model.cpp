@@ -12,6 +12,7 @@
 #include "host/core/diameter.hpp"
 #include "host/core/mesh_geometry.hpp"
 #include "host/core/mesh_normals.hpp"
+#include "host/core/mesh_orientation.hpp"
 #include "host/formats/mesh/mesh_readers.hpp"
 #include "host/core/mesh_topology.hpp"
 
@@ -48,6 +49,20 @@ Mesh read_model(std::string_view bytes, std::string_view format, const ModelOpti
                    "' (expected .gltf .glb .ply .stl .obj, or builtin:NAME)");
 }
 
+// What orient_outward changed, said once: a silent repair would hide a broken export.
+void report_orientation(const OrientationReport& r) {
+  if (r.made_consistent > 0)
+    spdlog::warn("{} triangles were wound against their neighbours; turned them", r.made_consistent);
+  if (r.turned_out > 0)
+    spdlog::warn("the model was inside out ({} triangles wound clockwise seen from outside); "
+                 "turned them", r.turned_out);
+  if (r.normals_flipped) spdlog::warn("the file's normals pointed inwards; negated them");
+  if (r.undecided > 0)
+    spdlog::warn("{} triangles belong to open surfaces without normals: which side is outside "
+                 "cannot be told, they are used as wound (counter-clockwise = outside)",
+                 r.undecided);
+}
+
 // The checks and repairs every format needs, in file units.
 void check_and_complete(Mesh& mesh) {
   for (const auto& t : mesh.triangles) {
@@ -68,6 +83,7 @@ void check_and_complete(Mesh& mesh) {
     spdlog::warn("some normals in the file are zero or not finite; computing normals instead");
     mesh.normals.clear();
   }
+  report_orientation(orient_outward(mesh));
   if (mesh.normals.empty()) {
     merge_duplicate_vertices(mesh);
     remove_collapsed_triangles(mesh);
