@@ -125,9 +125,9 @@ std::vector<RefinedPose> refine_and_verify(const FitSumsFn& sums_of, const bp_ca
       r.score = 0;
       r.reason = "no depth where the model would be seen";
     } else {
-      // Missing depth excuses at most half the visible surface: a pose parked over a shadow or
-      // beyond the sensor's range is otherwise judged on a few points.
-      const double support = std::max(double(r.visible - r.missing), 0.5 * r.visible);
+      // Missing depth counts half: neither for the pose nor fully against it, so that a pose
+      // parked over a shadow or beyond the sensor's range is not judged on a few points alone.
+      const double support = double(r.visible) - 0.5 * double(r.missing);
       r.score = s.agreement / std::max(support, std::max(min_support, 1.0));
     }
   }

@@ -11,10 +11,11 @@
 // last ones fit only the surface that agrees.
 //
 // Verification: at the refined pose, the score is
-//     agreement / max(visible - missing, visible / 2, min_support)
+//     agreement / max(visible - missing / 2, min_support)
 // visible = model points facing the camera and not hidden by the model itself, missing = those
-// where the sensor has no depth (neutral, but for at most half the visible surface: a pose
-// parked over a shadow would otherwise be judged on a few points), agreement = the sum over
+// where the sensor has no depth (they count half: neither for the pose nor fully against it,
+// since a pose parked over a shadow or beyond the sensor's range would otherwise be judged on a
+// few points; measured, this halved the wrong top poses at 5 % noise), agreement = the sum over
 // inliers (measured point within the tolerance of the model's tangent plane) of
 // 1 - (distance / tolerance)^2, so that a closer fit scores higher. Model surface where the
 // sensor sees through it or something lies in front of it counts against the pose. min_support
