@@ -83,6 +83,14 @@ BP_FN bp_u32 bp_ppf_alpha_bin(float alpha, bp_ppf_quant q) {
   return bp_quantize(alpha + BP_PI_F, q.angle_step, q.n_alpha);
 }
 
+/* The bin of a scene pair's alpha_s for duplicate-vote suppression (ppf_vote.cl): bins of
+ * 2 pi / n_alpha from -pi; inv_step = n_alpha / (2 pi), as the vote uses. */
+BP_FN bp_u32 bp_alpha_s_bin(float alpha_s, float inv_step, bp_u32 n_alpha) {
+  const float u = (alpha_s + BP_PI_F) * inv_step;
+  bp_u32 b = u > 0.0f ? (bp_u32)u : 0u;
+  return b < n_alpha ? b : n_alpha - 1u;
+}
+
 /* The key of a feature (|d|, angle(n1, d), angle(n2, d), angle(n1, n2)). */
 BP_FN bp_u32 bp_ppf_feature_key(float dist, float a1, float a2, float a3, bp_ppf_quant q) {
   return bp_ppf_key(bp_quantize(dist, q.dist_step, q.n_dist),

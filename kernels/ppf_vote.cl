@@ -6,6 +6,12 @@
  * ppf_vote: one work item per reference point, with its own accumulator of n_model x n_alpha
  *   integer counters in global memory (no atomics, so the votes are exact and deterministic).
  *   Every model entry (m_r, alpha_m) of the pair's key votes for (m_r, alpha_s - alpha_m).
+ *   Duplicate votes (Hinterstoisser et al. 2016): two scene points that give a reference point
+ *   the same key and the same alpha_s bin vote for the same cells, and a flat or repeated
+ *   surface gives thousands of such equal pairs (a plane outvotes the part beside it). With
+ *   `unique` set, only the first of them in row order votes: `seen` holds per work item an
+ *   open-addressing set of (key, alpha_s bin) with `slots` entries (a power of two > 2 n, so
+ *   it never fills).
  * ppf_peaks: one work item per reference point; the `k` best accumulator cells, highest votes
  *   first (ties: lowest cell index), that have at least peak_ratio of the best cell's votes.
  *   Several peaks per reference point, not only the maximum: a symmetric or partly occluded
@@ -51,22 +57,46 @@ __kernel void ppf_scene_features(__global const float4* points, __global const f
 
 /* Rows first_ref .. first_ref + count - 1 of the features vote into accumulator slices
  * 0 .. count - 1 (a batch: the accumulators of all reference points may not fit at once). */
+#define PPF_SEEN_EMPTY 0xffffffffffffffffUL
+
+/* Inserts v into the set; false if it was there already. */
+static inline bool seen_insert(__global ulong* seen, const uint slots, const ulong v) {
+  uint h = (uint)((v * 0x9E3779B97F4A7C15UL) >> 32) & (slots - 1u);
+  for (;;) {
+    const ulong s = seen[h];
+    if (s == v) return false;
+    if (s == PPF_SEEN_EMPTY) {
+      seen[h] = v;
+      return true;
+    }
+    h = (h + 1u) & (slots - 1u);
+  }
+}
+
 __kernel void ppf_vote(__global const uint* keys, __global const float* alphas, const uint n,
                        const uint first_ref, const uint count,
                        __global const uint* offsets, __global const bp_ppf_entry* entries,
                        const uint n_model, const bp_ppf_quant q, const float inv_step,
-                       __global uint* accumulators) {
+                       __global uint* accumulators, const uint unique, __global ulong* seen_sets,
+                       const uint slots) {
   const uint r = get_global_id(0);
   if (r >= count) return;
   const uint cells = n_model * q.n_alpha;
   __global uint* acc = accumulators + (size_t)r * cells;
   for (uint c = 0; c < cells; ++c) acc[c] = 0u;
+  __global ulong* seen = seen_sets + (size_t)r * slots;
+  if (unique)
+    for (uint c = 0; c < slots; ++c) seen[c] = PPF_SEEN_EMPTY;
   __global const uint* row_keys = keys + (size_t)(first_ref + r) * n;
   __global const float* row_alphas = alphas + (size_t)(first_ref + r) * n;
   for (uint i = 0; i < n; ++i) {
     const uint key = row_keys[i];
     if (key == BP_PPF_NO_KEY) continue;
     const float alpha_s = row_alphas[i];
+    if (unique &&
+        !seen_insert(seen, slots,
+                     (ulong)key * q.n_alpha + bp_alpha_s_bin(alpha_s, inv_step, q.n_alpha)))
+      continue;
     const uint end = offsets[key + 1];
     for (uint e = offsets[key]; e < end; ++e) {
       const bp_ppf_entry entry = entries[e];

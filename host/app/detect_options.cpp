@@ -57,6 +57,11 @@ void add_detect_cli_options(CLI::App* verb, DetectCliOptions& a, const std::stri
       verb->add_option("--normal-ratio", p.normal_ratio,
                        help("scene normals: radius of the neighbourhood fitted, fraction of the diameter"))
           ->capture_default_str();
+  o["unique-votes"] =
+      verb->add_option("--unique-votes", a.unique_votes,
+                       help("1: scene pairs of a reference point with equal features vote once "
+                            "(a plane cannot outvote the part), 0: every pair votes"))
+          ->capture_default_str();
   o["candidates"] =
       verb->add_option("--candidates", a.candidates,
                        help("best pose clusters per hypothesis refined and verified, in [1, 64]"))
@@ -76,6 +81,7 @@ DetectParams resolve(const DetectCliOptions& a) {
   p.hypotheses = narrow(a.hypotheses, "--hypotheses");
   p.peaks_per_ref = narrow(a.peaks_per_ref, "--peaks-per-ref");
   p.candidates = narrow(a.candidates, "--candidates");
+  p.unique_votes = narrow(a.unique_votes, "--unique-votes");
   p.refine_iterations = narrow(a.refine_iterations, "--refine-iterations");
   if (!a.params_file.empty()) {
     std::set<std::string> given;

@@ -50,6 +50,7 @@ const std::map<std::string, Field>& fields() {
       {"peaks-per-ref", count(&DetectParams::peaks_per_ref)},
       {"peak-ratio", real(&DetectParams::peak_ratio)},
       {"normal-ratio", real(&DetectParams::normal_ratio)},
+      {"unique-votes", count(&DetectParams::unique_votes)},
       {"candidates", count(&DetectParams::candidates)},
       {"refine-iterations", count(&DetectParams::refine_iterations)},
       {"verify-tolerance", real(&DetectParams::verify_tolerance)},

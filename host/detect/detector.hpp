@@ -34,6 +34,7 @@ struct DetectParams {
   double cluster_angle = 20.0;     // rotation threshold of pose clustering, degrees
   std::uint32_t peaks_per_ref = 3; // accumulator peaks per reference point
   double peak_ratio = 0.9;         // ... with at least this fraction of its best votes
+  std::uint32_t unique_votes = 0;  // 1: equal scene pairs of a reference point vote once
   double normal_ratio = 0.08;      // scene normals: radius of the plane fitted (fraction)
   std::uint32_t candidates = 4;    // best pose clusters per hypothesis refined and verified
   std::uint32_t refine_iterations = 10;  // ICP steps per candidate (0: verify the voted pose)

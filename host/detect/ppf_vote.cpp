@@ -1,7 +1,9 @@
 #include "host/detect/ppf_vote.hpp"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
+#include <set>
 #include <numbers>
 #include <span>
 #include <string>
@@ -85,8 +87,12 @@ std::vector<VotePeak> vote_peaks(ocl::Device& dev, const DeviceModel& dmodel,
 
   // Batches of reference points whose accumulators fit the budget. Each work item clears its
   // own accumulator, so the buffer is reused without a fill.
-  const std::size_t batch = std::clamp<std::size_t>(opt.max_accumulator_cells / cells, 1, n_refs);
+  // The duplicate sets: a power of two above 2 n slots of 8 bytes each, per reference point.
+  const std::size_t slots = opt.unique_votes ? std::bit_ceil(2 * n + 1) : 1;
+  const std::size_t per_ref = cells + (opt.unique_votes ? 2 * slots : 0);
+  const std::size_t batch = std::clamp<std::size_t>(opt.max_accumulator_cells / per_ref, 1, n_refs);
   ocl::Buffer<std::uint32_t> acc(dev, batch * cells);
+  ocl::Buffer<cl_ulong> seen(dev, opt.unique_votes ? batch * slots : 1);
   const std::uint32_t k = opt.peaks_per_ref;
   ocl::Buffer<cl_uint2> peak_buf(dev, n_refs * k);
   cl::Kernel vote = dev.kernel("ppf_vote.cl", "ppf_vote");
@@ -98,7 +104,8 @@ std::vector<VotePeak> vote_peaks(ocl::Device& dev, const DeviceModel& dmodel,
     const auto count = static_cast<std::uint32_t>(std::min(batch, n_refs - first));
     const auto first32 = static_cast<std::uint32_t>(first);
     ocl::launch_tasks(dev, vote, count, keys, alphas, n32, first32, count, dmodel.offsets,
-                dmodel.entries, n_model, model.quant, ppf_vote_inv_step(model.quant), acc);
+                dmodel.entries, n_model, model.quant, ppf_vote_inv_step(model.quant), acc,
+                cl_uint(opt.unique_votes ? 1 : 0), seen, static_cast<std::uint32_t>(slots));
     ocl::finish(dev);
     vote_ms += clock.lap();
     ocl::launch_tasks(dev, find_peaks, count, acc, first32, count, cells32, k, opt.peak_ratio,
@@ -164,13 +171,17 @@ std::uint32_t ppf_vote_alpha_bin(float alpha_s, float alpha_m, const bp_ppf_quan
 }
 
 std::vector<std::uint32_t> vote_accumulator_reference(const ScenePairs& pairs, std::size_t r,
-                                                      const PpfModel& model) {
+                                                      const PpfModel& model, bool unique_votes) {
   const std::uint32_t n_alpha = model.quant.n_alpha;
   std::vector<std::uint32_t> acc(cells_of(model), 0);
+  std::set<std::pair<std::uint32_t, std::uint32_t>> seen;  // (key, alpha_s bin) that voted
+  const float inv_step = ppf_vote_inv_step(model.quant);
   for (std::size_t i = 0; i < pairs.n; ++i) {
     const std::uint32_t key = pairs.keys[r * pairs.n + i];
     if (key == BP_PPF_NO_KEY) continue;
     const float alpha_s = pairs.alphas[r * pairs.n + i];
+    if (unique_votes && !seen.insert({key, bp_alpha_s_bin(alpha_s, inv_step, n_alpha)}).second)
+      continue;
     for (std::uint32_t e = model.table.offsets.at(key); e < model.table.offsets.at(key + 1); ++e) {
       const bp_ppf_entry& entry = model.table.entries[e];
       ++acc[std::size_t(entry.point) * n_alpha + ppf_vote_alpha_bin(alpha_s, entry.alpha, model.quant)];
@@ -185,7 +196,8 @@ std::vector<VotePeak> vote_peaks_reference(const ScenePairs& pairs, const PpfMod
   std::vector<VotePeak> peaks;
   const std::uint32_t n_alpha = model.quant.n_alpha;
   for (std::size_t r = 0; r < pairs.refs.size(); ++r) {
-    const std::vector<std::uint32_t> acc = vote_accumulator_reference(pairs, r, model);
+    const std::vector<std::uint32_t> acc =
+        vote_accumulator_reference(pairs, r, model, opt.unique_votes);
     std::vector<std::uint32_t> order;
     for (std::uint32_t c = 0; c < acc.size(); ++c)
       if (acc[c] > 0) order.push_back(c);

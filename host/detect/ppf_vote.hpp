@@ -38,7 +38,12 @@ struct ScenePairs {
 struct VoteOptions {
   std::uint32_t peaks_per_ref = 3;  // accumulator peaks kept per reference point, in [1, 16]
   float peak_ratio = 0.9f;          // a peak needs at least this fraction of the best's votes
-  // Accumulator counters allocated at once; reference points vote in batches that fit.
+  // Scene pairs of one reference point with the same key and alpha_s bin vote once (the first
+  // in row order; kernels/ppf_vote.cl says why). Off by default: measured on 60-part bins
+  // (docs/parameters.md) it cost the bracket and the shaft more than it gained the tee.
+  bool unique_votes = false;
+  // Accumulator counters (and duplicate sets, counted in the same 4-byte units) allocated at
+  // once; reference points vote in batches that fit.
   std::size_t max_accumulator_cells = std::size_t(1) << 24;
 };
 void check(const VoteOptions& opt);
@@ -74,7 +79,8 @@ float ppf_vote_inv_step(const bp_ppf_quant& quant);
 std::uint32_t ppf_vote_alpha_bin(float alpha_s, float alpha_m, const bp_ppf_quant& quant);
 // The accumulator (model points x alpha bins) of row r of pairs.
 std::vector<std::uint32_t> vote_accumulator_reference(const ScenePairs& pairs, std::size_t r,
-                                                      const PpfModel& model);
+                                                      const PpfModel& model,
+                                                      bool unique_votes = true);
 // Votes and peaks of given features, plain C++: with the device's features it must equal
 // vote_peaks exactly.
 std::vector<VotePeak> vote_peaks_reference(const ScenePairs& pairs, const PpfModel& model,

@@ -10,6 +10,8 @@
 // composed routine is tests/detect/test_ppf_vote.cpp's.
 #include <gtest/gtest.h>
 
+#include <bit>
+
 #include <random>
 #include <tuple>
 
@@ -190,6 +192,11 @@ TEST(VoteKernels, SequenceFeaturesVotePeaksStepByStep) {
     scene.points.push_back(model.cloud.points[i] + Eigen::Vector3f(1, 2, 3));
     scene.normals.push_back(model.cloud.normals[i]);
   }
+  for (int x = 0; x < 8; ++x)  // a flat patch: many equal features, so duplicate votes
+    for (int y = 0; y < 8; ++y) {
+      scene.points.emplace_back(2.5f * x, 2.5f * y, -20.0f);
+      scene.normals.emplace_back(0.0f, 0.0f, 1.0f);
+    }
   const std::size_t n = scene.points.size();
   const std::vector<u32> refs = select_reference_points(n, 0.25);
   const DeviceScene s = on_device(dev, scene);
@@ -204,19 +211,24 @@ TEST(VoteKernels, SequenceFeaturesVotePeaksStepByStep) {
                         all_pair_features(dev, s, model.quant));
 
   const u32 n_model = u32(model.cloud.points.size()), cells = n_model * model.quant.n_alpha;
-  const VoteOptions opt{4, 0.5f};
+  std::uint64_t votes_of[2] = {0, 0};
+  for (const bool unique : {false, true}) {
+  VoteOptions opt{4, 0.5f};
+  opt.unique_votes = unique;
   const std::size_t batch = refs.size() / 2 + 1;  // two batches, the second shorter
+  const u32 slots = u32(std::bit_ceil(2 * n + 1));
   ocl::Buffer<u32> acc(dev, batch * cells);
+  ocl::Buffer<cl_ulong> seen(dev, batch * slots);
   ocl::Buffer<cl_uint2> peak_buf(dev, refs.size() * opt.peaks_per_ref);
   std::vector<VotePeak> got_peaks;
-  std::uint64_t votes = 0;
+  std::uint64_t& votes = votes_of[unique];
   for (std::size_t first = 0; first < refs.size(); first += batch) {
     const u32 count = u32(std::min(batch, refs.size() - first));
     ocl::launch_tasks(dev, vote, count, keys, alphas, u32(n), u32(first), count, dm.offsets, dm.entries,
-                 n_model, model.quant, ppf_vote_inv_step(model.quant), acc);
+                 n_model, model.quant, ppf_vote_inv_step(model.quant), acc, u32(unique), seen, slots);
     const std::vector<u32> got_acc = acc.read(dev, std::size_t(count) * cells);
     for (u32 r = 0; r < count; ++r) {
-      const std::vector<u32> want = vote_accumulator_reference(pairs, first + r, model);
+      const std::vector<u32> want = vote_accumulator_reference(pairs, first + r, model, unique);
       ASSERT_TRUE(std::equal(want.begin(), want.end(), got_acc.begin() + std::size_t(r) * cells)) << first + r;
       for (u32 x : want) votes += x;
     }
@@ -239,6 +251,10 @@ TEST(VoteKernels, SequenceFeaturesVotePeaksStepByStep) {
   }
   EXPECT_GT(votes, 0u);
   EXPECT_EQ(got_peaks, vote_peaks_reference(pairs, model, opt));
+  }
+  // Duplicate suppression bites on the flat patch, and leaves most votes.
+  EXPECT_LT(votes_of[1], votes_of[0]);
+  EXPECT_GT(votes_of[1], votes_of[0] / 4);
 }
 
 // Degenerate input: a one-point scene (only the pair with itself), all points coincident (every

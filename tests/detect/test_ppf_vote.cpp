@@ -108,7 +108,8 @@ TEST(PpfVote, VotesAndPeaksMatchReferenceExactly) {
   const auto refs = select_reference_points(scene.points.size(), 0.3);
   auto& dev = ocl::Device::shared();
   const DeviceModel dm = upload_model(dev, model);
-  for (VoteOptions opt : {VoteOptions{16, 0.0f}, VoteOptions{3, 0.9f}, VoteOptions{1, 1.0f}}) {
+  for (VoteOptions opt : {VoteOptions{16, 0.0f}, VoteOptions{3, 0.9f}, VoteOptions{1, 1.0f},
+                          VoteOptions{3, 0.9f, true}}) {
     ScenePairs pairs;
     const auto got = vote_peaks(dev, dm, scene, refs, opt, nullptr, &pairs);
     const auto want = vote_peaks_reference(pairs, model, opt);
@@ -119,17 +120,22 @@ TEST(PpfVote, VotesAndPeaksMatchReferenceExactly) {
     small.max_accumulator_cells = 7 * model.cloud.points.size() * model.quant.n_alpha;
     EXPECT_EQ(vote_peaks(dev, dm, scene, refs, small), got);
   }
-  // Every vote lands: the accumulator total is the number of matching table entries.
+  // Without duplicate suppression every vote lands: the accumulator total is the number of
+  // matching table entries; with it, no more.
   ScenePairs pairs;
   vote_peaks(dev, dm, scene, refs, {}, nullptr, &pairs);
-  std::uint64_t entries = 0, votes = 0;
+  std::uint64_t entries = 0, votes = 0, unique_votes = 0;
   for (std::size_t i = 0; i < pairs.keys.size(); ++i)
     if (pairs.keys[i] != BP_PPF_NO_KEY)
       entries += model.table.offsets[pairs.keys[i] + 1] - model.table.offsets[pairs.keys[i]];
-  for (std::size_t r = 0; r < refs.size(); ++r)
-    for (std::uint32_t v : vote_accumulator_reference(pairs, r, model)) votes += v;
+  for (std::size_t r = 0; r < refs.size(); ++r) {
+    for (std::uint32_t v : vote_accumulator_reference(pairs, r, model, false)) votes += v;
+    for (std::uint32_t v : vote_accumulator_reference(pairs, r, model, true)) unique_votes += v;
+  }
   EXPECT_EQ(votes, entries);
   EXPECT_GT(votes, 0u);
+  EXPECT_LE(unique_votes, votes);
+  EXPECT_GT(unique_votes, votes / 2);
 }
 
 TEST(PpfVote, AlphaBinWrapsAroundTheFullTurn) {
