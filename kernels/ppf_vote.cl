@@ -37,6 +37,21 @@ static inline uint vote_alpha_bin(float alpha_s, float alpha_m, float inv_step, 
   return b;
 }
 
+/* The alpha bin next to vote_alpha_bin's on the side its value lies nearer (alpha spreading,
+ * Vidal et al. 2018: a difference near a bin edge votes for both bins, so noise that moves it
+ * across the edge splits no peak). Written out identically in ppf_vote_alpha_neighbour. */
+static inline uint vote_alpha_neighbour(float alpha_s, float alpha_m, float inv_step,
+                                        uint n_alpha) {
+  const float u = (alpha_s - alpha_m) * inv_step + 1.5f * (float)n_alpha;
+  const uint t = (uint)u;
+  const float frac = u - (float)t;
+  uint b = t;
+  if (b >= 2u * n_alpha) b -= 2u * n_alpha;
+  else if (b >= n_alpha) b -= n_alpha;
+  if (frac < 0.5f) return b == 0u ? n_alpha - 1u : b - 1u;
+  return b + 1u == n_alpha ? 0u : b + 1u;
+}
+
 __kernel void ppf_scene_features(__global const float4* points, __global const float4* normals,
                                  const uint n, __global const uint* refs, const uint n_refs,
                                  const bp_ppf_quant q, __global uint* keys,
@@ -78,7 +93,7 @@ __kernel void ppf_vote(__global const uint* keys, __global const float* alphas, 
                        __global const uint* offsets, __global const bp_ppf_entry* entries,
                        const uint n_model, const bp_ppf_quant q, const float inv_step,
                        __global uint* accumulators, const uint unique, __global ulong* seen_sets,
-                       const uint slots) {
+                       const uint slots, const uint spread) {
   const uint r = get_global_id(0);
   if (r >= count) return;
   const uint cells = n_model * q.n_alpha;
@@ -100,7 +115,9 @@ __kernel void ppf_vote(__global const uint* keys, __global const float* alphas, 
     const uint end = offsets[key + 1];
     for (uint e = offsets[key]; e < end; ++e) {
       const bp_ppf_entry entry = entries[e];
-      ++acc[entry.point * q.n_alpha + vote_alpha_bin(alpha_s, entry.alpha, inv_step, q.n_alpha)];
+      __global uint* row = acc + entry.point * q.n_alpha;
+      ++row[vote_alpha_bin(alpha_s, entry.alpha, inv_step, q.n_alpha)];
+      if (spread) ++row[vote_alpha_neighbour(alpha_s, entry.alpha, inv_step, q.n_alpha)];
     }
   }
 }

@@ -62,6 +62,11 @@ void add_detect_cli_options(CLI::App* verb, DetectCliOptions& a, const std::stri
                        help("1: scene pairs of a reference point with equal features vote once "
                             "(a plane cannot outvote the part), 0: every pair votes"))
           ->capture_default_str();
+  o["spread-votes"] =
+      verb->add_option("--spread-votes", a.spread_votes,
+                       help("1: every vote also goes to the neighbouring alpha bin its value lies "
+                            "nearer, 0: one bin"))
+          ->capture_default_str();
   o["candidates"] =
       verb->add_option("--candidates", a.candidates,
                        help("best pose clusters per hypothesis refined and verified, in [1, 64]"))
@@ -82,6 +87,7 @@ DetectParams resolve(const DetectCliOptions& a) {
   p.peaks_per_ref = narrow(a.peaks_per_ref, "--peaks-per-ref");
   p.candidates = narrow(a.candidates, "--candidates");
   p.unique_votes = narrow(a.unique_votes, "--unique-votes");
+  p.spread_votes = narrow(a.spread_votes, "--spread-votes");
   p.refine_iterations = narrow(a.refine_iterations, "--refine-iterations");
   if (!a.params_file.empty()) {
     std::set<std::string> given;

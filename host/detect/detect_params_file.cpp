@@ -51,6 +51,7 @@ const std::map<std::string, Field>& fields() {
       {"peak-ratio", real(&DetectParams::peak_ratio)},
       {"normal-ratio", real(&DetectParams::normal_ratio)},
       {"unique-votes", count(&DetectParams::unique_votes)},
+      {"spread-votes", count(&DetectParams::spread_votes)},
       {"candidates", count(&DetectParams::candidates)},
       {"refine-iterations", count(&DetectParams::refine_iterations)},
       {"verify-tolerance", real(&DetectParams::verify_tolerance)},

@@ -105,7 +105,8 @@ std::vector<VotePeak> vote_peaks(ocl::Device& dev, const DeviceModel& dmodel,
     const auto first32 = static_cast<std::uint32_t>(first);
     ocl::launch_tasks(dev, vote, count, keys, alphas, n32, first32, count, dmodel.offsets,
                 dmodel.entries, n_model, model.quant, ppf_vote_inv_step(model.quant), acc,
-                cl_uint(opt.unique_votes ? 1 : 0), seen, static_cast<std::uint32_t>(slots));
+                cl_uint(opt.unique_votes ? 1 : 0), seen, static_cast<std::uint32_t>(slots),
+                cl_uint(opt.spread_alpha ? 1 : 0));
     ocl::finish(dev);
     vote_ms += clock.lap();
     ocl::launch_tasks(dev, find_peaks, count, acc, first32, count, cells32, k, opt.peak_ratio,
@@ -170,8 +171,21 @@ std::uint32_t ppf_vote_alpha_bin(float alpha_s, float alpha_m, const bp_ppf_quan
   return b;
 }
 
+std::uint32_t ppf_vote_alpha_neighbour(float alpha_s, float alpha_m, const bp_ppf_quant& quant) {
+  const std::uint32_t n = quant.n_alpha;
+  const float u = (alpha_s - alpha_m) * ppf_vote_inv_step(quant) + 1.5f * float(n);
+  const auto t = static_cast<std::uint32_t>(u);
+  const float frac = u - float(t);
+  std::uint32_t b = t;
+  if (b >= 2 * n) b -= 2 * n;
+  else if (b >= n) b -= n;
+  if (frac < 0.5f) return b == 0 ? n - 1 : b - 1;
+  return b + 1 == n ? 0 : b + 1;
+}
+
 std::vector<std::uint32_t> vote_accumulator_reference(const ScenePairs& pairs, std::size_t r,
-                                                      const PpfModel& model, bool unique_votes) {
+                                                      const PpfModel& model, bool unique_votes,
+                                                      bool spread_alpha) {
   const std::uint32_t n_alpha = model.quant.n_alpha;
   std::vector<std::uint32_t> acc(cells_of(model), 0);
   std::set<std::pair<std::uint32_t, std::uint32_t>> seen;  // (key, alpha_s bin) that voted
@@ -184,7 +198,9 @@ std::vector<std::uint32_t> vote_accumulator_reference(const ScenePairs& pairs, s
       continue;
     for (std::uint32_t e = model.table.offsets.at(key); e < model.table.offsets.at(key + 1); ++e) {
       const bp_ppf_entry& entry = model.table.entries[e];
-      ++acc[std::size_t(entry.point) * n_alpha + ppf_vote_alpha_bin(alpha_s, entry.alpha, model.quant)];
+      const std::size_t row = std::size_t(entry.point) * n_alpha;
+      ++acc[row + ppf_vote_alpha_bin(alpha_s, entry.alpha, model.quant)];
+      if (spread_alpha) ++acc[row + ppf_vote_alpha_neighbour(alpha_s, entry.alpha, model.quant)];
     }
   }
   return acc;
@@ -197,7 +213,7 @@ std::vector<VotePeak> vote_peaks_reference(const ScenePairs& pairs, const PpfMod
   const std::uint32_t n_alpha = model.quant.n_alpha;
   for (std::size_t r = 0; r < pairs.refs.size(); ++r) {
     const std::vector<std::uint32_t> acc =
-        vote_accumulator_reference(pairs, r, model, opt.unique_votes);
+        vote_accumulator_reference(pairs, r, model, opt.unique_votes, opt.spread_alpha);
     std::vector<std::uint32_t> order;
     for (std::uint32_t c = 0; c < acc.size(); ++c)
       if (acc[c] > 0) order.push_back(c);

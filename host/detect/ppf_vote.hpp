@@ -42,6 +42,8 @@ struct VoteOptions {
   // in row order; kernels/ppf_vote.cl says why). Off by default: measured on 60-part bins
   // (docs/parameters.md) it cost the bracket and the shaft more than it gained the tee.
   bool unique_votes = false;
+  // Every vote also goes to the alpha bin next to its own on the nearer side (kernels/ppf_vote.cl).
+  bool spread_alpha = false;
   // Accumulator counters (and duplicate sets, counted in the same 4-byte units) allocated at
   // once; reference points vote in batches that fit.
   std::size_t max_accumulator_cells = std::size_t(1) << 24;
@@ -77,10 +79,13 @@ ScenePairs scene_pair_features_reference(const PointCloud& scene,
 // inv_step = n_alpha / (2 pi) as a float, the value the kernel gets.
 float ppf_vote_inv_step(const bp_ppf_quant& quant);
 std::uint32_t ppf_vote_alpha_bin(float alpha_s, float alpha_m, const bp_ppf_quant& quant);
+// The neighbouring bin a spread vote also goes to: the kernel's float operations.
+std::uint32_t ppf_vote_alpha_neighbour(float alpha_s, float alpha_m, const bp_ppf_quant& quant);
 // The accumulator (model points x alpha bins) of row r of pairs.
 std::vector<std::uint32_t> vote_accumulator_reference(const ScenePairs& pairs, std::size_t r,
                                                       const PpfModel& model,
-                                                      bool unique_votes = true);
+                                                      bool unique_votes = false,
+                                                      bool spread_alpha = false);
 // Votes and peaks of given features, plain C++: with the device's features it must equal
 // vote_peaks exactly.
 std::vector<VotePeak> vote_peaks_reference(const ScenePairs& pairs, const PpfModel& model,

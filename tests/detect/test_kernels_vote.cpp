@@ -211,24 +211,27 @@ TEST(VoteKernels, SequenceFeaturesVotePeaksStepByStep) {
                         all_pair_features(dev, s, model.quant));
 
   const u32 n_model = u32(model.cloud.points.size()), cells = n_model * model.quant.n_alpha;
-  std::uint64_t votes_of[2] = {0, 0};
-  for (const bool unique : {false, true}) {
+  std::uint64_t votes_of[3] = {0, 0, 0};  // plain, unique, spread
+  for (const int mode : {0, 1, 2}) {
+  const bool unique = mode == 1, spread = mode == 2;
   VoteOptions opt{4, 0.5f};
   opt.unique_votes = unique;
+  opt.spread_alpha = spread;
   const std::size_t batch = refs.size() / 2 + 1;  // two batches, the second shorter
   const u32 slots = u32(std::bit_ceil(2 * n + 1));
   ocl::Buffer<u32> acc(dev, batch * cells);
   ocl::Buffer<cl_ulong> seen(dev, batch * slots);
   ocl::Buffer<cl_uint2> peak_buf(dev, refs.size() * opt.peaks_per_ref);
   std::vector<VotePeak> got_peaks;
-  std::uint64_t& votes = votes_of[unique];
+  std::uint64_t& votes = votes_of[mode];
   for (std::size_t first = 0; first < refs.size(); first += batch) {
     const u32 count = u32(std::min(batch, refs.size() - first));
     ocl::launch_tasks(dev, vote, count, keys, alphas, u32(n), u32(first), count, dm.offsets, dm.entries,
-                 n_model, model.quant, ppf_vote_inv_step(model.quant), acc, u32(unique), seen, slots);
+                 n_model, model.quant, ppf_vote_inv_step(model.quant), acc, u32(unique), seen, slots, u32(spread));
     const std::vector<u32> got_acc = acc.read(dev, std::size_t(count) * cells);
     for (u32 r = 0; r < count; ++r) {
-      const std::vector<u32> want = vote_accumulator_reference(pairs, first + r, model, unique);
+      const std::vector<u32> want =
+          vote_accumulator_reference(pairs, first + r, model, unique, spread);
       ASSERT_TRUE(std::equal(want.begin(), want.end(), got_acc.begin() + std::size_t(r) * cells)) << first + r;
       for (u32 x : want) votes += x;
     }
@@ -255,6 +258,7 @@ TEST(VoteKernels, SequenceFeaturesVotePeaksStepByStep) {
   // Duplicate suppression bites on the flat patch, and leaves most votes.
   EXPECT_LT(votes_of[1], votes_of[0]);
   EXPECT_GT(votes_of[1], votes_of[0] / 4);
+  EXPECT_EQ(votes_of[2], 2 * votes_of[0]);  // spreading: every vote twice
 }
 
 // Degenerate input: a one-point scene (only the pair with itself), all points coincident (every
