@@ -13,7 +13,8 @@
  *   open-addressing set of (key, alpha_s bin) with `slots` entries (a power of two > 2 n, so
  *   it never fills).
  * ppf_peaks: one work item per reference point; the `k` best accumulator cells, highest votes
- *   first (ties: lowest cell index), that have at least peak_ratio of the best cell's votes.
+ *   first (ties: lowest cell index), that have at least peak_ratio of the best cell's votes
+ *   (and with local_max, that are local maxima along alpha: alpha_local_max).
  *   Several peaks per reference point, not only the maximum: a symmetric or partly occluded
  *   part has several near-equal poses, and the clustering decides between them.
  *
@@ -124,11 +125,23 @@ __kernel void ppf_vote(__global const uint* keys, __global const float* alphas, 
 
 #define PPF_MAX_PEAKS 16
 
+/* Whether cell c (votes v) is at least as high as its two alpha neighbours (the row of its model
+ * point wraps around the full turn). One peak spread over two bins is then taken once, and the
+ * other peaks kept are other poses. */
+static inline bool alpha_local_max(__global const uint* acc, const uint c, const uint v,
+                                   const uint n_alpha) {
+  if (n_alpha < 2u) return true;
+  const uint b = c % n_alpha, row = c - b;
+  const uint l = row + (b == 0u ? n_alpha - 1u : b - 1u);
+  const uint r = row + (b + 1u == n_alpha ? 0u : b + 1u);
+  return v >= acc[l] && v >= acc[r];
+}
+
 /* peaks[(first_ref + r) * k + j] = (cell, votes), cell = model point * n_alpha + alpha bin;
  * votes 0 marks an unused slot. Ranking: more votes first, then the lower cell. */
 __kernel void ppf_peaks(__global const uint* accumulators, const uint first_ref, const uint count,
                         const uint cells, const uint k, const float peak_ratio,
-                        __global uint2* peaks) {
+                        __global uint2* peaks, const uint n_alpha, const uint local_max) {
   const uint r = get_global_id(0);
   if (r >= count) return;
   __global const uint* acc = accumulators + (size_t)r * cells;
@@ -137,6 +150,7 @@ __kernel void ppf_peaks(__global const uint* accumulators, const uint first_ref,
   for (uint c = 0; c < cells; ++c) {
     const uint v = acc[c];
     if (v <= best_votes[k - 1]) continue; /* ties keep the earlier (lower) cell */
+    if (local_max && !alpha_local_max(acc, c, v, n_alpha)) continue;
     uint j = k - 1;
     while (j > 0 && best_votes[j - 1] < v) {
       best_votes[j] = best_votes[j - 1];

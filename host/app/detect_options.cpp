@@ -67,6 +67,11 @@ void add_detect_cli_options(CLI::App* verb, DetectCliOptions& a, const std::stri
                        help("1: every vote also goes to the neighbouring alpha bin its value lies "
                             "nearer, 0: one bin"))
           ->capture_default_str();
+  o["local-peaks"] =
+      verb->add_option("--local-peaks", a.local_peaks,
+                       help("1: accumulator peaks must be local maxima along alpha, so the peaks "
+                            "kept are different poses; 0: the best cells"))
+          ->capture_default_str();
   o["candidates"] =
       verb->add_option("--candidates", a.candidates,
                        help("best pose clusters per hypothesis refined and verified, in [1, 64]"))
@@ -88,6 +93,7 @@ DetectParams resolve(const DetectCliOptions& a) {
   p.candidates = narrow(a.candidates, "--candidates");
   p.unique_votes = narrow(a.unique_votes, "--unique-votes");
   p.spread_votes = narrow(a.spread_votes, "--spread-votes");
+  p.local_peaks = narrow(a.local_peaks, "--local-peaks");
   p.refine_iterations = narrow(a.refine_iterations, "--refine-iterations");
   if (!a.params_file.empty()) {
     std::set<std::string> given;

@@ -52,6 +52,7 @@ const std::map<std::string, Field>& fields() {
       {"normal-ratio", real(&DetectParams::normal_ratio)},
       {"unique-votes", count(&DetectParams::unique_votes)},
       {"spread-votes", count(&DetectParams::spread_votes)},
+      {"local-peaks", count(&DetectParams::local_peaks)},
       {"candidates", count(&DetectParams::candidates)},
       {"refine-iterations", count(&DetectParams::refine_iterations)},
       {"verify-tolerance", real(&DetectParams::verify_tolerance)},

@@ -46,6 +46,7 @@ std::optional<ParamProblem> find_param_problem(const DetectParams& p) {
       {in(p.normal_ratio, 0, 10) && p.normal_ratio > 0, {"normal-ratio", p.normal_ratio, "(0, 10]"}},
       {p.unique_votes <= 1, {"unique-votes", double(p.unique_votes), "{0, 1}"}},
       {p.spread_votes <= 1, {"spread-votes", double(p.spread_votes), "{0, 1}"}},
+      {p.local_peaks <= 1, {"local-peaks", double(p.local_peaks), "{0, 1}"}},
       {p.candidates >= 1 && p.candidates <= 64, {"candidates", double(p.candidates), "[1, 64]"}},
       {p.refine_iterations <= 100, {"refine-iterations", double(p.refine_iterations), "[0, 100]"}},
       {in(p.verify_tolerance, 0, 1) && p.verify_tolerance > 0, {"verify-tolerance", p.verify_tolerance, "(0, 1]"}},
@@ -101,6 +102,7 @@ std::vector<PoseCluster> Detector::vote_and_cluster(const PointCloud& subsampled
   vo.peak_ratio = float(params_.peak_ratio);
   vo.unique_votes = params_.unique_votes != 0;
   vo.spread_alpha = params_.spread_votes != 0;
+  vo.local_max = params_.local_peaks != 0;
   const std::size_t before = t.stages.size();
   const std::vector<VotePeak> peaks =
       vote_peaks(dev, device_model_, subsampled, refs, vo, &t.stages);

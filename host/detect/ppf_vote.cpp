@@ -110,7 +110,7 @@ std::vector<VotePeak> vote_peaks(ocl::Device& dev, const DeviceModel& dmodel,
     ocl::finish(dev);
     vote_ms += clock.lap();
     ocl::launch_tasks(dev, find_peaks, count, acc, first32, count, cells32, k, opt.peak_ratio,
-                peak_buf);
+                      peak_buf, model.quant.n_alpha, cl_uint(opt.local_max ? 1 : 0));
     ocl::finish(dev);
     peaks_ms += clock.lap();
   }
@@ -206,6 +206,15 @@ std::vector<std::uint32_t> vote_accumulator_reference(const ScenePairs& pairs, s
   return acc;
 }
 
+bool is_alpha_local_max(std::span<const std::uint32_t> acc, std::uint32_t c,
+                        std::uint32_t n_alpha) {
+  if (n_alpha < 2) return true;
+  const std::uint32_t b = c % n_alpha, row = c - b;
+  const std::uint32_t l = row + (b == 0 ? n_alpha - 1 : b - 1);
+  const std::uint32_t r = row + (b + 1 == n_alpha ? 0 : b + 1);
+  return acc[c] >= acc[l] && acc[c] >= acc[r];
+}
+
 std::vector<VotePeak> vote_peaks_reference(const ScenePairs& pairs, const PpfModel& model,
                                            const VoteOptions& opt) {
   check(opt);
@@ -216,7 +225,8 @@ std::vector<VotePeak> vote_peaks_reference(const ScenePairs& pairs, const PpfMod
         vote_accumulator_reference(pairs, r, model, opt.unique_votes, opt.spread_alpha);
     std::vector<std::uint32_t> order;
     for (std::uint32_t c = 0; c < acc.size(); ++c)
-      if (acc[c] > 0) order.push_back(c);
+      if (acc[c] > 0 && (!opt.local_max || is_alpha_local_max(acc, c, n_alpha)))
+        order.push_back(c);
     std::stable_sort(order.begin(), order.end(),
                      [&](std::uint32_t a, std::uint32_t b) { return acc[a] > acc[b]; });
     if (order.empty()) continue;

@@ -5,6 +5,7 @@
 #pragma once
 
 #include <cstdint>
+#include <span>
 #include <vector>
 
 #include "host/runtime/cl/cl_buffer.hpp"
@@ -44,6 +45,9 @@ struct VoteOptions {
   bool unique_votes = false;
   // Every vote also goes to the alpha bin next to its own on the nearer side (kernels/ppf_vote.cl).
   bool spread_alpha = false;
+  // Peaks must be local maxima along alpha (kernels/ppf_vote.cl alpha_local_max). The detector
+  // turns it on (DetectParams::local_peaks); the routine's default keeps Drost's best cells.
+  bool local_max = false;
   // Accumulator counters (and duplicate sets, counted in the same 4-byte units) allocated at
   // once; reference points vote in batches that fit.
   std::size_t max_accumulator_cells = std::size_t(1) << 24;
@@ -86,6 +90,9 @@ std::vector<std::uint32_t> vote_accumulator_reference(const ScenePairs& pairs, s
                                                       const PpfModel& model,
                                                       bool unique_votes = false,
                                                       bool spread_alpha = false);
+// Whether cell c of an accumulator is a local maximum along alpha (ties count), as the kernel.
+bool is_alpha_local_max(std::span<const std::uint32_t> acc, std::uint32_t c,
+                        std::uint32_t n_alpha);
 // Votes and peaks of given features, plain C++: with the device's features it must equal
 // vote_peaks exactly.
 std::vector<VotePeak> vote_peaks_reference(const ScenePairs& pairs, const PpfModel& model,

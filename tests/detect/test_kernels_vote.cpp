@@ -148,12 +148,17 @@ TEST(VoteKernels, ppf_peaks_matches_reference) {
     if (count > 1) std::fill_n(acc.begin() + cells, cells, 0u), acc[2 * std::size_t(cells) - 1] = 1;
     if (count > 2) std::fill_n(acc.begin() + 2 * std::size_t(cells), cells, 4u);
     ocl::Buffer<u32> acc_buf = upload(dev, acc);
+    // Local maxima along alpha: rows of 30 alpha bins where they divide the cells (else the
+    // whole row is one model point's).
+    const u32 n_alpha = cells % 30 == 0 ? 30u : cells;
+    for (u32 local_max : {0u, 1u})
     for (u32 kk : {1u, 3u, 16u})
       for (float ratio : {0.0f, 0.5f, 0.9f, 1.0f}) {
         const std::size_t slots = std::size_t(first_ref + count) * kk;
         std::vector<cl_uint2> init(slots + kGuard, cl_uint2{{kCanary, kCanary}});
         ocl::Buffer<cl_uint2> peaks = upload(dev, init);
-        ocl::launch_tasks(dev, k, count, acc_buf, first_ref, count, cells, kk, ratio, peaks);
+        ocl::launch_tasks(dev, k, count, acc_buf, first_ref, count, cells, kk, ratio, peaks,
+                          n_alpha, local_max);
         const std::vector<cl_uint2> got = peaks.read(dev);
         for (std::size_t j = 0; j < got.size(); ++j) {
           const std::size_t row = j / kk;
@@ -164,8 +169,9 @@ TEST(VoteKernels, ppf_peaks_matches_reference) {
           }
           const std::size_t r = row - first_ref;
           const auto want = ppf_peaks_reference(
-              std::span<const u32>(acc.data() + r * cells, cells), kk, ratio);
-          ASSERT_EQ(got[j].s[0], want[j % kk].first) << "row " << r << " slot " << j % kk << " k " << kk << " ratio " << ratio;
+              std::span<const u32>(acc.data() + r * cells, cells), kk, ratio,
+              local_max ? n_alpha : 0u);
+          ASSERT_EQ(got[j].s[0], want[j % kk].first) << "row " << r << " slot " << j % kk << " k " << kk << " ratio " << ratio << " local " << local_max;
           ASSERT_EQ(got[j].s[1], want[j % kk].second) << "row " << r << " slot " << j % kk << " k " << kk << " ratio " << ratio;
         }
       }
@@ -236,7 +242,7 @@ TEST(VoteKernels, SequenceFeaturesVotePeaksStepByStep) {
       for (u32 x : want) votes += x;
     }
     ocl::launch_tasks(dev, find_peaks, count, acc, u32(first), count, cells, opt.peaks_per_ref,
-                 opt.peak_ratio, peak_buf);
+                 opt.peak_ratio, peak_buf, model.quant.n_alpha, u32(0));
     const std::vector<cl_uint2> got = peak_buf.read(dev);
     for (u32 r = 0; r < count; ++r) {
       const auto want = ppf_peaks_reference(
@@ -304,7 +310,8 @@ TEST(VoteKernels, DegenerateScenesAndPaddedWorkGroups) {
     ocl::Buffer<u32> acc_buf = upload(dev, acc);
     ocl::Buffer<cl_uint2> peaks =
         upload(dev, std::vector<cl_uint2>(std::size_t(count) * 16 + kGuard, cl_uint2{{kCanary, kCanary}}));
-    ocl::launch_local(dev, find_peaks, count, 16, acc_buf, 0u, count, cells, 16u, 0.0f, peaks);
+    ocl::launch_local(dev, find_peaks, count, 16, acc_buf, 0u, count, cells, 16u, 0.0f, peaks,
+                      cells, 1u);
     const std::vector<cl_uint2> got = peaks.read(dev);
     for (std::size_t j = 0; j < got.size(); ++j) {
       if (j >= std::size_t(count) * 16) {

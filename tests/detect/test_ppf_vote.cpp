@@ -109,7 +109,8 @@ TEST(PpfVote, VotesAndPeaksMatchReferenceExactly) {
   auto& dev = ocl::Device::shared();
   const DeviceModel dm = upload_model(dev, model);
   for (VoteOptions opt : {VoteOptions{16, 0.0f}, VoteOptions{3, 0.9f}, VoteOptions{1, 1.0f},
-                          VoteOptions{3, 0.9f, true}, VoteOptions{3, 0.9f, false, true}}) {
+                          VoteOptions{3, 0.9f, true}, VoteOptions{3, 0.9f, false, true},
+                          VoteOptions{3, 0.5f, false, false, true}}) {
     ScenePairs pairs;
     const auto got = vote_peaks(dev, dm, scene, refs, opt, nullptr, &pairs);
     const auto want = vote_peaks_reference(pairs, model, opt);

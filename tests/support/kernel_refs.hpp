@@ -25,6 +25,7 @@
 #include "host/train/ppf_features.hpp"
 #include "host/train/voxel_subsample.hpp"
 #include "host/detect/depth_to_points.hpp"
+#include "host/detect/ppf_vote.hpp"
 #include "kernels/binpick_shared.h"
 #include "kernels/scene_shared.h"
 
@@ -234,11 +235,12 @@ inline PpfScatterResult ppf_scatter_reference(const std::vector<u32>& keys,
 // ppf_peaks of one accumulator row: the k cells with the most votes (ties: the lower cell), of
 // those with at least one vote, kept if votes >= peak_ratio * best (the kernel's float product);
 // (cell, votes), and (0, 0) for every slot not kept.
+// With n_alpha > 0, only cells that are local maxima along alpha (is_alpha_local_max) count.
 inline std::vector<std::pair<u32, u32>> ppf_peaks_reference(std::span<const u32> acc, u32 k,
-                                                            float peak_ratio) {
+                                                            float peak_ratio, u32 n_alpha = 0) {
   std::vector<u32> order;
   for (u32 c = 0; c < acc.size(); ++c)
-    if (acc[c] > 0) order.push_back(c);
+    if (acc[c] > 0 && (n_alpha == 0 || is_alpha_local_max(acc, c, n_alpha))) order.push_back(c);
   std::stable_sort(order.begin(), order.end(), [&](u32 a, u32 b) { return acc[a] > acc[b]; });
   std::vector<std::pair<u32, u32>> out(k, {0u, 0u});
   if (order.empty()) return out;
