@@ -3,6 +3,7 @@
 #include <string_view>
 
 #include "host/core/error.hpp"
+#include "host/train/symmetry_detect.hpp"
 #include "synth/parts/builtin_parts.hpp"
 
 namespace binpick::cli {
@@ -51,6 +52,14 @@ Model load_part(const PartSpec& part) {
     throw InputError(part.spec + ": " + e.what());
   }
   return complete_model(std::move(mesh), builtin_part_symmetries(name), part.spec, part.options);
+}
+
+Model load_part_finding_symmetries(const PartSpec& part, bool* found) {
+  Model model = load_part(part);
+  const bool file = !part.spec.starts_with(builtin_prefix);
+  if (file) model.symmetries = find_symmetries(model.mesh);
+  if (found) *found = file;
+  return model;
 }
 
 }  // namespace binpick::cli

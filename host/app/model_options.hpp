@@ -28,4 +28,8 @@ PartSpec part_spec_of(const ModelArgs& args);
 // as its options say. Throws binpick::InputError naming spec.
 Model load_part(const PartSpec& part);
 
+// load_part, and for a model file, which states no symmetries, the ones found on its mesh
+// (find_symmetries): what a dataset's models_info.json records. `found` tells which it was.
+Model load_part_finding_symmetries(const PartSpec& part, bool* found = nullptr);
+
 }  // namespace binpick::cli

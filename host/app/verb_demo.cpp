@@ -56,7 +56,7 @@ void run_demo(const DemoArgs& a) {
                            a.bins, a.objects, o.part.spec, a.noise,
                            a.out.string())
             << std::flush;
-  const auto r = run_experiment(load_part(o.part), o, std::cout);
+  const auto r = run_experiment(load_part_finding_symmetries(o.part), o, std::cout);
   for (const auto& w : r.report.warnings) std::cerr << "binpick: warning: " << w << "\n";
   std::cout << "\n" << results_table(r.evaluations) << "\n";
   std::cout << fmt::format("report:   {}\n", r.report.html.string());

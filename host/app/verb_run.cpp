@@ -38,7 +38,7 @@ void run_run(RunArgs& a) {
   o.train = train_params_of(a.train);
   o.detect = resolve(a.detect);
   check(o);  // before the slow stages: bad options fail fast
-  const auto r = run_experiment(load_part(o.part), o, std::cout);
+  const auto r = run_experiment(load_part_finding_symmetries(o.part), o, std::cout);
   std::cout << "\n" << results_table(r.evaluations);
   for (const auto& w : r.report.warnings) std::cerr << "binpick: warning: " << w << "\n";
   std::cout << fmt::format(

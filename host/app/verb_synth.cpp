@@ -1,4 +1,5 @@
-// `binpick synth`: synthetic bins as a BOP dataset (docs/pipeline.md, docs/formats.md).
+// `binpick synth`: synthetic bins as a BOP dataset (docs/pipeline.md, docs/formats.md). A model
+// file gets the symmetries found on its mesh in models_info.json, a built-in part its stated ones.
 #include <iostream>
 #include <memory>
 
@@ -7,6 +8,7 @@
 #include "host/app/dataset_options.hpp"
 #include "host/app/model_options.hpp"
 #include "host/app/verbs.hpp"
+#include "host/train/symmetry_describe.hpp"
 #include "synth/synthesize.hpp"
 
 namespace binpick::cli {
@@ -35,7 +37,11 @@ void run_synth(const SynthArgs& args) {
   o.drop.grid_y = args.grid[1];
   o.decompose.cache_dir = args.cache_dir;
   validate_synth_options(o);  // before loading: bad options fail fast
-  const Model model = load_part(part_spec_of(args.model));
+  bool found = false;
+  const Model model = load_part_finding_symmetries(part_spec_of(args.model), &found);
+  std::cout << fmt::format("{}: symmetry ({}): {}\n", args.model.model,
+                           found ? "found on the mesh" : "stated for the built-in part",
+                           describe_symmetries(model.symmetries));
   const SynthSummary s = synthesize(model, args.model.model, o);
   std::cout << fmt::format(
       "{}: {} bins made, {} already there; decomposition {:.1f} s, physics {:.1f} s, "

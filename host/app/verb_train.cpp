@@ -1,5 +1,6 @@
 // `binpick train`: samples the part's surface, voxel-subsamples it, builds the point pair
-// feature hash table on the OpenCL device and writes the .ppfm model file.
+// feature hash table on the OpenCL device, finds the part's symmetries and writes the .ppfm
+// model file.
 #include <chrono>
 #include <cmath>
 #include <cstdint>
@@ -17,6 +18,7 @@
 #include "host/core/error.hpp"
 #include "host/train/ppf_model.hpp"
 #include "host/train/ppf_model_file.hpp"
+#include "host/train/symmetry_describe.hpp"
 #include "host/core/timing.hpp"
 
 namespace binpick::cli {
@@ -53,15 +55,17 @@ void run_train(const TrainVerbArgs& args) {
       "  pairs            {:>12}   (ordered, points x (points - 1))\n"
       "  table entries    {:>12}\n"
       "  distinct keys    {:>12}   of {} ({} distance x {}^3 angle bins; alpha in {} bins)\n"
+      "  symmetry: {}\n"
       "  time (ms): load {:.1f}, diameter {:.1f}, sampling {:.1f}, subsampling {:.1f}, "
-      "table count {:.1f}, offsets {:.1f}, scatter {:.1f}, read back {:.1f}, "
+      "table count {:.1f}, offsets {:.1f}, scatter {:.1f}, read back {:.1f}, symmetry {:.1f}, "
       "write {:.1f}; total {:.1f}\n"
       "wrote {} ({:.2f} MB)\n",
       args.model.model, model.diameter, model.voxel_size, params.voxel_ratio, st.surface_samples,
       st.points, st.pairs, st.entries, st.distinct_keys, model.table.offsets.size() - 1,
-      model.quant.n_dist, model.quant.n_angle, model.quant.n_alpha, ms(load_s), ms(st.diameter_s),
-      ms(st.sample_s), ms(st.subsample_s), ms(t.count_s), ms(t.scan_s), ms(t.scatter_s),
-      ms(t.read_s), ms(write_s), ms(total_s), args.out,
+      model.quant.n_dist, model.quant.n_angle, model.quant.n_alpha,
+      describe_symmetries(model.symmetries), ms(load_s), ms(st.diameter_s), ms(st.sample_s),
+      ms(st.subsample_s), ms(t.count_s), ms(t.scan_s), ms(t.scatter_s), ms(t.read_s),
+      ms(st.symmetry_s), ms(write_s), ms(total_s), args.out,
       double(std::filesystem::file_size(args.out)) / 1e6);
 }
 
@@ -72,7 +76,8 @@ void add_train_verb(CLI::App& app) {
   auto* verb = app.add_subcommand(
       "train",
       "Build the point pair feature model of a part: sample its surface uniformly, voxel "
-      "subsample, hash all point pair features on the OpenCL device, write a .ppfm file");
+      "subsample, hash all point pair features on the OpenCL device, find the part's "
+      "rotational symmetries, write a .ppfm file");
   add_model_options(verb, args->model);
   verb->add_option("--out", args->out, "model file to write (.ppfm)")->required();
   add_train_options(verb, args->train, "model");

@@ -39,7 +39,7 @@ void run_tune(TuneArgs& a) {
   o.start.angle_steps = train.angle_steps;
   o.start.detect = resolve(a.start);
   check(o);  // before the slow stages: bad options fail fast
-  binpick::run_tune(load_part(o.part), o, std::cout);
+  binpick::run_tune(load_part_finding_symmetries(o.part), o, std::cout);
 }
 
 }  // namespace

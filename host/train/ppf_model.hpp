@@ -5,6 +5,7 @@
 #include <cstdint>
 
 #include "host/core/mesh.hpp"
+#include "host/core/symmetry.hpp"
 #include "host/train/ppf_table.hpp"
 #include "kernels/binpick_shared.h"
 
@@ -16,6 +17,9 @@ struct PpfModel {
   bp_ppf_quant quant{};
   PointCloud cloud;      // model points m_i with unit normals; entries' `point` indexes them
   PpfTable table;        // key -> entries (m_r, alpha_m), CSR
+  // The part's rotational symmetries in the model frame (find_symmetries), so that detection
+  // clusters symmetric poses as one. Empty for a part without any, or a version 1 file.
+  PartSymmetries symmetries;
 };
 
 struct PpfTrainParams {
@@ -30,7 +34,7 @@ struct PpfTrainStats {
   std::size_t pairs = 0;        // ordered pairs considered, points * (points - 1)
   std::size_t entries = 0;      // pairs in the table
   std::size_t distinct_keys = 0;
-  double diameter_s = 0, sample_s = 0, subsample_s = 0;
+  double diameter_s = 0, symmetry_s = 0, sample_s = 0, subsample_s = 0;
   PpfTableTimes table;
 };
 
@@ -42,8 +46,9 @@ inline constexpr double kSamplesPerVoxelArea = 16.0;
 // (make_ppf_quant).
 void check_train_params(const PpfTrainParams& params);
 
-// Samples the surface, voxel-subsamples it and builds the table on dev (the process's shared
-// device unless a caller, such as a test, picks another). Throws
+// Samples the surface, voxel-subsamples it, builds the table on dev (the process's shared
+// device unless a caller, such as a test, picks another) and finds the part's symmetries
+// (find_symmetries, last: bad parameters fail before it). Throws
 // InputError for bad parameters, a degenerate mesh, or a voxel so small that the model would
 // exceed kMaxPpfModelPoints points.
 PpfModel train_ppf_model(const Mesh& mesh, const PpfTrainParams& params,

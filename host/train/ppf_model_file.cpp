@@ -4,6 +4,9 @@
 #include <cmath>
 #include <cstring>
 #include <ostream>
+#include <stdexcept>
+
+#include <Eigen/LU>
 
 #include "host/core/error.hpp"
 #include "host/core/atomic_file.hpp"
@@ -61,9 +64,63 @@ std::uint64_t payload_size(std::uint64_t points, std::uint64_t keys, std::uint64
   return points * 24 + (keys + 1) * 4 + entries * 8;
 }
 
+// Version 2: the two counts, then 6 doubles per continuous and 12 per discrete symmetry.
+std::uint64_t symmetry_size(std::uint64_t continuous, std::uint64_t discrete) {
+  return 8 + continuous * 48 + discrete * 96;
+}
+
+// A bound on the counts a file may claim, so that a corrupt count is reported as such.
+constexpr std::uint32_t kMaxFileSymmetries = 1024;
+
+void append_symmetries(std::string& out, const PartSymmetries& s) {
+  const std::uint32_t counts[2] = {static_cast<std::uint32_t>(s.continuous.size()),
+                                   static_cast<std::uint32_t>(s.discrete.size())};
+  append(out, counts, 2);
+  for (const auto& c : s.continuous) {
+    const double v[6] = {c.axis.x(),   c.axis.y(),   c.axis.z(),
+                         c.offset.x(), c.offset.y(), c.offset.z()};
+    append(out, v, 6);
+  }
+  for (const auto& m : s.discrete) {
+    double v[12];
+    for (int r = 0; r < 3; ++r)
+      for (int c = 0; c < 4; ++c) v[4 * r + c] = m(r, c);
+    append(out, v, 12);
+  }
+}
+
+// Reads what append_symmetries wrote (counts already checked against the size); false if a
+// symmetry is not one: a non-finite value, a zero axis, or a matrix that is not a rotation.
+bool take_symmetries(std::string_view& in, std::uint32_t continuous, std::uint32_t discrete,
+                     PartSymmetries& s) {
+  in.remove_prefix(8);
+  for (std::uint32_t k = 0; k < continuous; ++k) {
+    double v[6];
+    take(in, v, 6);
+    const ContinuousSymmetry c{{v[0], v[1], v[2]}, {v[3], v[4], v[5]}};
+    if (!c.axis.allFinite() || !c.offset.allFinite() || !(c.axis.norm() > 1e-9)) return false;
+    s.continuous.push_back(c);
+  }
+  for (std::uint32_t k = 0; k < discrete; ++k) {
+    double v[12];
+    take(in, v, 12);
+    Eigen::Matrix4d m = Eigen::Matrix4d::Identity();
+    for (int r = 0; r < 3; ++r)
+      for (int c = 0; c < 4; ++c) m(r, c) = v[4 * r + c];
+    const Eigen::Matrix3d R = m.topLeftCorner<3, 3>();
+    if (!m.allFinite() || !(R.transpose() * R).isApprox(Eigen::Matrix3d::Identity(), 1e-6) ||
+        !(R.determinant() > 0))
+      return false;
+    s.discrete.push_back(m);
+  }
+  return true;
+}
+
 }  // namespace
 
-std::string serialize_ppf_model(const PpfModel& m) {
+std::string serialize_ppf_model(const PpfModel& m, std::uint32_t version) {
+  if (version != kPpfModelFormatVersion && version != kPpfModelOldestReadVersion)
+    throw std::logic_error("serialize_ppf_model: no format version " + std::to_string(version));
   const std::size_t n = m.cloud.points.size();
   std::string payload;
   payload.reserve(payload_size(n, m.table.offsets.size(), m.table.entries.size()));
@@ -71,10 +128,11 @@ std::string serialize_ppf_model(const PpfModel& m) {
   for (const auto& v : m.cloud.normals) append(payload, v.data(), 3);
   append(payload, m.table.offsets.data(), m.table.offsets.size());
   append(payload, m.table.entries.data(), m.table.entries.size());
+  if (version >= 2) append_symmetries(payload, m.symmetries);
 
   Header h{};
   std::memcpy(h.magic, kMagic, 8);
-  h.version = kPpfModelFormatVersion;
+  h.version = version;
   h.header_bytes = sizeof(Header);
   h.diameter = m.diameter;
   h.voxel_size = m.voxel_size;
@@ -98,9 +156,10 @@ PpfModel parse_ppf_model(std::string_view bytes, const std::string& name) {
     throw InputError(file + " is truncated (" + std::to_string(bytes.size()) + " bytes)");
   Header h;
   std::memcpy(&h, bytes.data(), sizeof(Header));
-  if (h.version != kPpfModelFormatVersion)
+  if (h.version < kPpfModelOldestReadVersion || h.version > kPpfModelFormatVersion)
     throw InputError(file + " was written by format version " + std::to_string(h.version) +
-                     ", this binpick reads " + std::to_string(kPpfModelFormatVersion) + ": retrain");
+                     ", this binpick reads versions " + std::to_string(kPpfModelOldestReadVersion) +
+                     " to " + std::to_string(kPpfModelFormatVersion) + ": retrain");
   if (h.header_bytes != sizeof(Header)) throw corrupt("header size " + std::to_string(h.header_bytes));
 
   bp_ppf_quant q;
@@ -116,7 +175,20 @@ PpfModel parse_ppf_model(std::string_view bytes, const std::string& name) {
   if (h.point_count > kMaxPpfModelPoints ||
       h.entry_count > std::uint64_t(h.point_count) * h.point_count)
     throw corrupt("point or entry count");
-  const std::uint64_t expected = sizeof(Header) + payload_size(h.point_count, h.key_count, h.entry_count);
+  const std::uint64_t table_end =
+      sizeof(Header) + payload_size(h.point_count, h.key_count, h.entry_count);
+  std::uint64_t expected = table_end;
+  std::uint32_t symmetry_counts[2] = {0, 0};
+  if (h.version >= 2) {
+    expected += 8;
+    if (bytes.size() < expected)
+      throw InputError(file + " is truncated (" + std::to_string(bytes.size()) + " of at least " +
+                       std::to_string(expected) + " bytes)");
+    std::memcpy(symmetry_counts, bytes.data() + table_end, 8);
+    if (symmetry_counts[0] > kMaxFileSymmetries || symmetry_counts[1] > kMaxFileSymmetries)
+      throw corrupt("symmetry count");
+    expected = table_end + symmetry_size(symmetry_counts[0], symmetry_counts[1]);
+  }
   if (bytes.size() < expected)
     throw InputError(file + " is truncated (" + std::to_string(bytes.size()) + " of " +
                      std::to_string(expected) + " bytes)");
@@ -137,6 +209,9 @@ PpfModel parse_ppf_model(std::string_view bytes, const std::string& name) {
   m.table.entries.resize(h.entry_count);
   take(payload, m.table.offsets.data(), m.table.offsets.size());
   take(payload, m.table.entries.data(), m.table.entries.size());
+  if (h.version >= 2 &&
+      !take_symmetries(payload, symmetry_counts[0], symmetry_counts[1], m.symmetries))
+    throw corrupt("symmetry");
 
   // A consistent table, so that detection can index it without checks.
   if (m.table.offsets.front() != 0 || m.table.offsets.back() != h.entry_count)

@@ -6,8 +6,12 @@
 //   n_angle, n_alpha, 2 reserved), point count, key count, entry count (8 bytes),
 //   checksum of the payload (8 bytes);
 //   payload: points (3 floats each), normals (3 floats each), offsets (key count + 1 uint32),
-//   entries (uint32 point, float alpha).
-// Readers refuse other versions: a changed format or feature convention needs a retrain.
+//   entries (uint32 point, float alpha); from version 2 on, the part's symmetries: continuous
+//   count, discrete count (uint32 each), each continuous symmetry as axis and offset
+//   (6 doubles), each discrete one as the top three rows of its 4x4 transform (12 doubles,
+//   row-major).
+// Version 1 files (before symmetries) are still read, with no symmetries: the table is the
+// same. Readers refuse other versions: a changed format or feature convention needs a retrain.
 #pragma once
 
 #include <cstdint>
@@ -19,14 +23,17 @@
 
 namespace binpick {
 
-inline constexpr std::uint32_t kPpfModelFormatVersion = 1;
+inline constexpr std::uint32_t kPpfModelFormatVersion = 2;
+inline constexpr std::uint32_t kPpfModelOldestReadVersion = 1;
 
-// The file's bytes; identical for identical models.
-std::string serialize_ppf_model(const PpfModel& model);
+// The file's bytes; identical for identical models. Version kPpfModelOldestReadVersion leaves
+// the symmetries out (tests of old files); any other version than these two is a logic error.
+std::string serialize_ppf_model(const PpfModel& model,
+                                std::uint32_t version = kPpfModelFormatVersion);
 
 // Parses bytes read from `name` (used in messages). Throws InputError: "model file NAME is
 // truncated", "... is not a binpick PPF model", "... was written by format version N, this
-// binpick reads M: retrain", "... is corrupt (...)".
+// binpick reads versions 1 to 2: retrain", "... is corrupt (...)".
 PpfModel parse_ppf_model(std::string_view bytes, const std::string& name);
 
 // Writes through write_file_atomically (no partial file on error).

@@ -7,6 +7,7 @@
 #include "host/core/cloud_input.hpp"
 #include "host/train/ppf_model.hpp"
 #include "host/train/surface_sampling.hpp"
+#include "host/train/symmetry_detect.hpp"
 #include "host/train/voxel_subsample.hpp"
 
 namespace binpick {
@@ -52,6 +53,9 @@ PpfModel train_ppf_model(const Mesh& mesh, const PpfTrainParams& params, PpfTrai
                      std::to_string(kMaxPpfModelPoints) + " are supported: raise it");
 
   model.table = build_ppf_table(dev, model.cloud, model.quant, &st.table);
+  clock.lap_seconds();
+  model.symmetries = find_symmetries(mesh);
+  st.symmetry_s = clock.lap_seconds();
   st.points = model.cloud.points.size();
   st.pairs = st.points * (st.points > 0 ? st.points - 1 : 0);
   st.entries = model.table.entries.size();

@@ -1,8 +1,10 @@
 // `binpick synth` as a user runs it: --help, bad options refused before anything is written,
 // and a dataset that resumes, extends, replaces a bin left half-written, and refuses to mix in
-// bins made with other settings or by another version of the generator.
+// bins made with other settings or by another version of the generator; a model file gets the
+// symmetries found on its mesh.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <string>
@@ -92,6 +94,47 @@ TEST(SynthCli, ResumesExtendsAndRefusesOtherSettings) {
   EXPECT_EQ(r.status, 2);
   EXPECT_NE(r.err.find("synth_version"), std::string::npos) << r.err;
   EXPECT_FALSE(fs::exists(out / "test" / "000002"));
+}
+
+TEST(SynthCli, AModelFileGetsTheSymmetriesFoundOnIt) {
+  // The bolt's stated symmetries, then the same mesh as a model file (the dataset's own copy):
+  // models_info.json gets the symmetries found on it, the same six-fold turns.
+  const TempDir dir("synth_symmetry");
+  const fs::path stated = dir.path / "stated", found = dir.path / "found";
+  const fs::path cache = dir.path / "cache";
+  auto args = [&](const std::string& model, const fs::path& out) {
+    return fmt::format(
+        "synth --model '{}' --out '{}' --objects 2 --grid 2,1 --width 32 --height 32 --no-cloud "
+        "--cache-dir '{}'",
+        model, out.string(), cache.string());
+  };
+  auto r = test::run_binpick(args("builtin:bolt", stated));
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(
+      r.out.find("symmetry (stated for the built-in part): 5 discrete: 6-fold about (0, 0, 1)"),
+      std::string::npos)
+      << r.out;
+  r = test::run_binpick(args((stated / "models" / "obj_000001.ply").string(), found));
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.out.find("symmetry (found on the mesh): 5 discrete: 6-fold about (0, 0, 1)"),
+            std::string::npos)
+      << r.out;
+  auto info = [](const fs::path& out) {
+    return nlohmann::json::parse(test::slurp(out / "models" / "models_info.json"))["1"];
+  };
+  const auto want = info(stated)["symmetries_discrete"], got = info(found)["symmetries_discrete"];
+  ASSERT_EQ(got.size(), want.size());
+  ASSERT_EQ(got.size(), 5u);
+  // Compared as sets: each stated transform has a found one within 1e-3 in every entry.
+  for (const auto& w : want) {
+    bool matched = false;
+    for (const auto& g : got) {
+      bool close = true;
+      for (std::size_t k = 0; k < 16; ++k) close &= std::fabs(double(g[k]) - double(w[k])) < 1e-3;
+      matched |= close;
+    }
+    EXPECT_TRUE(matched) << w.dump();
+  }
 }
 
 }  // namespace

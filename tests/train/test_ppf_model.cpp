@@ -1,6 +1,6 @@
 // The PPF model: point pair features and alpha (kernels/ppf_features.cl), the device hash table
-// (kernels/ppf_table.cl) against their C++/Eigen references, degenerate input, training and the
-// .ppfm file.
+// (kernels/ppf_table.cl) against their C++/Eigen references, degenerate input, training (with the
+// part's symmetries) and the .ppfm file (version 2 with symmetries; version 1 still read).
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -339,7 +339,8 @@ TEST(PpfModelFile, RoundTripAndRefusals) {
   EXPECT_NE(message(wrong).find("not a binpick PPF model"), std::string::npos);
   wrong = bytes;
   wrong[8] = 7;  // version 7
-  EXPECT_NE(message(wrong).find("was written by format version 7, this binpick reads 1: retrain"),
+  EXPECT_NE(message(wrong).find(
+                "was written by format version 7, this binpick reads versions 1 to 2: retrain"),
             std::string::npos)
       << message(wrong);
   wrong = bytes;
@@ -352,6 +353,73 @@ TEST(PpfModelFile, RoundTripAndRefusals) {
   EXPECT_EQ(serialize_ppf_model(read_ppf_model(path)), bytes);
   std::filesystem::remove(path);
   EXPECT_THROW(read_ppf_model(path), InputError);  // missing file
+}
+
+TEST(PpfTrain, FindsTheSymmetriesOfThePart) {
+  PpfTrainStats stats;
+  const PpfModel m = train_ppf_model(box_mesh({40, 30, 20}), PpfTrainParams{}, &stats);
+  // Three unequal sides: the half turns about the three axes through the centre.
+  EXPECT_TRUE(m.symmetries.continuous.empty());
+  ASSERT_EQ(m.symmetries.discrete.size(), 3u);
+  for (const Eigen::Matrix4d& s : m.symmetries.discrete) {
+    const Eigen::Matrix3d R = s.topLeftCorner<3, 3>();
+    EXPECT_NEAR(R.trace(), -1.0, 1e-9);  // a half turn
+    const Eigen::Vector3d centre(20, 15, 10);
+    const Eigen::Vector3d t = s.topRightCorner<3, 1>();
+    EXPECT_LT((R * centre + t - centre).norm(), 1e-6);
+  }
+  EXPECT_GE(stats.symmetry_s, 0.0);
+}
+
+TEST(PpfModelFile, SymmetriesRoundTripAndVersionOneIsStillRead) {
+  PpfModel m = train_box();
+  m.symmetries.continuous.push_back({{0, 0.6, 0.8}, {1.5, -2, 3}});
+  const std::string bytes = serialize_ppf_model(m);
+  const PpfModel back = parse_ppf_model(bytes, "box.ppfm");
+  ASSERT_EQ(back.symmetries.continuous.size(), 1u);
+  EXPECT_EQ(back.symmetries.continuous[0].axis, m.symmetries.continuous[0].axis);
+  EXPECT_EQ(back.symmetries.continuous[0].offset, m.symmetries.continuous[0].offset);
+  ASSERT_EQ(back.symmetries.discrete.size(), m.symmetries.discrete.size());
+  for (std::size_t k = 0; k < m.symmetries.discrete.size(); ++k)
+    EXPECT_EQ(back.symmetries.discrete[k], m.symmetries.discrete[k]);
+  EXPECT_EQ(serialize_ppf_model(back), bytes);
+
+  // A file of version 1 (before symmetries): the same model, without them.
+  const std::string v1 = serialize_ppf_model(m, 1);
+  EXPECT_EQ(v1[8], 1);
+  const PpfModel old = parse_ppf_model(v1, "old.ppfm");
+  EXPECT_TRUE(old.symmetries.empty());
+  EXPECT_EQ(old.cloud.points, m.cloud.points);
+  EXPECT_EQ(old.table.offsets, m.table.offsets);
+  EXPECT_EQ(old.table.entries.size(), m.table.entries.size());
+  PpfModel without = m;
+  without.symmetries = {};
+  EXPECT_EQ(serialize_ppf_model(old), serialize_ppf_model(without));
+  EXPECT_THROW(serialize_ppf_model(m, 3), std::logic_error);
+
+  auto message = [](const std::string& b) {
+    try {
+      parse_ppf_model(b, "x.ppfm");
+    } catch (const InputError& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  // Cut inside the symmetries, or right after the table (no counts): truncated.
+  EXPECT_NE(message(bytes.substr(0, bytes.size() - 50)).find("is truncated"), std::string::npos);
+  std::string relabelled = bytes;  // version 2 bytes called version 1: the symmetries are extra
+  relabelled[8] = 1;
+  EXPECT_NE(message(relabelled).find("bytes after the end"), std::string::npos);
+  // Not a rotation, a zero axis, an absurd count: corrupt.
+  PpfModel bad = m;
+  bad.symmetries.discrete[0](0, 0) = 2;
+  EXPECT_NE(message(serialize_ppf_model(bad)).find("is corrupt (symmetry)"), std::string::npos);
+  bad = m;
+  bad.symmetries.continuous[0].axis.setZero();
+  EXPECT_NE(message(serialize_ppf_model(bad)).find("is corrupt (symmetry)"), std::string::npos);
+  std::string huge = serialize_ppf_model(without);
+  huge[huge.size() - 5] = 0x7f;  // the continuous count's high byte
+  EXPECT_NE(message(huge).find("is corrupt (symmetry count)"), std::string::npos) << message(huge);
 }
 
 TEST(SurfaceSampling, UniformOnTheSurfaceWithFaceNormals) {

@@ -1,5 +1,6 @@
-// `binpick train` end to end: a built-in part becomes a .ppfm file that loads; bad options exit
-// non-zero with one message on stderr and leave no output file.
+// `binpick train` end to end: a built-in part becomes a .ppfm file that loads, with the
+// symmetries found on it; bad options exit non-zero with one message on stderr and leave no
+// output file.
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -41,7 +42,9 @@ TEST_F(TrainCli, TrainsTheBuiltinBolt) {
   ASSERT_EQ(r.status, 0) << r.err;
   EXPECT_NE(r.out.find("model points"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("distinct keys"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("symmetry: 5 discrete: 6-fold about (0, 0, 1)\n"), std::string::npos) << r.out;
   const binpick::PpfModel m = binpick::read_ppf_model(model);
+  EXPECT_EQ(m.symmetries.discrete.size(), 5u);  // the hex head's turns
   EXPECT_GT(m.cloud.points.size(), 50u);
   EXPECT_EQ(m.table.entries.size(), m.cloud.points.size() * (m.cloud.points.size() - 1));
   EXPECT_NEAR(m.voxel_size, 0.05f * m.diameter, 1e-4f);
