@@ -116,6 +116,10 @@ std::vector<PoseCluster> Detector::vote_and_cluster(const PointCloud& subsampled
   co.max_distance = float(params_.cluster_distance * model_.diameter);
   co.max_angle_deg = float(params_.cluster_angle);
   co.centre = fit_geometry_.centroid.cast<float>();
+  // Poses equal up to a turn about the part's axis are one pose. Discrete symmetries stay out:
+  // measured on 30 bins of 150 bolts at 4 % noise they cost strict precision (96.7 -> 76.7 %
+  // top-ranked), since the candidates then become different poses instead of copies of the best.
+  if (!model_.symmetries.continuous.empty()) co.symmetries = model_.symmetries;
   std::vector<PoseCluster> clusters = cluster_poses(dev, poses, co, &t.stages);
   t.cluster_ms += t.stages[t.stages.size() - 2].ms + t.stages.back().ms;
   d.clusters = clusters.size();

@@ -10,6 +10,11 @@
 // poses, so a cluster is not split by whichever pose happened to come first. A cluster's pose is
 // the vote-weighted mean: translations averaged, quaternions sign-aligned with the centre's,
 // summed and normalised (the rotation threshold keeps them close, where this mean is accurate).
+//
+// A symmetric part has several poses that look the same: poses that differ by one of its
+// symmetries are one pose (kernels/pose_cluster_shared.h says how the rotation distance takes
+// them into account), so their votes add up instead of splitting into separate clusters. Before
+// averaging, each member is replaced by its symmetric equivalent nearest the centre's rotation.
 #pragma once
 
 #include <cstdint>
@@ -18,8 +23,11 @@
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 
+#include "host/core/symmetry.hpp"
 #include "host/runtime/cl/cl_buffer.hpp"
 #include "host/detect/ppf_pose.hpp"
+#include "kernels/binpick_shared.h"
+#include "kernels/pose_cluster_shared.h"
 
 namespace binpick {
 
@@ -30,8 +38,27 @@ struct ClusterOptions {
   // A CAD origin far from the part would otherwise turn a small rotation difference into a large
   // translation difference and split one pose into several clusters.
   Eigen::Vector3f centre = Eigen::Vector3f::Zero();
+  // The part's symmetries in the model frame (PpfModel::symmetries). Only their rotations
+  // matter: each keeps the part's centroid, and so `centre`, in place (up to a model voxel).
+  PartSymmetries symmetries = {};
 };
+// InputError for a bad distance or angle, or symmetries cluster_symmetry refuses.
 void check(const ClusterOptions& opt);
+
+// The symmetries as the rotation test takes them (kernels/pose_cluster_shared.h).
+struct ClusterSymmetry {
+  std::uint32_t mode = BP_CLUSTER_ROTATIONS;
+  std::vector<Eigen::Quaternionf> rotations;        // BP_CLUSTER_ROTATIONS: not the identity
+  Eigen::Vector3f axis = Eigen::Vector3f::UnitZ();  // axis modes: unit, model frame
+  Eigen::Quaterniond flip = Eigen::Quaterniond::Identity();  // AXIS_EITHER: reverses the axis
+};
+
+// One continuous axis (several parallel ones count as one): an axis mode, AXIS_EITHER when a
+// discrete symmetry reverses the axis; two non-parallel axes: ANY; otherwise the discrete
+// rotations (identities dropped). Throws InputError for a zero or non-finite axis, a discrete
+// transform whose rotation part is not a rotation, or more than BP_CLUSTER_MAX_SYMMETRIES
+// discrete rotations.
+ClusterSymmetry cluster_symmetry(const PartSymmetries& symmetries);
 
 struct PoseCompatibility {
   std::size_t n = 0;
@@ -42,7 +69,7 @@ struct PoseCompatibility {
 // Largest number of candidates clustered at once (the matrix is n^2 bytes).
 inline constexpr std::size_t kMaxClusterPoses = 8192;
 
-// The predicate of the kernel, in the same float operations.
+// The predicate of the kernel for a part without symmetries, in the same float operations.
 bool pose_compatible(const PoseCandidate& a, const PoseCandidate& b, float max_dist2,
                      float min_cos_half);
 
@@ -62,9 +89,15 @@ struct PoseCluster {
 };
 
 // The greedy grouping of the comment above; clusters by votes (most first; ties: the order in
-// which they were formed).
+// which they were formed). Members are aligned to the centre by `symmetry` before averaging.
 std::vector<PoseCluster> group_poses(const std::vector<PoseCandidate>& poses,
-                                     const PoseCompatibility& compatibility);
+                                     const PoseCompatibility& compatibility,
+                                     const ClusterSymmetry& symmetry = {});
+
+// Among the rotations q g (g a symmetry of the part, the identity included; for an axis, every
+// turn about it), the one nearest `centre`, sign-aligned with it. For ANY: centre.
+Eigen::Quaterniond nearest_equivalent(const Eigen::Quaterniond& q, const Eigen::Quaterniond& centre,
+                                      const ClusterSymmetry& symmetry);
 
 // Both steps on the poses moved to opt.centre (t + R centre, then back for the clusters' t):
 // at most kMaxClusterPoses candidates, the most voted (ties: lower index) if there are more.
