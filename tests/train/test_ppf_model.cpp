@@ -72,6 +72,16 @@ float circular_distance(float a, float b) {
   return std::min(d, 2 * kPi - d);
 }
 
+// The message parse_ppf_model refuses the bytes with, or "no error".
+std::string parse_message(const std::string& bytes) {
+  try {
+    parse_ppf_model(bytes, "x.ppfm");
+  } catch (const InputError& e) {
+    return std::string(e.what());
+  }
+  return std::string("no error");
+}
+
 }  // namespace
 
 TEST(PpfQuant, PaperParametersAndBadValues) {
@@ -321,32 +331,24 @@ TEST(PpfModelFile, RoundTripAndRefusals) {
   EXPECT_EQ(back.table.offsets, m.table.offsets);
   EXPECT_EQ(serialize_ppf_model(back), bytes);
 
-  auto message = [](const std::string& b) {
-    try {
-      parse_ppf_model(b, "x.ppfm");
-    } catch (const InputError& e) {
-      return std::string(e.what());
-    }
-    return std::string("no error");
-  };
   for (std::size_t len : {std::size_t(0), std::size_t(5), std::size_t(8), std::size_t(40),
                           std::size_t(80), std::size_t(100), bytes.size() / 2, bytes.size() - 1})
-    EXPECT_NE(message(bytes.substr(0, len)).find("model file x.ppfm is truncated"),
+    EXPECT_NE(parse_message(bytes.substr(0, len)).find("model file x.ppfm is truncated"),
               std::string::npos)
-        << len << ": " << message(bytes.substr(0, len));
+        << len << ": " << parse_message(bytes.substr(0, len));
   std::string wrong = bytes;
   wrong[0] = 'X';
-  EXPECT_NE(message(wrong).find("not a binpick PPF model"), std::string::npos);
+  EXPECT_NE(parse_message(wrong).find("not a binpick PPF model"), std::string::npos);
   wrong = bytes;
   wrong[8] = 7;  // version 7
-  EXPECT_NE(message(wrong).find(
+  EXPECT_NE(parse_message(wrong).find(
                 "was written by format version 7, this binpick reads versions 1 to 2: retrain"),
             std::string::npos)
-      << message(wrong);
+      << parse_message(wrong);
   wrong = bytes;
   wrong[bytes.size() / 2] ^= 0x10;
-  EXPECT_NE(message(wrong).find("corrupt"), std::string::npos);
-  EXPECT_NE(message(bytes + "x").find("corrupt"), std::string::npos);
+  EXPECT_NE(parse_message(wrong).find("corrupt"), std::string::npos);
+  EXPECT_NE(parse_message(bytes + "x").find("corrupt"), std::string::npos);
 
   const auto path = std::filesystem::temp_directory_path() / "binpick_test_box.ppfm";
   write_ppf_model(path, m);
@@ -397,29 +399,21 @@ TEST(PpfModelFile, SymmetriesRoundTripAndVersionOneIsStillRead) {
   EXPECT_EQ(serialize_ppf_model(old), serialize_ppf_model(without));
   EXPECT_THROW(serialize_ppf_model(m, 3), std::logic_error);
 
-  auto message = [](const std::string& b) {
-    try {
-      parse_ppf_model(b, "x.ppfm");
-    } catch (const InputError& e) {
-      return std::string(e.what());
-    }
-    return std::string("no error");
-  };
   // Cut inside the symmetries, or right after the table (no counts): truncated.
-  EXPECT_NE(message(bytes.substr(0, bytes.size() - 50)).find("is truncated"), std::string::npos);
+  EXPECT_NE(parse_message(bytes.substr(0, bytes.size() - 50)).find("is truncated"), std::string::npos);
   std::string relabelled = bytes;  // version 2 bytes called version 1: the symmetries are extra
   relabelled[8] = 1;
-  EXPECT_NE(message(relabelled).find("bytes after the end"), std::string::npos);
+  EXPECT_NE(parse_message(relabelled).find("bytes after the end"), std::string::npos);
   // Not a rotation, a zero axis, an absurd count: corrupt.
   PpfModel bad = m;
   bad.symmetries.discrete[0](0, 0) = 2;
-  EXPECT_NE(message(serialize_ppf_model(bad)).find("is corrupt (symmetry)"), std::string::npos);
+  EXPECT_NE(parse_message(serialize_ppf_model(bad)).find("is corrupt (symmetry)"), std::string::npos);
   bad = m;
   bad.symmetries.continuous[0].axis.setZero();
-  EXPECT_NE(message(serialize_ppf_model(bad)).find("is corrupt (symmetry)"), std::string::npos);
+  EXPECT_NE(parse_message(serialize_ppf_model(bad)).find("is corrupt (symmetry)"), std::string::npos);
   std::string huge = serialize_ppf_model(without);
   huge[huge.size() - 5] = 0x7f;  // the continuous count's high byte
-  EXPECT_NE(message(huge).find("is corrupt (symmetry count)"), std::string::npos) << message(huge);
+  EXPECT_NE(parse_message(huge).find("is corrupt (symmetry count)"), std::string::npos) << parse_message(huge);
 }
 
 TEST(SurfaceSampling, UniformOnTheSurfaceWithFaceNormals) {
