@@ -80,6 +80,11 @@ void add_detect_cli_options(CLI::App* verb, DetectCliOptions& a, const std::stri
       verb->add_option("--refine-iterations", a.refine_iterations,
                        help("ICP steps per candidate pose, in [0, 100] (0: verify the voted pose)"))
           ->capture_default_str();
+  o["verify-noise-factor"] =
+      verb->add_option("--verify-noise-factor", p.verify_noise_factor,
+                       help("the verification tolerance widens to this many times the depth "
+                            "noise seen in the best-fitting pose (at most 3x), in [0, 100]; 0: fixed"))
+          ->capture_default_str();
   o["verify-tolerance"] =
       verb->add_option("--verify-tolerance", p.verify_tolerance,
                        help("depth agreement of a verified model point, fraction of the diameter"))

@@ -56,6 +56,7 @@ const std::map<std::string, Field>& fields() {
       {"candidates", count(&DetectParams::candidates)},
       {"refine-iterations", count(&DetectParams::refine_iterations)},
       {"verify-tolerance", real(&DetectParams::verify_tolerance)},
+      {"verify-noise-factor", real(&DetectParams::verify_noise_factor)},
   };
   return table;
 }

@@ -50,6 +50,7 @@ std::optional<ParamProblem> find_param_problem(const DetectParams& p) {
       {p.candidates >= 1 && p.candidates <= 64, {"candidates", double(p.candidates), "[1, 64]"}},
       {p.refine_iterations <= 100, {"refine-iterations", double(p.refine_iterations), "[0, 100]"}},
       {in(p.verify_tolerance, 0, 1) && p.verify_tolerance > 0, {"verify-tolerance", p.verify_tolerance, "(0, 1]"}},
+      {in(p.verify_noise_factor, 0, 100), {"verify-noise-factor", p.verify_noise_factor, "[0, 100]"}},
   };
   for (const auto& [ok, problem] : rules)
     if (!ok) return problem;
@@ -146,6 +147,7 @@ std::vector<Detection> Detector::refine_and_rank(
   RefineOptions ro;
   ro.iterations = params_.refine_iterations;
   ro.tolerance_ratio = float(params_.verify_tolerance);
+  ro.noise_factor = float(params_.verify_noise_factor);
   const auto sums = [&](const std::vector<bp_pose_fit>& fits) {
     return pose_fit_sums(dev_, points, cam, fit_model_, fits);
   };

@@ -41,6 +41,7 @@ struct DetectParams {
   std::uint32_t candidates = 4;    // best pose clusters per hypothesis refined and verified
   std::uint32_t refine_iterations = 10;  // ICP steps per candidate (0: verify the voted pose)
   double verify_tolerance = 0.04;  // depth agreement of a verified model point (fraction)
+  double verify_noise_factor = 3.5;  // tolerance widens to this x the noise seen (0: fixed)
 };
 // The first parameter out of its range: its name (as in a --params file, docs/cli.md), its value
 // and the range allowed ("(0, 1]"). The caller that knows where the value came from (an option,

@@ -21,6 +21,9 @@
 // sensor sees through it or something lies in front of it counts against the pose. min_support
 // (a fraction of the model's points) keeps a pose that shows the camera only a sliver (a plate
 // edge on) from scoring high on a handful of points.
+// With noise_factor > 0 the tolerance follows the sensor: the residuals of the best-fitting pose
+// within a wide gate give the noise, and the tolerance becomes noise_factor times it, between
+// the fixed tolerance and three times that (docs/parameters.md has the measurement).
 #pragma once
 
 #include <cstdint>
@@ -40,6 +43,9 @@ struct RefineOptions {
   float tolerance_ratio = 0.04f;  // inlier tolerance, fraction of the diameter
   float min_support_ratio = 0.1f; // score's least denominator, fraction of the model's points
   std::uint32_t min_pairs = 12;   // fewer associated points: stop refining (the step is unsound)
+  // > 0: the verification tolerance widens to this many times the sensor noise seen in the
+  // best-fitting pose (at most 3 x the fixed one); 0: fixed.
+  float noise_factor = 0.0f;
 };
 void check(const RefineOptions& opt);
 
@@ -49,6 +55,7 @@ struct RefinedPose {
   double score = 0;            // in [0, 1]
   std::uint32_t visible = 0, missing = 0, inliers = 0, see_through = 0, occluded = 0;
   std::uint32_t iterations = 0;  // ICP steps taken
+  float tolerance = 0;           // mm, the verification tolerance used (the same for all poses)
   std::string reason;          // why the score is 0 or refinement stopped early; empty if neither
 };
 
