@@ -36,7 +36,9 @@ void expect_same(const VoxelSubsample& got, const VoxelSubsample& want) {
   ASSERT_EQ(got.cloud.normals.size(), want.cloud.normals.size());
   for (std::size_t i = 0; i < got.cloud.points.size(); ++i) {
     EXPECT_EQ(got.cloud.points[i], want.cloud.points[i]);
-    if (!got.cloud.normals.empty()) EXPECT_EQ(got.cloud.normals[i], want.cloud.normals[i]);
+    if (!got.cloud.normals.empty()) {
+      EXPECT_EQ(got.cloud.normals[i], want.cloud.normals[i]);
+    }
   }
 }
 
@@ -110,7 +112,9 @@ TEST(VoxelSubsample, BothFacesMatchReferenceOnRandomClouds) {
     const VoxelSubsample one = voxel_subsample(test_device(), cloud, voxel);
     // Random normals: most voxels holding several points gain a second.
     EXPECT_GE(got.kept.size(), one.kept.size());
-    if (n == 20000) EXPECT_GT(got.kept.size(), one.kept.size() * 5 / 4);  // 2.5 a voxel
+    if (n == 20000) {  // 2.5 points a voxel
+      EXPECT_GT(got.kept.size(), one.kept.size() * 5 / 4);
+    }
     EXPECT_TRUE(std::includes(got.kept.begin(), got.kept.end(), one.kept.begin(), one.kept.end()));
   }
   PointCloud no_normals;
