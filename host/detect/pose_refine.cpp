@@ -111,10 +111,10 @@ std::vector<RefinedPose> refine_and_verify(const FitSumsFn& sums_of, const bp_ca
       fits.push_back(make_pose_fit(p.R, p.t, cam, g, thresholds(g, tol, gate)));
     return sums_of(fits);
   };
-  std::vector<FitSums> sums = final_sums(tolerance, gate_end);
   // The tolerance follows the sensor's noise, as the best-fitting pose shows it (its residual's
   // weighted RMS): at 5 % noise the fixed 0.04 d lies inside the noise, and right poses scored
   // little above wrong ones. It widens to at most three times the fixed one, never narrows.
+  float final_gate = gate_end;
   if (opt.noise_factor > 0) {
     // Residuals within a wide gate (4 tolerances), Tukey-weighted: their weighted mean square.
     // The weights' sum is the trace of the translation block (unit normals).
@@ -128,9 +128,10 @@ std::vector<RefinedPose> refine_and_verify(const FitSumsFn& sums_of, const bp_ca
                            : tolerance;
     if (wide > 1.05f * tolerance) {
       tolerance = wide;
-      sums = final_sums(tolerance, 2 * tolerance);
+      final_gate = 2 * tolerance;
     }
   }
+  const std::vector<FitSums> sums = final_sums(tolerance, final_gate);
   const double min_support = double(opt.min_support_ratio) * model_points;
   for (std::size_t k = 0; k < poses.size(); ++k) {
     RefinedPose& r = out[k];
