@@ -24,71 +24,46 @@ void add_detect_cli_options(CLI::App* verb, DetectCliOptions& a, const std::stri
                    "here win");
   auto& p = a.params;
   auto& o = a.options;
-  const auto help = [&](const std::string& text) { return what + ": " + text; };
-  o["ref-ratio"] = verb->add_option("--ref-ratio", p.ref_ratio,
-                                    help("reference points / subsampled scene points, in (0, 1]"))
-                       ->capture_default_str();
-  o["hypotheses"] = verb->add_option("--hypotheses", a.hypotheses, help("highest points tried per image"))
-                        ->capture_default_str();
-  o["exclusion-ratio"] =
-      verb->add_option("--exclusion-ratio", p.exclusion_ratio,
-                       help("radius excluded around a highest point, fraction of the diameter"))
-          ->capture_default_str();
-  o["crop-ratio"] =
-      verb->add_option("--crop-ratio", p.crop_ratio,
-                       help("radius of the neighbourhood voted on, fraction of the diameter"))
-          ->capture_default_str();
-  o["cluster-distance"] =
-      verb->add_option("--cluster-distance", p.cluster_distance,
-                       help("pose clustering translation threshold, fraction of the diameter"))
-          ->capture_default_str();
-  o["cluster-angle"] = verb->add_option("--cluster-angle", p.cluster_angle,
-                                        help("pose clustering rotation threshold, degrees"))
-                           ->capture_default_str();
-  o["peaks-per-ref"] =
-      verb->add_option("--peaks-per-ref", a.peaks_per_ref,
-                       help("accumulator peaks kept per reference point, in [1, 16]"))
-          ->capture_default_str();
-  o["peak-ratio"] =
-      verb->add_option("--peak-ratio", p.peak_ratio,
-                       help("a peak needs this fraction of its reference point's best votes"))
-          ->capture_default_str();
-  o["normal-ratio"] =
-      verb->add_option("--normal-ratio", p.normal_ratio,
-                       help("scene normals: radius of the neighbourhood fitted, fraction of the diameter"))
-          ->capture_default_str();
-  o["unique-votes"] =
-      verb->add_option("--unique-votes", a.unique_votes,
-                       help("1: scene pairs of a reference point with equal features vote once "
-                            "(a plane cannot outvote the part), 0: every pair votes"))
-          ->capture_default_str();
-  o["spread-votes"] =
-      verb->add_option("--spread-votes", a.spread_votes,
-                       help("1: every vote also goes to the neighbouring alpha bin its value lies "
-                            "nearer, 0: one bin"))
-          ->capture_default_str();
-  o["local-peaks"] =
-      verb->add_option("--local-peaks", a.local_peaks,
-                       help("1: accumulator peaks must be local maxima along alpha, so the peaks "
-                            "kept are different poses; 0: the best cells"))
-          ->capture_default_str();
-  o["candidates"] =
-      verb->add_option("--candidates", a.candidates,
-                       help("best pose clusters per hypothesis refined and verified, in [1, 64]"))
-          ->capture_default_str();
-  o["refine-iterations"] =
-      verb->add_option("--refine-iterations", a.refine_iterations,
-                       help("ICP steps per candidate pose, in [0, 100] (0: verify the voted pose)"))
-          ->capture_default_str();
-  o["verify-noise-factor"] =
-      verb->add_option("--verify-noise-factor", p.verify_noise_factor,
-                       help("the verification tolerance widens to this many times the depth "
-                            "noise seen in the best-fitting pose (at most 3x), in [0, 100]; 0: fixed"))
-          ->capture_default_str();
-  o["verify-tolerance"] =
-      verb->add_option("--verify-tolerance", p.verify_tolerance,
-                       help("depth agreement of a verified model point, fraction of the diameter"))
-          ->capture_default_str();
+  // One option per parameter, named as in a --params file, its default shown in the help.
+  const auto add = [&](const std::string& name, auto& value, const std::string& text) {
+    o[name] = verb->add_option("--" + name, value, what + ": " + text)->capture_default_str();
+  };
+  add("ref-ratio", p.ref_ratio,
+      "reference points / subsampled scene points, in (0, 1]");
+  add("hypotheses", a.hypotheses,
+      "highest points tried per image");
+  add("exclusion-ratio", p.exclusion_ratio,
+      "radius excluded around a highest point, fraction of the diameter");
+  add("crop-ratio", p.crop_ratio,
+      "radius of the neighbourhood voted on, fraction of the diameter");
+  add("cluster-distance", p.cluster_distance,
+      "pose clustering translation threshold, fraction of the diameter");
+  add("cluster-angle", p.cluster_angle,
+      "pose clustering rotation threshold, degrees");
+  add("peaks-per-ref", a.peaks_per_ref,
+      "accumulator peaks kept per reference point, in [1, 16]");
+  add("peak-ratio", p.peak_ratio,
+      "a peak needs this fraction of its reference point's best votes");
+  add("normal-ratio", p.normal_ratio,
+      "scene normals: radius of the neighbourhood fitted, fraction of the diameter");
+  add("unique-votes", a.unique_votes,
+      "1: scene pairs of a reference point with equal features vote once "
+          "(a plane cannot outvote the part), 0: every pair votes");
+  add("spread-votes", a.spread_votes,
+      "1: every vote also goes to the neighbouring alpha bin its value lies "
+          "nearer, 0: one bin");
+  add("local-peaks", a.local_peaks,
+      "1: accumulator peaks must be local maxima along alpha, so the peaks "
+          "kept are different poses; 0: the best cells");
+  add("candidates", a.candidates,
+      "best pose clusters per hypothesis refined and verified, in [1, 64]");
+  add("refine-iterations", a.refine_iterations,
+      "ICP steps per candidate pose, in [0, 100] (0: verify the voted pose)");
+  add("verify-noise-factor", p.verify_noise_factor,
+      "the verification tolerance widens to this many times the depth "
+          "noise seen in the best-fitting pose (at most 3x), in [0, 100]; 0: fixed");
+  add("verify-tolerance", p.verify_tolerance,
+      "depth agreement of a verified model point, fraction of the diameter");
 }
 
 DetectParams resolve(const DetectCliOptions& a) {

@@ -131,6 +131,16 @@ PartSymmetries found_on(const Mesh& mesh, double* ms = nullptr) {
   return s;
 }
 
+// The dihedral group of an n-gon prism about z through centre: n - 1 turns about z and n half
+// turns about the axes in the xy plane at multiples of pi / n.
+PartSymmetries dihedral(int n, const Eigen::Vector3d& centre) {
+  PartSymmetries d;
+  for (int k = 1; k < n; ++k) d.discrete.push_back(turn({0, 0, 1}, 2 * k * kPi / n, centre));
+  for (int k = 0; k < n; ++k)
+    d.discrete.push_back(turn({std::cos(k * kPi / n), std::sin(k * kPi / n), 0}, kPi, centre));
+  return d;
+}
+
 }  // namespace
 
 TEST(SymmetryDetect, BuiltinPartsHaveTheirStatedSymmetries) {
@@ -167,20 +177,12 @@ TEST(SymmetryDetect, BoxesAndPrisms) {
   // A square prism: two equal moments, the half turns about the diagonals found by the scan.
   const Mesh square = test::box({30, 30, 12});
   const Eigen::Vector3d sc(15, 15, 6);
-  PartSymmetries d4;
-  for (int k = 1; k < 4; ++k) d4.discrete.push_back(turn({0, 0, 1}, k * kPi / 2, sc));
-  for (int k = 0; k < 4; ++k)
-    d4.discrete.push_back(turn({std::cos(k * kPi / 4), std::sin(k * kPi / 4), 0}, kPi, sc));
-  EXPECT_EQ(compare(found_on(square), d4, square), "");
+  EXPECT_EQ(compare(found_on(square), dihedral(4, sc), square), "");
 
   // A hexagonal prism: sixfold, and six half turns (through vertices and through edge middles).
   const Mesh hex = prism(6, 15, 10);
   const Eigen::Vector3d hc(0, 0, 5);
-  PartSymmetries d6;
-  for (int k = 1; k < 6; ++k) d6.discrete.push_back(turn({0, 0, 1}, k * kPi / 3, hc));
-  for (int k = 0; k < 6; ++k)
-    d6.discrete.push_back(turn({std::cos(k * kPi / 6), std::sin(k * kPi / 6), 0}, kPi, hc));
-  EXPECT_EQ(compare(found_on(hex), d6, hex), "");
+  EXPECT_EQ(compare(found_on(hex), dihedral(6, hc), hex), "");
 
   // A cube: three equal moments; the 23 rotations of the octahedral group. Also turned off the
   // axes and with its corners moved by up to 0.1 mm (axes from faces and vertices, off by a
