@@ -57,6 +57,15 @@ void print_summary(const std::vector<eval::DatasetEvaluation>& evaluations,
   for (const auto& e : evaluations)
     std::cout << fmt::format("{:<24} {}\n", e.dataset.label,
                              eval::calibration_line(e.summary.score_loose, o.loose));
+  for (const auto& e : evaluations) {
+    const auto& s = e.summary;
+    if (s.all_on_nothing == 0 && s.all_on_distractor == 0) continue;
+    std::cout << fmt::format(
+        "{:<24} landing: {:.1f} % of hypotheses on no part (bin, floor), {:.1f} % on another "
+        "object; top-ranked: {:.1f} % / {:.1f} %\n",
+        e.dataset.label, 100 * s.all_on_nothing, 100 * s.all_on_distractor,
+        100 * s.top_on_nothing, 100 * s.top_on_distractor);
+  }
 }
 
 void run_eval(const EvalArgs& args) {

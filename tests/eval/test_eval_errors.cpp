@@ -254,6 +254,13 @@ TEST(ModelsInfo, ReadsDiameterAndSymmetries) {
   EXPECT_TRUE(info.at(1).symmetries.continuous[0].offset.isApprox(Eigen::Vector3d(1, 2, 3)));
   ASSERT_EQ(info.at(3).symmetries.discrete.size(), 1u);
   EXPECT_DOUBLE_EQ(info.at(3).symmetries.discrete[0](2, 3), 4.0);
+  EXPECT_TRUE(info.at(1).centre.isZero());  // an incomplete box is no box
+}
+
+TEST(ModelsInfo, ReadsTheBoxCentre) {
+  const auto info = bop::parse_models_info(R"({"2": {"diameter": 9, "min_x": -1, "min_y": 2,
+    "min_z": 0, "size_x": 4, "size_y": 2, "size_z": 6}})", "mem");
+  EXPECT_TRUE(info.at(2).centre.isApprox(Eigen::Vector3d(1, 3, 3)));
 }
 
 TEST(ModelsInfo, RejectsMalformedEntries) {
@@ -265,6 +272,31 @@ TEST(ModelsInfo, RejectsMalformedEntries) {
                           "not json"}) {
     EXPECT_THROW(bop::parse_models_info(bad, "mem"), InputError) << bad;
   }
+}
+
+TEST(Evaluate, LandingTellsThePartADistractorAndNothingApart) {
+  Dataset d = two_part_dataset();
+  d.models[1].centre = Eigen::Vector3d(20, 0, 0);  // the box centre, off the model origin
+  d.models[2] = {30.0, {}};
+  d.images[{0, 0}].gt.push_back({2, {kGtR, kGtT + Eigen::Vector3d(0, 200, 0)}});
+  const Eigen::Matrix3d flip = rot(180, {0, 0, 1});  // turns the centre to the origin's other side
+  const std::vector<bop::ResultRow> rows{
+      row(0, 9, kGtR, kGtT + Eigen::Vector3d(0, 0, 20)),                 // 20 mm above part 1
+      row(0, 8, kGtR, kGtT + Eigen::Vector3d(0, 195, 0) - kGtR * d.models[1].centre),  // distractor
+      row(0, 7, kGtR, kGtT + Eigen::Vector3d(0, -300, 0)),               // on nothing
+      row(0, 6, kGtR * flip, kGtT + kGtR * Eigen::Vector3d(40, 0, 0)),  // same centre as part 1
+      row(0, 5, kGtR * flip, kGtT),  // origin on part 1's, centre 40 mm away: beyond 26
+  };
+  const EvalSummary s = evaluate(d, rows);
+  EXPECT_EQ(s.results[0].landing, Landing::part);
+  EXPECT_EQ(s.results[1].landing, Landing::distractor);
+  EXPECT_EQ(s.results[2].landing, Landing::none);
+  EXPECT_EQ(s.results[3].landing, Landing::part);
+  EXPECT_EQ(s.results[4].landing, Landing::none);
+  EXPECT_DOUBLE_EQ(s.all_on_distractor, 0.2);
+  EXPECT_DOUBLE_EQ(s.all_on_nothing, 0.4);
+  EXPECT_DOUBLE_EQ(s.top_on_distractor, 0.0);
+  EXPECT_DOUBLE_EQ(s.top_on_nothing, 0.0);
 }
 
 }  // namespace

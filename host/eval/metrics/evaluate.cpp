@@ -62,6 +62,25 @@ PrecisionAt precision_at(const std::vector<HypothesisResult>& results, const Ope
 
 }  // namespace
 
+Landing landing(const EvalImage& image, const bop::ModelsInfo& models, int obj_id,
+                const Eigen::Matrix3d& R, const Eigen::Vector3d& t) {
+  const auto own = models.find(obj_id);
+  const Eigen::Vector3d own_centre =
+      own == models.end() ? Eigen::Vector3d::Zero() : own->second.centre;
+  const Eigen::Vector3d centre = R * own_centre + t;
+  double nearest = kInf;
+  Landing out = Landing::none;
+  for (const auto& g : image.gt) {
+    const auto model = models.find(g.obj_id);
+    if (model == models.end()) continue;
+    const auto& T = g.model_to_camera;
+    const double d = (T.R * model->second.centre + T.t - centre).norm();
+    if (d <= model->second.diameter / 2 && d < nearest)
+      nearest = d, out = g.obj_id == obj_id ? Landing::part : Landing::distractor;
+  }
+  return out;
+}
+
 bool correct_at(const HypothesisResult& r, const OperatingPoint& at) {
   return r.translation_pct <= at.translation_pct + kThresholdSlack &&
          r.rotation_deg <= at.rotation_deg + kThresholdSlack;
@@ -101,6 +120,7 @@ EvalSummary evaluate(const Dataset& dataset, const std::vector<bop::ResultRow>& 
     r.score = row.score;
     r.row = row;
     measure(r, image->second, model->second);
+    r.landing = landing(image->second, dataset.models, row.obj_id, row.R, row.t);
     auto& list = by_image[key];
     r.rank = int(list.size());
     list.push_back(s.results.size());
@@ -123,11 +143,23 @@ EvalSummary evaluate(const Dataset& dataset, const std::vector<bop::ResultRow>& 
   s.hypotheses = s.results.size();
 
   std::vector<double> te_all, re_all, te_top, re_top;
+  std::size_t tops = 0, all_distractor = 0, all_nothing = 0, top_distractor = 0, top_nothing = 0;
   for (const auto& r : s.results) {
     s.unmatched += r.gt_index < 0;
+    all_distractor += r.landing == Landing::distractor;
+    all_nothing += r.landing == Landing::none;
+    if (r.top) {
+      ++tops;
+      top_distractor += r.landing == Landing::distractor;
+      top_nothing += r.landing == Landing::none;
+    }
     te_all.push_back(r.translation_pct), re_all.push_back(r.rotation_deg);
     if (r.top) te_top.push_back(r.translation_pct), re_top.push_back(r.rotation_deg);
   }
+  s.all_on_distractor = fraction(all_distractor, s.results.size());
+  s.all_on_nothing = fraction(all_nothing, s.results.size());
+  s.top_on_distractor = fraction(top_distractor, tops);
+  s.top_on_nothing = fraction(top_nothing, tops);
   s.loose = precision_at(s.results, options.loose);
   s.strict = precision_at(s.results, options.strict);
   s.score_loose = calibrate(s.results, options.loose, options.score_keep);

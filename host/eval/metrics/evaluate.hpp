@@ -26,6 +26,10 @@ struct EvalOptions {
   double score_keep = 0.9;  // the score calibration's threshold keeps this fraction of right rows
 };
 
+// Where a hypothesis' pose lies (landing()): on a part of the sought obj_id (right or wrong), on
+// a part of another obj_id (a distractor), or on no part at all (the bin, the floor).
+enum class Landing { part, distractor, none };
+
 struct HypothesisResult {
   int scene_id = 0, im_id = 0, obj_id = 1;
   int rank = 0;          // 0 = the first row of its image in the file
@@ -34,6 +38,7 @@ struct HypothesisResult {
   int gt_index = -1;     // the matched instance of scene_gt.json, -1 if the image has none of obj_id
   double translation_mm = 0, translation_pct = 0, rotation_deg = 0;  // +inf if unmatched
   double ms = 0;         // the image's time divided by its number of hypotheses
+  Landing landing = Landing::part;
   bop::ResultRow row;    // as read
 };
 
@@ -47,6 +52,9 @@ struct EvalSummary {
   std::size_t images_with_results = 0;  // of them, images with at least one hypothesis
   std::size_t hypotheses = 0;
   std::size_t unmatched = 0;            // hypotheses of an obj_id absent from their image
+  // Fractions of all hypotheses, and of the top-ranked one of each image, that landed on a
+  // distractor or on no part (landing()).
+  double all_on_distractor = 0, all_on_nothing = 0, top_on_distractor = 0, top_on_nothing = 0;
   PrecisionAt loose, strict;
   double median_translation_pct_all = 0, median_rotation_deg_all = 0;
   double median_translation_pct_top = 0, median_rotation_deg_top = 0;
@@ -64,6 +72,12 @@ void check(const EvalOptions& options);
 // its models_info.json lacks, naming the row (1-based data row number, as in the file).
 EvalSummary evaluate(const Dataset& dataset, const std::vector<bop::ResultRow>& rows,
                      const EvalOptions& options = {});
+
+// Where the pose (R, t) of a part of obj_id lands in an image: the instance (any obj_id) whose
+// bounding-box centre lies nearest the pose's, if within half that instance's diameter; a part
+// of another obj_id is a distractor; no such instance means the pose lies on the bin or the floor.
+Landing landing(const EvalImage& image, const bop::ModelsInfo& models, int obj_id,
+                const Eigen::Matrix3d& R, const Eigen::Vector3d& t);
 
 // Errors exactly at a threshold count as within it, whatever the last bit of their arithmetic
 // (5.2 mm of a 52 mm part is 10 % of it).

@@ -39,6 +39,11 @@ json summary_json(const DatasetEvaluation& e) {
           {"images_with_results", s.images_with_results},
           {"hypotheses", s.hypotheses},
           {"unmatched", s.unmatched},
+          {"landing",
+           {{"all_on_nothing", s.all_on_nothing},
+            {"all_on_distractor", s.all_on_distractor},
+            {"top_on_nothing", s.top_on_nothing},
+            {"top_on_distractor", s.top_on_distractor}}},
           {"precision", {{"loose", operating_point(s.loose)}, {"strict", operating_point(s.strict)}}},
           {"median",
            {{"translation_pct_all", number(s.median_translation_pct_all)},
@@ -52,6 +57,10 @@ json summary_json(const DatasetEvaluation& e) {
             {"max_score", number(s.score_loose.max_score)},
             {"loose", calibration(s.score_loose)},
             {"strict", calibration(s.score_strict)}}}};
+}
+
+const char* landing_name(Landing l) {
+  return l == Landing::part ? "part" : l == Landing::distractor ? "distractor" : "none";
 }
 
 std::string csv_quoted(const std::string& s) {
@@ -83,13 +92,14 @@ void write_hypotheses_csv(const std::filesystem::path& path,
                           const std::vector<DatasetEvaluation>& evaluations) {
   write_file_atomically(path, [&](std::ostream& out) {
     out << "label,scene_id,im_id,rank,obj_id,score,top,gt_index,translation_mm,translation_pct,"
-           "rotation_deg,ms\n";
+           "rotation_deg,ms,landing\n";
     for (const auto& e : evaluations) {
       const std::string label = csv_quoted(e.dataset.label);
       for (const auto& r : e.summary.results)
-        out << fmt::format("{},{},{},{},{},{:g},{},{},{:.4f},{:.4f},{:.4f},{:.3f}\n", label,
+        out << fmt::format("{},{},{},{},{},{:g},{},{},{:.4f},{:.4f},{:.4f},{:.3f},{}\n", label,
                            r.scene_id, r.im_id, r.rank, r.obj_id, r.score, r.top ? 1 : 0,
-                           r.gt_index, r.translation_mm, r.translation_pct, r.rotation_deg, r.ms);
+                           r.gt_index, r.translation_mm, r.translation_pct, r.rotation_deg, r.ms,
+                           landing_name(r.landing));
     }
   });
 }

@@ -23,7 +23,8 @@ void write_report_json(const std::filesystem::path& path,
                        const std::vector<DatasetEvaluation>& evaluations, const EvalOptions& options);
 
 // label,scene_id,im_id,rank,obj_id,score,top,gt_index,translation_mm,translation_pct,
-// rotation_deg,ms (errors "inf" when the image has no part of that obj_id).
+// rotation_deg,ms,landing (errors "inf" when the image has no part of that obj_id; landing: part,
+// distractor or none, evaluate.hpp).
 void write_hypotheses_csv(const std::filesystem::path& path,
                           const std::vector<DatasetEvaluation>& evaluations);
 

@@ -1,6 +1,7 @@
 #include "host/formats/bop/models_info.hpp"
 
 #include <cmath>
+#include <utility>
 
 #include <Eigen/Geometry>
 #include <fmt/format.h>
@@ -55,6 +56,22 @@ Eigen::Matrix4d discrete(const json& entry, const std::string& where) {
   return m;
 }
 
+// The centre of the bounding box min_x .. size_z if all six are finite numbers, else the origin
+// (the box is informative only: evaluation uses it to place a pose on a part).
+Eigen::Vector3d box_centre(const json& entry) {
+  Eigen::Vector3d lo, size;
+  for (int a = 0; a < 3; ++a) {
+    for (auto [key, out] : {std::pair{"min_", &lo}, std::pair{"size_", &size}}) {
+      const std::string name = std::string(key) + "xyz"[a];
+      if (!entry.contains(name) || !entry[name].is_number() ||
+          !std::isfinite(entry[name].get<double>()))
+        return Eigen::Vector3d::Zero();
+      (*out)[a] = entry[name].get<double>();
+    }
+  }
+  return lo + size / 2;
+}
+
 ModelInfo model_info(const json& entry, const std::string& where) {
   if (!entry.is_object()) throw InputError(where + " must be a JSON object");
   ModelInfo info;
@@ -63,6 +80,7 @@ ModelInfo model_info(const json& entry, const std::string& where) {
   info.diameter = entry["diameter"].get<double>();
   if (!(info.diameter > 0 && std::isfinite(info.diameter)))
     throw InputError(fmt::format("{} diameter {} must be positive", where, info.diameter));
+  info.centre = box_centre(entry);
   if (entry.contains("symmetries_continuous")) {
     const auto& list = entry["symmetries_continuous"];
     if (!list.is_array()) throw InputError(where + " symmetries_continuous must be an array");

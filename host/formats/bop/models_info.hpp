@@ -13,6 +13,9 @@ namespace binpick::bop {
 struct ModelInfo {
   double diameter = 0;  // mm
   PartSymmetries symmetries;
+  // The centre of the model's bounding box (min_x + size_x / 2, ...) in the model frame, mm;
+  // the origin unless the file gives all six numbers.
+  Eigen::Vector3d centre = Eigen::Vector3d::Zero();
 };
 
 // Keyed by obj_id.
@@ -22,7 +25,7 @@ using ModelsInfo = std::map<int, ModelInfo>;
 // file and the object for: not a JSON object, a key that is not an object id, a missing or
 // non-positive diameter, a continuous symmetry without a 3-vector axis of non-zero length
 // (offset defaults to 0), a discrete symmetry that is not 16 numbers (row-major 4x4) whose
-// rotation part is a rotation. Other keys (min_x, size_x, ...) are ignored. Axes are normalised.
+// rotation part is a rotation. Other keys are ignored. Axes are normalised.
 ModelsInfo parse_models_info(const std::string& text, const std::string& name);
 
 // Reads and parses path.
