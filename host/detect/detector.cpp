@@ -1,4 +1,5 @@
 #include "host/detect/detector.hpp"
+#include "host/detect/near_symmetry.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -87,6 +88,7 @@ Detector::Detector(const PpfModel& model, const DetectParams& params, ocl::Devic
   fit_geometry_.diameter = model_.diameter;
   fit_geometry_.voxel_size = model_.voxel_size;
   fit_geometry_.centroid = model_centroid(model_.cloud);
+  near_symmetries_ = find_near_symmetries(model_.cloud, model_.voxel_size, model_.symmetries);
 }
 
 std::vector<PoseCluster> Detector::vote_and_cluster(const PointCloud& subsampled, Detection& d,
@@ -138,11 +140,23 @@ std::vector<Detection> Detector::refine_and_rank(
     const ocl::Buffer<float>& points, const bp_camera& cam, DetectTimes& t) {
   Stopwatch clock;
   std::vector<PoseToRefine> poses;
-  std::vector<std::pair<std::size_t, std::uint32_t>> owner;  // (detection, candidate)
+  struct Owner {
+    std::size_t detection;
+    std::uint32_t candidate, twin;
+  };
+  std::vector<Owner> owner;
   for (std::size_t k = 0; k < candidates.size(); ++k)
     for (std::uint32_t c = 0; c < candidates[k].size(); ++c) {
-      poses.push_back({candidates[k][c].q.toRotationMatrix(), candidates[k][c].t});
-      owner.emplace_back(k, c);
+      const Eigen::Matrix3d R = candidates[k][c].q.toRotationMatrix();
+      const Eigen::Vector3d t = candidates[k][c].t;
+      poses.push_back({R, t});
+      owner.push_back({k, c, 0});
+      // The pose's look-alikes: model x -> S x, then the pose.
+      for (std::uint32_t s = 0; s < near_symmetries_.size(); ++s) {
+        const Eigen::Isometry3d& S = near_symmetries_[s];
+        poses.push_back({R * S.linear(), R * S.translation() + t});
+        owner.push_back({k, c, s + 1});
+      }
     }
   RefineOptions ro;
   ro.iterations = params_.refine_iterations;
@@ -155,7 +169,7 @@ std::vector<Detection> Detector::refine_and_rank(
       refine_and_verify(sums, cam, fit_geometry_, fit_model_.size, poses, ro);
   std::vector<bool> taken(detections.size(), false);
   for (std::size_t i = 0; i < refined.size(); ++i) {
-    const auto [k, c] = owner[i];
+    const auto [k, c, twin] = owner[i];
     Detection& d = detections[k];
     const RefinedPose& r = refined[i];
     // The best score; ties go to the more voted cluster, which comes first.
@@ -166,6 +180,7 @@ std::vector<Detection> Detector::refine_and_rank(
     d.score = r.score;
     d.votes = candidates[k][c].votes;
     d.candidate = c;
+    d.twin = twin;
     d.visible = r.visible;
     d.inliers = r.inliers;
     d.reason = r.reason;

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include <Eigen/Core>
+#include <Eigen/Geometry>
 
 #include "host/detect/hypotheses.hpp"
 #include "host/detect/ppf_vote.hpp"
@@ -64,6 +65,8 @@ struct Detection {
   double score = 0;                 // verified score in [0, 1] (pose_refine.hpp): the ranking
   std::uint64_t votes = 0;          // of the pose's cluster
   std::uint32_t candidate = 0;      // which of the hypothesis' clusters (0 = most voted)
+  std::uint32_t twin = 0;           // 0: the cluster's pose; k: its k-th near-symmetric copy
+                                    // (near_symmetry.hpp)
   std::uint32_t visible = 0, inliers = 0;  // model points seen at the pose, and agreeing
   std::string reason;               // why the score is 0 or refinement stopped early
   // neighbourhood: points in the crop (from a depth image: pixels with data, whether or not
@@ -134,6 +137,7 @@ class Detector {
   DetectParams params_;
   DeviceModel device_model_;
   DeviceFitModel fit_model_;
+  std::vector<Eigen::Isometry3d> near_symmetries_;  // model frame (near_symmetry.hpp)
   FitGeometry fit_geometry_;
 };
 

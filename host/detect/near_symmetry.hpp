@@ -1,0 +1,32 @@
+// Near symmetries of a part: rotations that map most of its surface onto itself, but not all of
+// it. A plate's rectangular outline looks the same after a half turn about any of its three axes;
+// only its holes tell the four poses apart. Voting sees mostly the outline and faces, so it often
+// returns one of the look-alike poses; detection therefore also refines and verifies each
+// candidate's look-alikes, and the verified score (which sees the holes against the depth image)
+// picks among them.
+//
+// Found on the model's subsampled points: rotations about the principal axes of the points
+// through their centroid by 2 pi k / n (n = 2, 3, 4, 6) under which at least kNearMatchRatio of
+// the points land within a voxel of a model point facing the same way (within 30 degrees).
+// Rotations that are exact symmetries (the model's own, or about its continuous axis) are left
+// out: clustering already treats them as one pose.
+#pragma once
+
+#include <vector>
+
+#include <Eigen/Geometry>
+
+#include "host/core/mesh.hpp"
+#include "host/core/symmetry.hpp"
+
+namespace binpick {
+
+inline constexpr double kNearMatchRatio = 0.75;
+inline constexpr std::size_t kMaxNearSymmetries = 8;
+
+// Model-frame rigid transforms x -> S x (rotation about the points' centroid), in a fixed order;
+// at most kMaxNearSymmetries. Empty for a cloud of fewer than 10 points or without normals.
+std::vector<Eigen::Isometry3d> find_near_symmetries(const PointCloud& model, float voxel_size,
+                                                    const PartSymmetries& exact);
+
+}  // namespace binpick
