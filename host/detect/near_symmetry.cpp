@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include <Eigen/Eigenvalues>
+#include <Eigen/Geometry>
 
 #include "host/train/oriented_point_grid.hpp"
 
@@ -44,6 +45,15 @@ std::vector<Eigen::Isometry3d> find_near_symmetries(const PointCloud& model, flo
     cov += d * d.transpose();
   }
   const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(cov);
+  // Turn about the centre of the points' box in the principal frame, not their centroid: an
+  // unmatched feature (a plate's holes) moves the centroid off the outline's centre by
+  // millimetres, which refinement cannot remove along a flat part's plane.
+  Eigen::Vector3d lo = Eigen::Vector3d::Constant(1e300), hi = -lo;
+  for (const auto& p : model.points) {
+    const Eigen::Vector3d local = eig.eigenvectors().transpose() * (p.cast<double>() - c);
+    lo = lo.cwiseMin(local), hi = hi.cwiseMax(local);
+  }
+  c += eig.eigenvectors() * ((lo + hi) / 2);
   const OrientedPointGrid grid(model, voxel_size, float(std::cos(30.0 * kPi / 180)));
 
   std::vector<Eigen::Matrix3d> found;
