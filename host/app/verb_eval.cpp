@@ -23,6 +23,7 @@ struct EvalArgs {
   std::string out;
   std::int64_t pictures = 3;  // wide, so a negative value reaches our range check
   bool json = false;
+  eval::DatasetLayout layout;
 };
 
 std::vector<eval::EvalInput> inputs_of(const EvalArgs& a) {
@@ -33,7 +34,8 @@ std::vector<eval::EvalInput> inputs_of(const EvalArgs& a) {
         "results CSV (--dataset A --results A.csv --dataset B --results B.csv)",
         a.datasets.size(), a.results.size()));
   std::vector<eval::EvalInput> inputs;
-  for (std::size_t i = 0; i < a.datasets.size(); ++i) inputs.push_back({a.datasets[i], a.results[i]});
+  for (std::size_t i = 0; i < a.datasets.size(); ++i)
+    inputs.push_back({a.datasets[i], a.results[i], a.layout});
   return inputs;
 }
 
@@ -107,6 +109,10 @@ void add_eval_verb(CLI::App& app) {
   verb->add_option("--results", args->results,
                    "BOP results CSV of the preceding --dataset (scene_id,im_id,obj_id,score,R,t,time)");
   verb->add_option("--out", args->out, "report directory (created if missing)")->required();
+  verb->add_option("--split", args->layout.split, "dataset split directory")->capture_default_str();
+  verb->add_option("--sensor", args->layout.sensor,
+                   "BOP sensor suffix: read scene_gt_NAME.json, scene_camera_NAME.json, "
+                   "depth_NAME/ (BOP's industrial datasets)");
   verb->add_option("--pictures", args->pictures, "images pictured per dataset, in [0, 1000]")
       ->capture_default_str();
   verb->add_flag("--json", args->json,

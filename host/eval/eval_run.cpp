@@ -22,7 +22,7 @@ std::vector<DatasetEvaluation> evaluate_inputs(const std::vector<EvalInput>& inp
   std::vector<DatasetEvaluation> out;
   for (const auto& in : inputs) {
     DatasetEvaluation e;
-    e.dataset = load_dataset(in.dataset);
+    e.dataset = load_dataset(in.dataset, in.layout);
     e.results = in.results;
     const auto rows = bop::read_results_csv(in.results);
     try {

@@ -15,6 +15,7 @@ namespace binpick::eval {
 
 struct EvalInput {
   std::filesystem::path dataset, results;
+  DatasetLayout layout;
 };
 
 struct DatasetEvaluation {

@@ -79,7 +79,7 @@ class Measurer {
   void warm_up(Detector& detector) {
     warm_ = true;
     const auto& [key, image] = *dataset_.images.begin();
-    const auto png = read_png16(image.scene_dir / "depth" / fmt::format("{:06d}.png", key.im_id));
+    const auto png = read_png16(image.files.depth(key.im_id));
     detector.detect(DepthImage{png.width, png.height, png.pixels},
                     image_camera(image.camera.K, image.camera.depth_scale, png.width, png.height));
   }

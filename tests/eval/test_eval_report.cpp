@@ -9,6 +9,7 @@
 #include <Eigen/Geometry>
 #include <nlohmann/json.hpp>
 
+#include "host/core/error.hpp"
 #include "host/formats/bop/bop_files.hpp"
 #include "host/formats/bop/png_image.hpp"
 #include "host/formats/bop/results_csv.hpp"
@@ -202,6 +203,48 @@ TEST(EvalReport, CurvesAreOrderedAndLabelledByNoise) {
   const std::string script = figure7_script(curves);
   EXPECT_NE(script.find("'sigma 3 % of d'"), std::string::npos);
   EXPECT_NE(script.find("multiplot layout 2,2"), std::string::npos);
+}
+
+// BOP's industrial layout: another split, the sensor's suffix on every file, an image id other
+// than 0 and a colour rgb/ image instead of gray/.
+TEST(EvalDataset, ReadsSensorSuffixesOtherSplitsAndRgb) {
+  const fs::path dir = test::fresh_temp_dir("eval_sensor_layout");
+  write_toy_dataset(dir / "plain", -1);
+  const fs::path root = dir / "ds", scene = root / "val/000004";
+  fs::create_directories(scene / "depth_photoneo");
+  fs::create_directories(scene / "rgb_photoneo");
+  fs::copy(dir / "plain/models", root / "models");
+  const fs::path plain = dir / "plain/test/000000";
+  bop::write_scene_gt(scene / "scene_gt_photoneo.json",
+                      {{7, bop::read_scene_gt(plain / "scene_gt.json").at(0)}});
+  bop::write_scene_cameras(scene / "scene_camera_photoneo.json",
+                           {{7, bop::read_scene_cameras(plain / "scene_camera.json").at(0)}});
+  fs::copy(plain / "depth/000000.png", scene / "depth_photoneo/000007.png");
+  const auto gray = read_png8(plain / "gray/000000.png");
+  RgbImage rgb{gray.width, gray.height, {}};
+  for (auto g : gray.pixels) rgb.pixels.insert(rgb.pixels.end(), {g, g, g});
+  write_png(scene / "rgb_photoneo/000007.png", rgb);
+
+  const Dataset d = load_dataset(root, {"val", "photoneo"});
+  ASSERT_EQ(d.images.size(), 1u);
+  ASSERT_TRUE(d.images.count({4, 7}));
+  EXPECT_EQ(d.images.at({4, 7}).gt.size(), toy_parts().size());
+  const SceneView view = load_scene_view(d, {4, 7});
+  ASSERT_EQ(view.gray.pixels.size(), gray.pixels.size());
+  for (std::size_t i = 0; i < gray.pixels.size(); i += 97)
+    EXPECT_NEAR(int(view.gray.pixels[i]), int(gray.pixels[i]), 1) << i;
+
+  // Without the sensor, or with a name that is not a file suffix, one clear message.
+  try {
+    load_dataset(root, {"val", ""});
+    FAIL() << "expected an InputError";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("no scene with a scene_gt.json under val/"),
+              std::string::npos)
+        << e.what();
+  }
+  EXPECT_THROW(load_dataset(root, {"val", "../x"}), InputError);
+  EXPECT_THROW(load_dataset(root, {"test", "photoneo"}), InputError);
 }
 
 TEST(EvalPictures, DepthIsDarkNearAndBlackWithoutData) {

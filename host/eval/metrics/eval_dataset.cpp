@@ -51,7 +51,8 @@ std::string noise_label(double noise) {
   return fmt::format("sigma {:.2g} % of d", noise * 100.0);
 }
 
-Dataset load_dataset(const fs::path& root) {
+Dataset load_dataset(const fs::path& root, const DatasetLayout& layout) {
+  bop::check_sensor_name(layout.sensor);
   if (!fs::is_directory(root)) throw InputError("dataset " + root.string() + " is not a directory");
   Dataset d;
   d.root = root;
@@ -59,9 +60,10 @@ Dataset load_dataset(const fs::path& root) {
   read_synth_manifest(d);
   d.models = bop::read_models_info(root / "models" / "models_info.json");
 
-  const fs::path test = root / "test";
-  if (!fs::is_directory(test))
-    throw InputError("dataset " + root.string() + " has no test/ directory of scenes");
+  const fs::path test = root / layout.split;
+  if (layout.split.empty() || !fs::is_directory(test))
+    throw InputError("dataset " + root.string() + " has no " + layout.split +
+                     "/ directory of scenes");
   std::vector<std::pair<int, fs::path>> scenes;
   for (const auto& entry : fs::directory_iterator(test)) {
     int id = 0;
@@ -69,24 +71,27 @@ Dataset load_dataset(const fs::path& root) {
   }
   std::sort(scenes.begin(), scenes.end());
   for (const auto& [scene_id, dir] : scenes) {
+    const bop::SceneFiles files{dir, layout.sensor};
     // A bin still being written by synth has no scene_gt.json yet: not part of the dataset.
-    if (!fs::exists(dir / "scene_gt.json")) continue;
-    const bop::SceneGroundTruth gt = bop::read_scene_gt(dir / "scene_gt.json");
-    const bop::SceneCameras cameras = bop::read_scene_cameras(dir / "scene_camera.json");
+    if (!fs::exists(files.scene_gt())) continue;
+    const bop::SceneGroundTruth gt = bop::read_scene_gt(files.scene_gt());
+    const bop::SceneCameras cameras = bop::read_scene_cameras(files.scene_camera());
     for (const auto& [im_id, instances] : gt) {
       const auto cam = cameras.find(im_id);
       if (cam == cameras.end())
         throw InputError(fmt::format("{}: image {} has ground truth but no camera",
-                                     (dir / "scene_camera.json").string(), im_id));
+                                     files.scene_camera().string(), im_id));
       for (const auto& g : instances)
         if (!d.models.count(g.obj_id))
           throw InputError(fmt::format("{}: image {} has obj_id {}, which models_info.json lacks",
-                                       (dir / "scene_gt.json").string(), im_id, g.obj_id));
-      d.images[{scene_id, im_id}] = {instances, cam->second, dir};
+                                       files.scene_gt().string(), im_id, g.obj_id));
+      d.images[{scene_id, im_id}] = {instances, cam->second, files};
     }
   }
   if (d.images.empty())
-    throw InputError("dataset " + root.string() + " has no scene with a scene_gt.json under test/");
+    throw InputError("dataset " + root.string() + " has no scene with a " +
+                     bop::SceneFiles{{}, layout.sensor}.scene_gt().filename().string() +
+                     " under " + layout.split + "/");
   return d;
 }
 

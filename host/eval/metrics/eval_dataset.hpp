@@ -10,6 +10,7 @@
 
 #include "host/formats/bop/bop_files.hpp"
 #include "host/formats/bop/models_info.hpp"
+#include "host/formats/bop/scene_files.hpp"
 
 namespace binpick::eval {
 
@@ -21,7 +22,7 @@ struct ImageKey {
 struct EvalImage {
   std::vector<bop::GroundTruth> gt;
   bop::SceneCamera camera;
-  std::filesystem::path scene_dir;  // test/NNNNNN
+  bop::SceneFiles files;  // SPLIT/NNNNNN and the sensor suffix
 };
 
 struct Dataset {
@@ -32,10 +33,18 @@ struct Dataset {
   std::map<ImageKey, EvalImage> images;
 };
 
-// Reads models/models_info.json and every test/NNNNNN/scene_gt.json and scene_camera.json of
-// root, and synth.json if present. Throws InputError naming the file for a missing or malformed
-// file, and if root has no scene or a scene's images differ between its two files.
-Dataset load_dataset(const std::filesystem::path& root);
+// Which images of a BOP dataset: the split directory and BOP's per-sensor suffix
+// (scene_gt_SENSOR.json, depth_SENSOR/, ...; empty: none).
+struct DatasetLayout {
+  std::string split = "test";
+  std::string sensor;
+};
+
+// Reads models/models_info.json and every SPLIT/NNNNNN/scene_gt.json and scene_camera.json of
+// root (with the sensor's suffix), and synth.json if present. Throws InputError naming the file
+// for a missing or malformed file, and if root has no scene or an image of scene_gt.json has no
+// camera.
+Dataset load_dataset(const std::filesystem::path& root, const DatasetLayout& layout = {});
 
 // "sigma 1 % of d" for noise 0.01 (two significant digits at most).
 std::string noise_label(double noise);

@@ -20,14 +20,12 @@ SceneView load_scene_view(const Dataset& dataset, const ImageKey& key) {
     throw InputError(fmt::format("dataset {} has no scene {} image {}", dataset.root.string(),
                                  key.scene_id, key.im_id));
   const auto& image = it->second;
-  const std::string file = fmt::format("{:06d}.png", key.im_id);
   SceneView v;
-  v.depth_raw = read_png16(image.scene_dir / "depth" / file);
-  if (std::filesystem::exists(image.scene_dir / "gray" / file)) {
-    v.gray = read_png8(image.scene_dir / "gray" / file);
+  v.depth_raw = read_png16(image.files.depth(key.im_id));
+  if (const auto gray = image.files.intensity(key.im_id); std::filesystem::exists(gray)) {
+    v.gray = read_png8(gray);
     if (v.gray.width != v.depth_raw.width || v.gray.height != v.depth_raw.height)
-      throw InputError((image.scene_dir / "gray" / file).string() +
-                       " differs in size from its depth image");
+      throw InputError(gray.string() + " differs in size from its depth image");
   }
   v.depth_scale = image.camera.depth_scale;
   v.K = image.camera.K;

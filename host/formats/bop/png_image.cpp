@@ -82,7 +82,19 @@ GrayImage<T> read_gray(const std::filesystem::path& path) {
       r->offset += n;
     });
     png_read_info(png, info);
-    const int depth = png_get_bit_depth(png, info), type = png_get_color_type(png, info);
+    const int depth = png_get_bit_depth(png, info);
+    int type = png_get_color_type(png, info);
+    // An 8-bit intensity image may come as colour (BOP's rgb/): read its luma.
+    if (sizeof(T) == 1 && depth == 8 && (type & PNG_COLOR_MASK_COLOR) &&
+        type != PNG_COLOR_TYPE_PALETTE) {
+      png_set_rgb_to_gray_fixed(png, 1, -1, -1);
+      type &= ~PNG_COLOR_MASK_COLOR;
+    }
+    if (sizeof(T) == 1 && depth == 8 && (type & PNG_COLOR_MASK_ALPHA)) {
+      png_set_strip_alpha(png);
+      type &= ~PNG_COLOR_MASK_ALPHA;
+    }
+    png_read_update_info(png, info);
     if (type != PNG_COLOR_TYPE_GRAY || depth != int(8 * sizeof(T)))
       throw std::runtime_error("expected a " + std::to_string(8 * sizeof(T)) +
                                "-bit single-channel image, found bit depth " + std::to_string(depth) +

@@ -24,8 +24,9 @@ void write_png(const std::filesystem::path& path, const GrayImage<std::uint16_t>
 void write_png(const std::filesystem::path& path, const GrayImage<std::uint8_t>& image);
 void write_png(const std::filesystem::path& path, const RgbImage& image);
 
-// Reads a single-channel PNG of the given depth; a missing, corrupt or truncated file, or one of
-// another bit depth or colour type, is an InputError naming the file.
+// Reads a single-channel PNG of the given depth (read_png8 also takes an 8-bit RGB or RGBA image
+// and returns its luma, as BOP's rgb/ images come); a missing, corrupt or truncated file, or one
+// of another bit depth or colour type, is an InputError naming the file.
 GrayImage<std::uint16_t> read_png16(const std::filesystem::path& path);
 GrayImage<std::uint8_t> read_png8(const std::filesystem::path& path);
 
