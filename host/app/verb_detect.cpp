@@ -29,7 +29,7 @@ namespace {
 namespace fs = std::filesystem;
 
 struct DetectArgs {
-  std::string model, dataset, cloud, out, scenes, split = "test";
+  std::string model, dataset, cloud, out, scenes, split = "test", sensor;
   int obj_id = 1;
   bool verbose = false;
   DetectCliOptions detection;  // --params and one option per parameter
@@ -76,6 +76,7 @@ void run_detect(DetectArgs& a) {
   BatchOptions opt;
   opt.dataset = a.dataset;
   opt.split = a.split;
+  opt.sensor = a.sensor;
   if (!a.scenes.empty()) opt.scenes = parse_scene_list(a.scenes);
   opt.obj_id = a.obj_id;
   opt.out = a.out;
@@ -100,6 +101,9 @@ void add_detect_verb(CLI::App& app) {
                    "(mm, z along the viewing axis), with or without normals");
   verb->add_option("--out", a->out, "results CSV to write (BOP format)")->required();
   verb->add_option("--split", a->split, "dataset split directory")->capture_default_str();
+  verb->add_option("--sensor", a->sensor,
+                   "BOP sensor suffix: read scene_camera_NAME.json and depth_NAME/ (BOP's "
+                   "industrial datasets)");
   verb->add_option("--scenes", a->scenes, "subset of scene ids, e.g. 0,3,5-9 (default: all)");
   verb->add_option("--obj-id", a->obj_id, "object id written in the results")->capture_default_str();
   verb->add_flag("--verbose", a->verbose, "print per-stage timings of every image");

@@ -8,6 +8,7 @@
 #include <fmt/format.h>
 
 #include "host/formats/bop/bop_files.hpp"
+#include "host/formats/bop/scene_files.hpp"
 #include "host/formats/bop/png_image.hpp"
 #include "host/core/error.hpp"
 #include "host/core/progress.hpp"
@@ -137,15 +138,16 @@ std::string detection_line(std::size_t rank, const Detection& d) {
 }
 
 BatchSummary detect_dataset(Detector& detector, const BatchOptions& opt, std::ostream* log) {
+  bop::check_sensor_name(opt.sensor);
   const std::vector<int> available = list_scenes(opt.dataset, opt.split);
   std::vector<int> scenes = opt.scenes.empty() ? available : opt.scenes;
   for (int id : scenes)
     if (!std::binary_search(available.begin(), available.end(), id))
       throw InputError(fmt::format("scene {} is not in {}", id, (opt.dataset / opt.split).string()));
   const std::string fingerprint = fmt::format(
-      "{{\"model\": \"{}\", \"obj_id\": {}, \"split\": \"{}\", \"dataset\": \"{}\", "
-      "\"params\": {}}}\n",
-      opt.model_checksum, opt.obj_id, opt.split, fs::absolute(opt.dataset).string(),
+      "{{\"model\": \"{}\", \"obj_id\": {}, \"split\": \"{}\", \"sensor\": \"{}\", "
+      "\"dataset\": \"{}\", \"params\": {}}}\n",
+      opt.model_checksum, opt.obj_id, opt.split, opt.sensor, fs::absolute(opt.dataset).string(),
       params_json(detector.params()));
   prepare_parts(opt.out, fingerprint);
 
@@ -161,12 +163,13 @@ BatchSummary detect_dataset(Detector& detector, const BatchOptions& opt, std::os
       continue;
     }
     const fs::path dir = opt.dataset / opt.split / fmt::format("{:06d}", scene);
-    const bop::SceneCameras cameras = bop::read_scene_cameras(dir / "scene_camera.json");
+    const bop::SceneFiles files{dir, opt.sensor};
+    const bop::SceneCameras cameras = bop::read_scene_cameras(files.scene_camera());
     std::vector<bop::ResultRow> rows;
     std::string details;
     for (const auto& [im_id, cam] : cameras) {
       const auto start = std::chrono::steady_clock::now();
-      const fs::path depth_path = dir / "depth" / fmt::format("{:06d}.png", im_id);
+      const fs::path depth_path = files.depth(im_id);
       const GrayImage<std::uint16_t> png = read_png16(depth_path);
       const DepthImage depth{png.width, png.height, png.pixels};
       DetectTimes times;

@@ -21,6 +21,7 @@ namespace binpick {
 struct BatchOptions {
   std::filesystem::path dataset;
   std::string split = "test";
+  std::string sensor;       // BOP sensor suffix ("": none): scene_camera_SENSOR.json, depth_SENSOR/
   std::vector<int> scenes;  // empty: every scene of the split
   int obj_id = 1;
   std::filesystem::path out;
