@@ -84,7 +84,9 @@ Detector::Detector(const PpfModel& model, const DetectParams& params, ocl::Devic
                                     "device_scan.cl", "ppf_vote.cl", "pose_cluster.cl",
                                     "pose_fit.cl"});
   device_model_ = upload_model(dev_, model_);
-  fit_model_ = upload_fit_model(dev_, model_.cloud);
+  // The denser refinement points where the model file has them (version 3 on).
+  fit_model_ = upload_fit_model(
+      dev_, model_.fit_cloud.points.empty() ? model_.cloud : model_.fit_cloud);
   fit_geometry_.diameter = model_.diameter;
   fit_geometry_.voxel_size = model_.voxel_size;
   fit_geometry_.centroid = model_centroid(model_.cloud);

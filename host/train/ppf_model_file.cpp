@@ -71,6 +71,7 @@ std::uint64_t symmetry_size(std::uint64_t continuous, std::uint64_t discrete) {
 
 // A bound on the counts a file may claim, so that a corrupt count is reported as such.
 constexpr std::uint32_t kMaxFileSymmetries = 1024;
+constexpr std::uint32_t kMaxFitPoints = 8 * kMaxPpfModelPoints;
 
 void append_symmetries(std::string& out, const PartSymmetries& s) {
   const std::uint32_t counts[2] = {static_cast<std::uint32_t>(s.continuous.size()),
@@ -119,7 +120,7 @@ bool take_symmetries(std::string_view& in, std::uint32_t continuous, std::uint32
 }  // namespace
 
 std::string serialize_ppf_model(const PpfModel& m, std::uint32_t version) {
-  if (version != kPpfModelFormatVersion && version != kPpfModelOldestReadVersion)
+  if (version < kPpfModelOldestReadVersion || version > kPpfModelFormatVersion)
     throw std::logic_error("serialize_ppf_model: no format version " + std::to_string(version));
   const std::size_t n = m.cloud.points.size();
   std::string payload;
@@ -129,6 +130,12 @@ std::string serialize_ppf_model(const PpfModel& m, std::uint32_t version) {
   append(payload, m.table.offsets.data(), m.table.offsets.size());
   append(payload, m.table.entries.data(), m.table.entries.size());
   if (version >= 2) append_symmetries(payload, m.symmetries);
+  if (version >= 3) {
+    const auto fit = static_cast<std::uint32_t>(m.fit_cloud.points.size());
+    append(payload, &fit, 1);
+    for (const auto& p : m.fit_cloud.points) append(payload, p.data(), 3);
+    for (const auto& v : m.fit_cloud.normals) append(payload, v.data(), 3);
+  }
 
   Header h{};
   std::memcpy(h.magic, kMagic, 8);
@@ -189,6 +196,15 @@ PpfModel parse_ppf_model(std::string_view bytes, const std::string& name) {
       throw corrupt("symmetry count");
     expected = table_end + symmetry_size(symmetry_counts[0], symmetry_counts[1]);
   }
+  std::uint32_t fit_count = 0;
+  if (h.version >= 3) {
+    if (bytes.size() < expected + 4)
+      throw InputError(file + " is truncated (" + std::to_string(bytes.size()) + " of at least " +
+                       std::to_string(expected + 4) + " bytes)");
+    std::memcpy(&fit_count, bytes.data() + expected, 4);
+    if (fit_count > kMaxFitPoints) throw corrupt("fit point count");
+    expected += 4 + std::uint64_t(fit_count) * 24;
+  }
   if (bytes.size() < expected)
     throw InputError(file + " is truncated (" + std::to_string(bytes.size()) + " of " +
                      std::to_string(expected) + " bytes)");
@@ -212,6 +228,16 @@ PpfModel parse_ppf_model(std::string_view bytes, const std::string& name) {
   if (h.version >= 2 &&
       !take_symmetries(payload, symmetry_counts[0], symmetry_counts[1], m.symmetries))
     throw corrupt("symmetry");
+  if (h.version >= 3) {
+    payload.remove_prefix(4);
+    m.fit_cloud.points.resize(fit_count);
+    m.fit_cloud.normals.resize(fit_count);
+    for (auto& p : m.fit_cloud.points) take(payload, p.data(), 3);
+    for (auto& v : m.fit_cloud.normals) take(payload, v.data(), 3);
+    for (std::size_t i = 0; i < fit_count; ++i)
+      if (!m.fit_cloud.points[i].allFinite() || !m.fit_cloud.normals[i].allFinite())
+        throw corrupt("fit point " + std::to_string(i));
+  }
 
   // A consistent table, so that detection can index it without checks.
   if (m.table.offsets.front() != 0 || m.table.offsets.back() != h.entry_count)

@@ -9,9 +9,11 @@
 //   entries (uint32 point, float alpha); from version 2 on, the part's symmetries: continuous
 //   count, discrete count (uint32 each), each continuous symmetry as axis and offset
 //   (6 doubles), each discrete one as the top three rows of its 4x4 transform (12 doubles,
-//   row-major).
-// Version 1 files (before symmetries) are still read, with no symmetries: the table is the
-// same. Readers refuse other versions: a changed format or feature convention needs a retrain.
+//   row-major); from version 3 on, the refinement points: count (uint32), points (3 floats
+//   each), normals (3 floats each).
+// Version 1 and 2 files (before symmetries, before refinement points) are still read, without
+// them: the table is the same. Readers refuse other versions: a changed format or feature
+// convention needs a retrain.
 #pragma once
 
 #include <cstdint>
@@ -23,17 +25,17 @@
 
 namespace binpick {
 
-inline constexpr std::uint32_t kPpfModelFormatVersion = 2;
+inline constexpr std::uint32_t kPpfModelFormatVersion = 3;
 inline constexpr std::uint32_t kPpfModelOldestReadVersion = 1;
 
-// The file's bytes; identical for identical models. Version kPpfModelOldestReadVersion leaves
-// the symmetries out (tests of old files); any other version than these two is a logic error.
+// The file's bytes; identical for identical models. Older versions (tests of old files) leave
+// out what they did not have; a version outside those read is a logic error.
 std::string serialize_ppf_model(const PpfModel& model,
                                 std::uint32_t version = kPpfModelFormatVersion);
 
 // Parses bytes read from `name` (used in messages). Throws InputError: "model file NAME is
 // truncated", "... is not a binpick PPF model", "... was written by format version N, this
-// binpick reads versions 1 to 2: retrain", "... is corrupt (...)".
+// binpick reads versions 1 to 3: retrain", "... is corrupt (...)".
 PpfModel parse_ppf_model(std::string_view bytes, const std::string& name);
 
 // Writes through write_file_atomically (no partial file on error).

@@ -52,6 +52,8 @@ PpfModel train_ppf_model(const Mesh& mesh, const PpfTrainParams& params, PpfTrai
                      std::to_string(model.cloud.points.size()) + " model points, at most " +
                      std::to_string(kMaxPpfModelPoints) + " are supported: raise it");
 
+  model.fit_cloud = with_unit_normals(
+      voxel_subsample(dev, dense, model.voxel_size / kFitVoxelDivisor, VoxelFaces::both).cloud);
   model.table = build_ppf_table(dev, model.cloud, model.quant, &st.table);
   clock.lap_seconds();
   model.symmetries = find_symmetries(mesh);

@@ -1,7 +1,10 @@
 // The PPF model: point pair features and alpha (kernels/ppf_features.cl), the device hash table
 // (kernels/ppf_table.cl) against their C++/Eigen references, degenerate input, training (with the
-// part's symmetries) and the .ppfm file (version 2 with symmetries; version 1 still read).
+// part's symmetries) and the .ppfm file (version 3 with symmetries and refinement points;
+// versions 1 and 2 still read).
 #include <gtest/gtest.h>
+
+#include <limits>
 
 #include <algorithm>
 #include <cmath>
@@ -342,7 +345,7 @@ TEST(PpfModelFile, RoundTripAndRefusals) {
   wrong = bytes;
   wrong[8] = 7;  // version 7
   EXPECT_NE(parse_message(wrong).find(
-                "was written by format version 7, this binpick reads versions 1 to 2: retrain"),
+                "was written by format version 7, this binpick reads versions 1 to 3: retrain"),
             std::string::npos)
       << parse_message(wrong);
   wrong = bytes;
@@ -396,12 +399,14 @@ TEST(PpfModelFile, SymmetriesRoundTripAndVersionOneIsStillRead) {
   EXPECT_EQ(old.table.entries.size(), m.table.entries.size());
   PpfModel without = m;
   without.symmetries = {};
-  EXPECT_EQ(serialize_ppf_model(old), serialize_ppf_model(without));
-  EXPECT_THROW(serialize_ppf_model(m, 3), std::logic_error);
+  without.fit_cloud = {};
+  EXPECT_TRUE(serialize_ppf_model(old) == serialize_ppf_model(without));  // (no byte dump)
+  EXPECT_THROW(serialize_ppf_model(m, 4), std::logic_error);
+  EXPECT_THROW(serialize_ppf_model(m, 0), std::logic_error);
 
   // Cut inside the symmetries, or right after the table (no counts): truncated.
   EXPECT_NE(parse_message(bytes.substr(0, bytes.size() - 50)).find("is truncated"), std::string::npos);
-  std::string relabelled = bytes;  // version 2 bytes called version 1: the symmetries are extra
+  std::string relabelled = bytes;  // version 3 bytes called version 1: the symmetries are extra
   relabelled[8] = 1;
   EXPECT_NE(parse_message(relabelled).find("bytes after the end"), std::string::npos);
   // Not a rotation, a zero axis, an absurd count: corrupt.
@@ -411,9 +416,40 @@ TEST(PpfModelFile, SymmetriesRoundTripAndVersionOneIsStillRead) {
   bad = m;
   bad.symmetries.continuous[0].axis.setZero();
   EXPECT_NE(parse_message(serialize_ppf_model(bad)).find("is corrupt (symmetry)"), std::string::npos);
-  std::string huge = serialize_ppf_model(without);
+  std::string huge = serialize_ppf_model(without, 2);
   huge[huge.size() - 5] = 0x7f;  // the continuous count's high byte
   EXPECT_NE(parse_message(huge).find("is corrupt (symmetry count)"), std::string::npos) << parse_message(huge);
+}
+
+TEST(PpfModelFile, RefinementPointsRoundTripAndVersionTwoIsStillRead) {
+  const PpfModel m = train_box();
+  // Half the voxel: about four times the points, on the same surface.
+  EXPECT_GT(m.fit_cloud.points.size(), 3 * m.cloud.points.size());
+  EXPECT_LT(m.fit_cloud.points.size(), 5 * m.cloud.points.size());
+  ASSERT_EQ(m.fit_cloud.normals.size(), m.fit_cloud.points.size());
+  for (const auto& n : m.fit_cloud.normals) EXPECT_NEAR(n.norm(), 1.0f, 1e-5f);
+  const std::string bytes = serialize_ppf_model(m);
+  const PpfModel back = parse_ppf_model(bytes, "box.ppfm");
+  EXPECT_EQ(back.fit_cloud.points, m.fit_cloud.points);
+  EXPECT_EQ(back.fit_cloud.normals, m.fit_cloud.normals);
+
+  const std::string v2 = serialize_ppf_model(m, 2);
+  const PpfModel old = parse_ppf_model(v2, "old.ppfm");
+  EXPECT_TRUE(old.fit_cloud.points.empty());
+  EXPECT_EQ(old.cloud.points, m.cloud.points);
+  EXPECT_EQ(old.symmetries.discrete.size(), m.symmetries.discrete.size());
+
+  // A count beyond any model, or a cut inside the points: corrupt, truncated.
+  std::string huge = bytes;
+  const std::size_t count_at = bytes.size() - 24 * m.fit_cloud.points.size() - 4;
+  huge[count_at + 3] = 0x7f;
+  EXPECT_NE(parse_message(huge).find("is corrupt (fit point count)"), std::string::npos)
+      << parse_message(huge);
+  EXPECT_NE(parse_message(bytes.substr(0, count_at + 2)).find("is truncated"), std::string::npos);
+  PpfModel nan = m;
+  nan.fit_cloud.points[3].x() = std::numeric_limits<float>::quiet_NaN();
+  EXPECT_NE(parse_message(serialize_ppf_model(nan)).find("is corrupt (fit point 3)"),
+            std::string::npos);
 }
 
 TEST(SurfaceSampling, UniformOnTheSurfaceWithFaceNormals) {
