@@ -73,3 +73,12 @@ __kernel void hyp_exclude(__global const float4* points, const uint n,
   if (i == h.pixel || (p.w != 0.0f && bp_dist2(p.x, p.y, p.z, h.x, h.y, h.z) <= radius2))
     excluded[i] = 1;
 }
+
+/* Before the first round, with a "may be used" mask (kernels/scene_mask.cl): the pixels it
+ * does not keep start excluded, so they never become a highest point. */
+__kernel void hyp_exclude_masked(__global const uchar* mask, const uint n,
+                                 __global uchar* excluded) {
+  const uint i = get_global_id(0);
+  if (i >= n) return;
+  excluded[i] = mask[i] ? (uchar)0 : (uchar)1;
+}

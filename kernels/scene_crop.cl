@@ -81,3 +81,35 @@ __kernel void crop_rect_scatter(__global const float4* points, const uint width,
     }
   }
 }
+
+/* The same two passes with a "may be used" mask (kernels/scene_mask.cl, one uchar a pixel): a
+ * pixel the mask does not keep never enters a neighbourhood. */
+__kernel void crop_rect_count_masked(__global const float4* points, __global const uchar* mask,
+                                     const uint width, const uint4 rect, const float4 centre,
+                                     const float radius2, __global uint* counts) {
+  const uint g = get_global_id(0);
+  if (g >= rect.w - rect.y) return;
+  const uint row = (rect.y + g) * width;
+  uint count = 0;
+  for (uint x = rect.x; x < rect.z; ++x)
+    count += (mask[row + x] && crop_rect_keeps(points[row + x], centre, radius2)) ? 1u : 0u;
+  counts[g] = count;
+}
+
+__kernel void crop_rect_scatter_masked(__global const float4* points, __global const uchar* mask,
+                                       const uint width, const uint4 rect, const float4 centre,
+                                       const float radius2, __global const uint* offsets,
+                                       __global uint* out_pixels, __global float4* out_points) {
+  const uint g = get_global_id(0);
+  if (g >= rect.w - rect.y) return;
+  const uint row = (rect.y + g) * width;
+  uint o = offsets[g];
+  for (uint x = rect.x; x < rect.z; ++x) {
+    const float4 p = points[row + x];
+    if (mask[row + x] && crop_rect_keeps(p, centre, radius2)) {
+      out_pixels[o] = row + x;
+      out_points[o] = p;
+      ++o;
+    }
+  }
+}

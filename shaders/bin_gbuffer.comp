@@ -5,12 +5,13 @@
 // z-buffer -> depth (paper, equation 1) with optional Gaussian noise along the viewing ray,
 // camera-frame points, unit normals facing the camera, Lambert intensity with the light at the
 // camera, the part index, and per part its visible pixel count and bounding box (atomics).
+// Id 0xffffffff is a surface that is no part (the bin): shaded, instance -1, counted for none.
 // C++ reference: bin_gbuffer_reference (synth/render/bin_gbuffer.cpp); the noise hash repeats
 // synth/render/bin_noise.hpp word for word.
 layout(local_size_x = 16, local_size_y = 16) in;
 
 layout(std430, binding = 0) readonly buffer ZBuffer { float zbuffer[]; };
-layout(std430, binding = 1) readonly buffer Ids { uint ids[]; };          // part + 1, 0 none
+layout(std430, binding = 1) readonly buffer Ids { uint ids[]; };          // part + 1, 0 none, or kStatic
 layout(std430, binding = 2) readonly buffer RasterNormals { vec4 raster_normals[]; };
 layout(std430, binding = 3) writeonly buffer Depth { float depth[]; };
 layout(std430, binding = 4) writeonly buffer Points { float points[]; };    // 3 a pixel
@@ -29,6 +30,7 @@ layout(push_constant) uniform Params {
 } p;
 
 const float kAmbient = 0.2;
+const uint kStatic = 0xffffffffu;
 
 uint pcg_hash(uint x) {
   const uint state = x * 747796405u + 2891336453u;
@@ -58,7 +60,7 @@ void write_empty(uint i) {
 bool shade(uint i, uvec2 px) {
   const uint id = ids[i];
   const float b = zbuffer[i];
-  if (id == 0u || id > p.instance_count || !(b >= 0.0 && b < 1.0)) return false;
+  if (id == 0u || (id > p.instance_count && id != kStatic) || !(b >= 0.0 && b < 1.0)) return false;
   const float z = p.near_mm * p.far_mm / (p.far_mm + b * (p.near_mm - p.far_mm));
   const vec3 ray = vec3((float(px.x) - p.cx) / p.fx, (float(px.y) - p.cy) / p.fy, 1.0);
   const vec3 to_camera = -normalize(ray);
@@ -81,7 +83,7 @@ bool shade(uint i, uvec2 px) {
   }
   const float intensity = kAmbient + (1.0 - kAmbient) * max(dot(n, to_camera), 0.0);
   gray[i] = uint(min(floor(255.0 * intensity + 0.5), 255.0));
-  instance[i] = int(id) - 1;
+  instance[i] = id == kStatic ? -1 : int(id) - 1;
   return true;
 }
 
@@ -111,7 +113,7 @@ void main() {
   uint part = 0xffffffffu;
   if (px.x < p.width && px.y < p.height) {
     const uint i = px.y * p.width + px.x;
-    if (shade(i, px)) part = ids[i] - 1u;
+    if (shade(i, px)) part = ids[i] == kStatic ? 0xffffffffu : ids[i] - 1u;
     else write_empty(i);
   }
   count_pixel(part, ivec2(px));  // in uniform control flow: every lane takes part

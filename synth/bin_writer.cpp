@@ -1,4 +1,5 @@
 #include "synth/bin_writer.hpp"
+#include "synth/sensor/sensor_apply.hpp"
 
 #include <cmath>
 #include <fmt/format.h>
@@ -33,13 +34,16 @@ PointCloud visible_cloud(const RenderedBin& r) {
   return cloud;
 }
 
-bop::GroundTruthInfo info_of(const RenderedBin& r, std::size_t part) {
+bop::GroundTruthInfo info_of(const RenderedBin& r, const std::vector<std::uint32_t>& valid,
+                             std::size_t part) {
   bop::GroundTruthInfo g;
   g.bbox_obj = r.bbox_all[part];
   g.bbox_visib = r.bbox_visible[part];
   g.px_count_all = r.px_all[part];
   g.px_count_visib = r.px_visible[part];
-  g.px_count_valid = r.px_visible[part];  // every rendered pixel has depth: no sensor dropout
+  // Visible pixels the sensor gave depth (BOP counts those of the whole silhouette, occlusion
+  // ignored: not yet, docs/formats.md).
+  g.px_count_valid = valid[part];
   g.visib_fract = r.px_all[part] ? double(r.px_visible[part]) / double(r.px_all[part]) : 0.0;
   return g;
 }
@@ -59,11 +63,14 @@ void write_bop_scene(const fs::path& dir, const BinRecord& bin) {
   cam.world_to_camera = bop::Pose::from(bin.world_to_camera);
   bop::write_scene_cameras(dir / "scene_camera.json", {{0, cam}});
 
+  if (bin.obj_ids.size() != bin.part_to_camera.size())
+    throw InputError("bin writer: an obj_id is needed for every part");
   std::vector<bop::GroundTruth> gt;
   std::vector<bop::GroundTruthInfo> info;
+  const std::vector<std::uint32_t> valid = valid_pixels_per_part(r);
   for (std::size_t i = 0; i < bin.part_to_camera.size(); ++i) {
-    gt.push_back({1, bop::Pose::from(bin.part_to_camera[i])});
-    info.push_back(info_of(r, i));
+    gt.push_back({bin.obj_ids[i], bop::Pose::from(bin.part_to_camera[i])});
+    info.push_back(info_of(r, valid, i));
   }
   bop::write_scene_gt(dir / "scene_gt.json", {{0, gt}});
   bop::write_scene_gt_info(dir / "scene_gt_info.json", {{0, info}});

@@ -16,6 +16,7 @@ struct BinRecord {
   const RenderCamera& camera;
   const Eigen::Isometry3d& world_to_camera;
   const std::vector<Eigen::Isometry3d>& part_to_camera;  // mm, one per part, same order as render
+  const std::vector<int>& obj_ids;                       // per part, its BOP obj_id
   double depth_scale = 0.1;                              // mm per depth PNG unit
   bool write_cloud = true;
   bool write_masks = false;

@@ -4,75 +4,28 @@
 #include <cmath>
 
 #include <fmt/format.h>
-#include <nlohmann/json.hpp>
 
-#include "host/formats/bop/bop_files.hpp"
+#include "host/core/diameter.hpp"
 #include "host/core/error.hpp"
 #include "host/core/progress.hpp"
-#include "host/core/atomic_file.hpp"
-#include "host/core/read_file.hpp"
-#include "host/core/diameter.hpp"
+#include "host/core/timing.hpp"
+#include "host/formats/bop/bop_files.hpp"
 #include "host/formats/bop/bop_models.hpp"
 #include "host/formats/mesh/load_model.hpp"
-#include "synth/render/bin_renderer.hpp"
 #include "synth/bin_writer.hpp"
 #include "synth/camera_rig.hpp"
+#include "synth/render/bin_renderer.hpp"
+#include "synth/sensor/sensor_apply.hpp"
+#include "synth/sensor/sensor_stage.hpp"
+#include "host/runtime/vk/vk_context.hpp"
 #include "synth/seeds.hpp"
-#include "host/core/timing.hpp"
+#include "synth/synth_manifest.hpp"
 
 namespace binpick {
 namespace {
 
 namespace fs = std::filesystem;
-using nlohmann::json;
 using Clock = std::chrono::steady_clock;
-
-// Bumped whenever the same options make different bins (drop, decomposition, rendering), so a
-// dataset is never resumed or extended with bins of another kind. 2: merged hulls, the
-// sliding-window rest test and the final all-dynamic second.
-constexpr int kSynthVersion = 2;
-
-// Everything that shapes a bin except how many bins there are: a resumed or extended run must
-// match it, or bins made with different settings would mix in one dataset.
-json manifest(const SynthOptions& o, const std::string& model, double diameter) {
-  const auto& d = o.drop;
-  return {{"synth_version", kSynthVersion},
-          {"model", model},
-          {"diameter_mm", diameter},
-          {"seed", o.seed},
-          {"noise", o.noise},
-          {"objects", d.objects},
-          {"grid", {d.grid_x, d.grid_y}},
-          {"bin_size_mm", {d.bin_size_mm.x(), d.bin_size_mm.y(), d.bin_size_mm.z()}},
-          {"drop_height_mm", d.drop_height_mm},
-          {"final_settle",
-           {{"all_dynamic_until_at_rest", d.final_settle_all_dynamic},
-            {"all_dynamic_s", d.final_all_dynamic_seconds}}},
-          {"camera_height_mm", o.camera_height_mm},
-          {"image", {o.width, o.height}},
-          {"depth_scale", o.depth_scale}};
-}
-
-void check_or_write_manifest(const fs::path& out, const json& want) {
-  const fs::path path = out / "synth.json";
-  if (fs::exists(path)) {
-    json have;
-    try {
-      have = json::parse(read_file_bytes(path));
-    } catch (const json::exception&) {
-      throw InputError(path.string() + " is not valid JSON: remove it or use another --out");
-    }
-    for (auto it = want.begin(); it != want.end(); ++it)
-      if (!have.contains(it.key()) || have[it.key()] != it.value())
-        throw InputError(fmt::format(
-            "{} was made with {} = {}, this run asks for {}: use another --out to make a new "
-            "dataset (same options resume or extend it)",
-            out.string(), it.key(), have.contains(it.key()) ? have[it.key()].dump() : "nothing",
-            it.value().dump()));
-    return;
-  }
-  write_file_atomically(path, [&](std::ostream& s) { s << want.dump(1) << "\n"; });
-}
 
 std::vector<Eigen::Isometry3d> in_camera_frame(const std::vector<Eigen::Isometry3d>& world,
                                                const Eigen::Isometry3d& w2c) {
@@ -80,6 +33,20 @@ std::vector<Eigen::Isometry3d> in_camera_frame(const std::vector<Eigen::Isometry
   out.reserve(world.size());
   for (const auto& T : world) out.push_back(w2c * T);
   return out;
+}
+
+CameraRig rig_of(const SynthOptions& o) {
+  return {o.camera_height_mm, o.camera_tilt_deg, o.width, o.height, o.intrinsics};
+}
+
+// The bin the options describe, loaded (a --bin-mesh file) or built.
+std::shared_ptr<const BinModel> load_bin(const SynthOptions& o) {
+  if (o.bin_mesh.empty()) return bin_of(o.drop);
+  try {
+    return std::make_shared<const BinModel>(bin_from_mesh(load_model(o.bin_mesh.string(), {})));
+  } catch (const InputError& e) {
+    throw InputError(fmt::format("--bin-mesh {}: {}", o.bin_mesh.string(), e.what()));
+  }
 }
 
 }  // namespace
@@ -93,32 +60,63 @@ void validate_synth_options(const SynthOptions& o) {
     throw InputError("image size must be between 16 and 16384 pixels a side");
   if (!(o.camera_height_mm > o.drop.bin_size_mm.z() && std::isfinite(o.camera_height_mm)))
     throw InputError("--camera-height must be above the bin's walls");
+  validate_camera_rig(rig_of(o));
   validate_drop_options(o.drop);
+  if (o.bin_mesh.empty()) {
+    built_in_bin(o.drop.bin_size_mm, o.drop.walls);  // throws for bad walls
+  } else if (!fs::is_regular_file(o.bin_mesh)) {
+    throw InputError(fmt::format("--bin-mesh {}: no such file", o.bin_mesh.string()));
+  }
+  kind_counts(o.drop.objects, o.distractors);  // throws for bad fractions
+  check(o.sensor);
 }
 
 SynthSummary synthesize(const Model& model, const std::string& model_description,
-                        const SynthOptions& o) {
+                        const SynthOptions& o, const std::vector<Model>& distractors) {
   validate_synth_options(o);
-  const Mesh& part = model.mesh;
-  const double diameter = exact_diameter(part.positions);
+  if (distractors.size() != o.distractors.size())
+    throw InputError(fmt::format("synthesize: {} distractor models for {} distractors",
+                                 distractors.size(), o.distractors.size()));
+  // Kind k: the meshes (and hulls) in obj_id order, obj_id = k + 1.
+  std::vector<Mesh> meshes{model.mesh};
+  ManifestInputs inputs{model_description, exact_diameter(model.mesh.positions), {}, {}};
+  for (const Model& m : distractors) {
+    meshes.push_back(m.mesh);
+    inputs.distractor_diameters.push_back(exact_diameter(m.mesh.positions));
+  }
+  if (!o.bin_mesh.empty()) inputs.bin_mesh_digest = file_digest(o.bin_mesh);
+  const double diameter = inputs.diameter;
   fs::create_directories(o.out / "test");
-  check_or_write_manifest(o.out, manifest(o, model_description, diameter));
+  check_or_write_manifest(o.out, synth_manifest(o, inputs));
 
-  const RenderCamera camera = camera_for_bin(o.drop.bin_size_mm.x(), o.drop.bin_size_mm.y(),
-                                             o.drop.bin_size_mm.z(), o.camera_height_mm, o.width,
-                                             o.height);
+  DropOptions drop_options = o.drop;
+  drop_options.bin = load_bin(o);
+  const SceneView view = scene_view(rig_of(o), o.drop.bin_size_mm, drop_options.bin->bounds);
+  const RenderCamera& camera = view.camera;
+  const Eigen::Isometry3d& w2c = view.world_to_camera;
   bop::write_camera(o.out / "camera.json",
                     {camera.fx, camera.fy, camera.cx, camera.cy, camera.width, camera.height,
                      o.depth_scale});
-  write_bop_models(o.out, part, 1, model.symmetries);
-  const Eigen::Isometry3d w2c = world_to_camera(o.camera_height_mm);
+  write_bop_models(o.out, model.mesh, 1, model.symmetries);
+  for (std::size_t k = 0; k < distractors.size(); ++k)
+    write_bop_models(o.out, distractors[k].mesh, int(k) + 2, distractors[k].symmetries);
 
   SynthSummary summary;
   auto t0 = Clock::now();
-  const ConvexParts hulls = decompose_convex(part, o.decompose);
+  std::vector<ConvexParts> hulls;
+  for (const Mesh& m : meshes) hulls.push_back(decompose_convex(m, o.decompose));
+  std::vector<DropKind> kinds;
+  for (std::size_t k = 0; k < meshes.size(); ++k) kinds.push_back({&hulls[k], &meshes[k]});
   summary.seconds_decompose = seconds_since(t0);
+  const std::vector<int> counts = kind_counts(o.drop.objects, o.distractors);
 
   std::unique_ptr<BinRenderer> renderer;  // made on the first bin that is not already there
+  std::unique_ptr<SensorStage> sensor;    // the same, for a structured-light sensor
+  const bool structured_light = o.sensor.kind != SensorModel::Kind::ideal;
+  SensorModel sensor_model = o.sensor;
+  // --noise adds to the sensor's own noise, in quadrature; shadows and edges are found on the
+  // ideal depth (docs/sensor_model.md).
+  if (structured_light) sensor_model.added_sigma_mm = o.noise * diameter;
   const int waves = (o.drop.objects + o.drop.grid_x * o.drop.grid_y - 1) / (o.drop.grid_x * o.drop.grid_y);
   for (int b = 0; b < o.bins; ++b) {
     const fs::path scene = o.out / "test" / fmt::format("{:06d}", b);
@@ -131,10 +129,13 @@ SynthSummary synthesize(const Model& model, const std::string& model_description
     fs::create_directories(staging);
 
     Progress progress(fmt::format("bin {}/{}", b + 1, o.bins), std::size_t(waves) + 1);
-    DropOptions drop = o.drop;
+    DropOptions drop = drop_options;
     drop.seed = mix_seed(o.seed, 2 * std::uint64_t(b));
+    // The mix of kinds comes from its own stream of the bin's seed: without distractors the
+    // orientations are those of a bin of one kind.
+    const std::vector<int> sequence = mixed_sequence(counts, mix_seed(drop.seed, 0));
     t0 = Clock::now();
-    const DropResult dropped = drop_parts(hulls, part, drop, [&](const DropProgress& p) {
+    const DropResult dropped = drop_parts(kinds, sequence, drop, [&](const DropProgress& p) {
       progress.update(std::size_t(p.wave), fmt::format("wave {}/{}: {} moving, {:.1f} s simulated",
                                                        p.wave + 1, p.waves, p.parts_moving,
                                                        p.simulated_seconds));
@@ -145,15 +146,27 @@ SynthSummary synthesize(const Model& model, const std::string& model_description
     t0 = Clock::now();
     const auto part_to_camera = in_camera_frame(dropped.poses, w2c);
     RenderOptions render_options;
-    render_options.noise_sigma_mm = o.noise * diameter;
+    render_options.noise_sigma_mm = structured_light ? 0.0 : o.noise * diameter;
     render_options.seed = mix_seed(o.seed, 2 * std::uint64_t(b) + 1);
-    if (!renderer) renderer = std::make_unique<BinRenderer>(part, camera);
-    const RenderedBin rendered = renderer->render(part_to_camera, render_options);
+    const bool show_bin = o.bin_render == BinRender::full;
+    if (!renderer)
+      renderer = std::make_unique<BinRenderer>(meshes, show_bin ? drop_options.bin.get() : nullptr,
+                                               camera);
+    RenderedBin rendered = renderer->render_scene(
+        {part_to_camera, dropped.kinds, show_bin ? std::optional(w2c) : std::nullopt},
+        render_options);
+    if (structured_light) {
+      if (!sensor)
+        sensor = std::make_unique<SensorStage>(vkrt::Context::shared(), camera.width, camera.height);
+      apply_sensor_model(*sensor, camera, sensor_model, mix_seed(render_options.seed, 1), rendered);
+    }
     const double render = seconds_since(t0);
 
     t0 = Clock::now();
-    write_bop_scene(staging, {rendered, camera, w2c, part_to_camera, o.depth_scale, o.write_cloud,
-                              o.write_masks});
+    std::vector<int> obj_ids;
+    for (const int k : dropped.kinds) obj_ids.push_back(k + 1);
+    write_bop_scene(staging, {rendered, camera, w2c, part_to_camera, obj_ids, o.depth_scale,
+                              o.write_cloud, o.write_masks});
     fs::rename(staging, scene);
     const double write = seconds_since(t0);
 

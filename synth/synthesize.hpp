@@ -1,29 +1,47 @@
-// `binpick synth`: a BOP dataset of synthetic bins (paper III-A): decompose the part, drop it
-// into the bin with Bullet, render depth, intensity and the scene cloud with Vulkan, write.
+// `binpick synth`: a BOP dataset of synthetic bins (paper III-A): decompose the part (and the
+// distractors), drop them into the bin with Bullet, render the parts and the bin (depth,
+// intensity, the scene cloud) with Vulkan, write.
 // Each bin is written to a temporary directory and renamed into place when complete, so an
 // interrupted run leaves only whole bins, and the same command again resumes where it stopped.
 #pragma once
 
 #include <cstdint>
+#include <array>
 #include <filesystem>
+#include <optional>
 #include <string>
+#include <vector>
 
 #include "synth/decompose/decompose.hpp"
+#include "synth/part_mix.hpp"
 #include "synth/physics/drop.hpp"
+#include "synth/sensor/sensor_model.hpp"
 
 namespace binpick {
+
+// Whether the camera sees the bin: `full` renders it (its rim is often the highest thing in
+// view, as in real bins); `none` renders the parts alone, as the paper did. The physics
+// collides with the bin either way.
+enum class BinRender { full, none };
 
 struct SynthOptions {
   std::filesystem::path out;
   int bins = 30;
   std::uint64_t seed = 1;
   double noise = 0.0;               // sigma of the depth noise along the ray, fraction of diameter
-  double camera_height_mm = 1000.0;
+  SensorModel sensor;               // ideal: the rendered depth (plus --noise); docs/sensor_model.md
+  double camera_height_mm = 1000.0;  // along the optical axis to the centre of the bin floor
+  double camera_tilt_deg = 0.0;      // about the bin's x axis (synth/camera_rig.hpp)
+  std::optional<std::array<double, 4>> intrinsics;  // fx, fy, cx, cy; none: camera_for_bin
   std::uint32_t width = 1600, height = 900;
   double depth_scale = 0.1;         // mm per unit of the depth PNG
   bool write_cloud = true;
   bool write_masks = false;
-  DropOptions drop;                 // objects, bin size, waves, seed (set per bin)
+  DropOptions drop;                 // objects, bin size and walls, waves, seed (set per bin)
+  BinRender bin_render = BinRender::full;
+  std::filesystem::path bin_mesh;   // a model file in the world frame (mm, floor at z = 0, z
+                                    // up); empty: the built-in bin (drop.walls)
+  std::vector<DistractorSpec> distractors;  // obj_ids 2, 3, ... in this order
   DecomposeOptions decompose;
 };
 
@@ -34,9 +52,10 @@ struct SynthSummary {
 
 struct Model;
 // `model_description` (e.g. the --model argument) is recorded so a resumed run can tell that the
-// existing dataset was made from the same input.
+// existing dataset was made from the same input. `distractors` are the models of
+// options.distractors, loaded, in the same order.
 SynthSummary synthesize(const Model& model, const std::string& model_description,
-                        const SynthOptions& options);
+                        const SynthOptions& options, const std::vector<Model>& distractors = {});
 
 // Throws InputError for options no bin can be made with.
 void validate_synth_options(const SynthOptions& options);

@@ -64,6 +64,16 @@ void add_detect_cli_options(CLI::App* verb, DetectCliOptions& a, const std::stri
           "noise seen in the best-fitting pose (at most 3x), in [0, 100]; 0: fixed");
   add("verify-tolerance", p.verify_tolerance,
       "depth agreement of a verified model point, fraction of the diameter");
+  add("roi", p.roi,
+      "only this box may hold hypotheses and crops: camera:x0,y0,z0,x1,y1,z1 (camera frame, "
+          "mm) or bin:x0,y0,z0,x1,y1,z1 (the bin's frame: origin at the floor's centre, z up, "
+          "x along the longer side; needs --bin); default: everywhere");
+  add("bin", p.bin,
+      "the bin: none; auto (find its floor and rim in each depth image); W,D,H (find a bin "
+          "of this interior size, mm). Its walls, rim and outside are kept out of hypotheses "
+          "and crops");
+  add("bin-margin", p.bin_margin,
+      "how far the bin's walls and rim are kept out, fraction of the diameter, in [0, 10]");
 }
 
 DetectParams resolve(const DetectCliOptions& a) {
@@ -88,7 +98,7 @@ DetectParams resolve(const DetectCliOptions& a) {
                            (option == a.options.end() || option->second->count() == 0);
     const std::string name =
         from_file ? fmt::format("{}: {}", a.params_file, bad->name) : "--" + bad->name;
-    throw InputError(fmt::format("{} {} must be in {}", name, bad->value, bad->range));
+    throw InputError(fmt::format("{} {}", name, describe(*bad)));
   }
   return p;
 }

@@ -1,5 +1,7 @@
 // `binpick synth`: synthetic bins as a BOP dataset (docs/pipeline.md, docs/formats.md). A model
-// file gets the symmetries found on its mesh in models_info.json, a built-in part its stated ones.
+// file gets the symmetries found on its mesh in models_info.json, a built-in part its stated ones;
+// distractors likewise, as obj_ids 2, 3, ...
+#include <array>
 #include <iostream>
 #include <memory>
 
@@ -8,7 +10,9 @@
 #include "host/app/dataset_options.hpp"
 #include "host/app/model_options.hpp"
 #include "host/app/verbs.hpp"
+#include "synth/sensor/sensor_options.hpp"
 #include "host/train/symmetry_describe.hpp"
+#include "synth/part_mix.hpp"
 #include "synth/synthesize.hpp"
 
 namespace binpick::cli {
@@ -21,6 +25,10 @@ struct SynthArgs {
   std::vector<double> bin_size{600.0, 400.0, 300.0};
   std::vector<int> grid{7, 5};
   std::string cache_dir;
+  std::string bin_render = "full";
+  std::string bin_mesh;
+  std::string distractors;
+  std::vector<double> intrinsics;
 };
 
 void run_synth(const SynthArgs& args) {
@@ -36,13 +44,25 @@ void run_synth(const SynthArgs& args) {
   o.drop.grid_x = args.grid[0];
   o.drop.grid_y = args.grid[1];
   o.decompose.cache_dir = args.cache_dir;
+  o.bin_render = args.bin_render == "none" ? BinRender::none : BinRender::full;
+  o.bin_mesh = args.bin_mesh;
+  if (!args.distractors.empty()) o.distractors = parse_distractors(args.distractors);
+  if (!args.intrinsics.empty())
+    o.intrinsics = std::array<double, 4>{args.intrinsics[0], args.intrinsics[1], args.intrinsics[2],
+                                         args.intrinsics[3]};
   validate_synth_options(o);  // before loading: bad options fail fast
-  bool found = false;
-  const Model model = load_part_finding_symmetries(part_spec_of(args.model), &found);
-  std::cout << fmt::format("{}: symmetry ({}): {}\n", args.model.model,
-                           found ? "found on the mesh" : "stated for the built-in part",
-                           describe_symmetries(model.symmetries));
-  const SynthSummary s = synthesize(model, args.model.model, o);
+  const auto load = [](const PartSpec& spec) {
+    bool found = false;
+    Model model = load_part_finding_symmetries(spec, &found);
+    std::cout << fmt::format("{}: symmetry ({}): {}\n", spec.spec,
+                             found ? "found on the mesh" : "stated for the built-in part",
+                             describe_symmetries(model.symmetries));
+    return model;
+  };
+  const Model model = load(part_spec_of(args.model));
+  std::vector<Model> distractors;
+  for (const DistractorSpec& d : o.distractors) distractors.push_back(load({d.model, {}}));
+  const SynthSummary s = synthesize(model, args.model.model, o, distractors);
   std::cout << fmt::format(
       "{}: {} bins made, {} already there; decomposition {:.1f} s, physics {:.1f} s, "
       "rendering {:.2f} s, writing {:.2f} s\n",
@@ -77,8 +97,43 @@ void add_synth_verb(CLI::App& app) {
       ->capture_default_str();
   verb->add_option("--drop-height", o.drop.drop_height_mm, "release height above the floor, mm")
       ->capture_default_str();
-  verb->add_option("--camera-height", o.camera_height_mm, "camera height above the floor, mm")
+  verb->add_option("--camera-height", o.camera_height_mm,
+                   "camera distance from the centre of the bin floor along the optical axis "
+                   "(untilted: its height above the floor), mm")
       ->capture_default_str();
+  verb->add_option("--camera-tilt", o.camera_tilt_deg,
+                   "turn the camera about the bin's x axis through the centre of the bin floor, "
+                   "which stays on the optical axis at --camera-height; positive moves the "
+                   "camera towards -y, looking at the +y wall (degrees, -80 to 80)")
+      ->capture_default_str();
+  verb->add_option("--intrinsics", args->intrinsics,
+                   "camera intrinsics fx,fy,cx,cy in pixels (default: square pixels, principal "
+                   "point at the image centre, the focal length that shows the whole bin "
+                   "interior from the untilted camera)")
+      ->delimiter(',')
+      ->expected(4);
+  add_sensor_options(verb, o.sensor);
+  verb->add_option("--bin-render", args->bin_render,
+                   "full: the camera sees the bin (floor, walls, rim) as well as the parts; none: "
+                   "the parts alone, as in the paper (the parts collide with the bin either way)")
+      ->check(CLI::IsMember({"full", "none"}))
+      ->capture_default_str();
+  verb->add_option("--bin-wall", o.drop.walls.wall_mm,
+                   "built-in bin: wall and floor thickness, mm (the rim is as thick)")
+      ->capture_default_str();
+  verb->add_option("--bin-rim", o.drop.walls.rim_mm,
+                   "built-in bin: width of the flat lip around the top of the walls, outward "
+                   "from their outer faces, mm (0: none)")
+      ->capture_default_str();
+  verb->add_option("--bin-mesh", args->bin_mesh,
+                   "the bin as a model file instead of the built-in one, for the physics (a "
+                   "static triangle mesh) and the camera: world frame, mm, the interior floor's "
+                   "centre at the origin, floor at z = 0, z up (--bin-size still places the drop "
+                   "grid and the camera)");
+  verb->add_option("--distractors", args->distractors,
+                   "other parts mixed into the bin, MODEL[:FRACTION],... (MODEL a file in mm or "
+                   "builtin:NAME; FRACTION of --objects, default 0.25 split evenly over the "
+                   "distractors given); obj_ids 2, 3, ... in this order");
   verb->add_option("--max-wave-seconds", o.drop.max_wave_seconds,
                    "simulated seconds a wave may take to come to rest before the next is released")
       ->capture_default_str();

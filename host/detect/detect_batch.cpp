@@ -128,6 +128,14 @@ std::string detail_rows(const std::vector<Detection>& detections, int scene_id, 
   return text;
 }
 
+std::string skipped_rows(const std::vector<Detection>& skipped, int scene_id, int im_id) {
+  std::string text;
+  for (const Detection& d : skipped)
+    text += fmt::format("{},{},,{},0,0.000000,0,0,0,{}\n", scene_id, im_id, d.index,
+                        csv_quoted(d.reason));
+  return text;
+}
+
 std::string detection_line(std::size_t rank, const Detection& d) {
   std::string line = fmt::format(
       "#{} hypothesis {} candidate {}: score {:.3f} ({} of {} visible model points agree), "
@@ -183,13 +191,17 @@ BatchSummary detect_dataset(Detector& detector, const BatchOptions& opt, std::os
       const auto image_rows = detection_rows(found, scene, im_id, opt.obj_id, seconds_since(start));
       rows.insert(rows.end(), image_rows.begin(), image_rows.end());
       details += detail_rows(found, scene, im_id);
+      details += skipped_rows(detector.skipped(), scene, im_id);
       ++summary.images;
       if (opt.verbose && log) {
         std::string line = fmt::format("scene {} image {}: {} hypotheses;", scene, im_id,
                                        times.hypotheses);
         for (const StageTime& st : times.stages) line += fmt::format(" {} {:.1f}", st.stage, st.ms);
         *log << line << " ms\n";
+        if (!detector.region_report().empty()) *log << "  " << detector.region_report() << "\n";
         for (std::size_t r = 0; r < found.size(); ++r) *log << "  " << detection_line(r, found[r]) << "\n";
+        for (const Detection& d : detector.skipped())
+          *log << "  hypothesis " << d.index << ": " << d.reason << "\n";
       }
       summary.times += times;
     }
@@ -220,11 +232,14 @@ std::string summary_line(const BatchSummary& s) {
       s.program_build_s > 0 ? fmt::format("; OpenCL programs built once in {:.2f} s (not counted above)",
                                           s.program_build_s)
                             : "";
+  const std::string bins =
+      t.bin_sought > 0 ? fmt::format("; a bin found in {} of {} images", t.bin_found, t.bin_sought)
+                       : "";
   return fmt::format(
       "{} scenes ({} done before), {} images, {} hypotheses, {} rows; ms per hypothesis: "
-      "preparation {:.1f}, voting {:.1f}, clustering {:.1f}, refinement {:.1f}, total {:.1f}{}",
+      "preparation {:.1f}, voting {:.1f}, clustering {:.1f}, refinement {:.1f}, total {:.1f}{}{}",
       s.scenes, s.skipped, s.images, t.hypotheses, s.rows, t.prepare_ms / h, t.vote_ms / h,
-      t.cluster_ms / h, t.refine_ms / h, t.total_ms() / h, builds);
+      t.cluster_ms / h, t.refine_ms / h, t.total_ms() / h, bins, builds);
 }
 
 }  // namespace binpick

@@ -57,6 +57,9 @@ std::filesystem::path details_path(const std::filesystem::path& out);
 inline constexpr const char* kDetailsHeader =
     "scene_id,im_id,rank,hypothesis,candidate,score,votes,visible,inliers,reason\n";
 std::string detail_rows(const std::vector<Detection>& detections, int scene_id, int im_id);
+// The hypotheses skipped before voting (Detector::skipped), after an image's detections: rank
+// empty (they are not results), score and counts 0, the reason why.
+std::string skipped_rows(const std::vector<Detection>& skipped, int scene_id, int im_id);
 
 // One detection for --verbose: rank, hypothesis, score and its counts, votes, and the reason of
 // a 0 score or a refinement cut short.

@@ -39,6 +39,14 @@ Field count(std::uint32_t DetectParams::*m) {
           [m](const DetectParams& p) { return Json(p.*m); }};
 }
 
+Field text(std::string DetectParams::*m) {
+  return {[m](DetectParams& p, const Json& v, const std::string& where) {
+            if (!v.is_string()) throw InputError(where + " must be a string");
+            p.*m = v.get<std::string>();
+          },
+          [m](const DetectParams& p) { return Json(p.*m); }};
+}
+
 const std::map<std::string, Field>& fields() {
   static const std::map<std::string, Field> table = {
       {"ref-ratio", real(&DetectParams::ref_ratio)},
@@ -57,6 +65,9 @@ const std::map<std::string, Field>& fields() {
       {"refine-iterations", count(&DetectParams::refine_iterations)},
       {"verify-tolerance", real(&DetectParams::verify_tolerance)},
       {"verify-noise-factor", real(&DetectParams::verify_noise_factor)},
+      {"roi", text(&DetectParams::roi)},
+      {"bin", text(&DetectParams::bin)},
+      {"bin-margin", real(&DetectParams::bin_margin)},
   };
   return table;
 }

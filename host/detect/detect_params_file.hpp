@@ -3,7 +3,9 @@
 //   {"ref-ratio": 0.2, "hypotheses": 5, "exclusion-ratio": 1.2, "crop-ratio": 1.0,
 //    "cluster-distance": 0.144, "cluster-angle": 20, "peaks-per-ref": 3, "peak-ratio": 0.9,
 //    "normal-ratio": 0.2}
-// ('_' may be used for '-'). Options given on the command line win over the file.
+// ('_' may be used for '-'); "roi" and "bin" are strings as on the command line
+// ({"bin": "auto", "roi": "bin:-200,-150,0,200,150,300"}). Options given on the command line
+// win over the file.
 #pragma once
 
 #include <filesystem>

@@ -3,11 +3,14 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iostream>
 #include <span>
 
 #include <fmt/format.h>
 
 #include "host/core/error.hpp"
+#include "host/detect/bin_region.hpp"
+#include "host/detect/bin_spec.hpp"
 #include "host/detect/cloud_image.hpp"
 #include "host/detect/ppf_pose.hpp"
 #include "host/detect/pose_refine.hpp"
@@ -52,16 +55,38 @@ std::optional<ParamProblem> find_param_problem(const DetectParams& p) {
       {p.refine_iterations <= 100, {"refine-iterations", double(p.refine_iterations), "[0, 100]"}},
       {in(p.verify_tolerance, 0, 1) && p.verify_tolerance > 0, {"verify-tolerance", p.verify_tolerance, "(0, 1]"}},
       {in(p.verify_noise_factor, 0, 100), {"verify-noise-factor", p.verify_noise_factor, "[0, 100]"}},
+      {in(p.bin_margin, 0, 10), {"bin-margin", p.bin_margin, "[0, 10]"}},
   };
   for (const auto& [ok, problem] : rules)
     if (!ok) return problem;
+  std::optional<RoiSpec> roi;
+  try {
+    roi = parse_roi(p.roi);
+  } catch (const InputError& e) {
+    return ParamProblem{"roi", 0, "", e.what()};
+  }
+  BinSpec bin;
+  try {
+    bin = parse_bin(p.bin);
+  } catch (const InputError& e) {
+    return ParamProblem{"bin", 0, "", e.what()};
+  }
+  if (roi && roi->frame == RoiSpec::Frame::bin && bin.mode == BinSpec::Mode::none)
+    return ParamProblem{"roi", 0, "",
+                        fmt::format("'{}' is in the bin's frame: it needs --bin auto or --bin "
+                                    "W,D,H",
+                                    p.roi)};
   return std::nullopt;
+}
+
+std::string describe(const ParamProblem& bad) {
+  if (!bad.message.empty()) return bad.message;
+  return fmt::format("{} must be in {}", bad.value, bad.range);
 }
 
 void check(const DetectParams& p) {
   if (const auto bad = find_param_problem(p))
-    throw InputError(fmt::format("detection parameter {} {} must be in {}", bad->name, bad->value,
-                                 bad->range));
+    throw InputError(fmt::format("detection parameter {} {}", bad->name, describe(*bad)));
 }
 
 DetectTimes& DetectTimes::operator+=(const DetectTimes& o) {
@@ -70,6 +95,8 @@ DetectTimes& DetectTimes::operator+=(const DetectTimes& o) {
   cluster_ms += o.cluster_ms;
   refine_ms += o.refine_ms;
   hypotheses += o.hypotheses;
+  bin_sought += o.bin_sought;
+  bin_found += o.bin_found;
   stages.insert(stages.end(), o.stages.begin(), o.stages.end());
   return *this;
 }
@@ -83,6 +110,8 @@ Detector::Detector(const PpfModel& model, const DetectParams& params, ocl::Devic
                                     "hypotheses.cl", "scene_crop.cl", "voxel_subsample.cl",
                                     "device_scan.cl", "ppf_vote.cl", "pose_cluster.cl",
                                     "pose_fit.cl"});
+  if (!params_.roi.empty() || params_.bin != "none")
+    program_build_s_ += dev_.prebuild({"scene_mask.cl", "bin_planes.cl"});
   device_model_ = upload_model(dev_, model_);
   // The denser refinement points where the model file has them (version 3 on).
   fit_model_ = upload_fit_model(
@@ -223,12 +252,43 @@ std::vector<Detection> Detector::detect(const DepthImage& depth, const bp_camera
   prep.normals.focal = 0.5f * (cam.fx + cam.fy);
   prep.read_back = false;
   prep.normals_everywhere = false;  // only where the neighbourhoods need them, below
-  const PreparedScene scene = prepare_scene(dev_, depth, cam, prep);
+  skipped_.clear();
+  region_report_.clear();
+  PreparedScene scene = prepare_scene(dev_, depth, cam, prep);
   t.stages.insert(t.stages.end(), scene.timings.begin(), scene.timings.end());
+  // --roi / --bin: the mask of the pixels that may be used, and the low-pass of those only.
+  RegionSetup region;
+  region.roi = parse_roi(params_.roi);
+  region.bin = parse_bin(params_.bin);
+  region.margin = params_.bin_margin * model_.diameter;
+  region.above = model_.diameter;
+  region.min_height = 0.5 * model_.diameter;  // a tray shallower than half a part holds none
+  const SceneRegionMask masked = apply_region(scene, region, prep.lowpass_radius, &t.stages);
+  const ocl::Buffer<std::uint8_t>* mask = masked.mask ? &*masked.mask : nullptr;
+  if (region.wanted()) {
+    const std::size_t valid = std::size_t(std::count_if(
+        depth.raw.begin(), depth.raw.end(), [](std::uint16_t v) { return v > 0; }));
+    region_report_ = masked.report;
+    region_report_ += fmt::format("{}mask: {} of {} pixels with depth may be used ({} excluded)",
+                                  region_report_.empty() ? "" : "; ", mask ? masked.kept : valid,
+                                  valid, mask ? valid - masked.kept : 0);
+  }
+  if (masked.bin) {
+    ++t.bin_sought;
+    t.bin_found += masked.bin->found;
+  }
+  if (!masked.warning.empty() && !warned_no_bin_ && params_.bin != "auto") {
+    std::cerr << "warning: " << masked.warning << "\n";
+    warned_no_bin_ = true;
+  }
   HypothesisOptions ho;
   ho.count = params_.hypotheses;
   ho.exclusion_radius = float(params_.exclusion_ratio * model_.diameter);
-  const std::vector<Hypothesis> hyps = find_hypotheses(scene, ho, &t.stages);
+  Stopwatch hyp_clock;
+  const std::vector<Hypothesis> hyps =
+      find_hypotheses(dev_, scene.device->points, scene.device->filtered, scene.width,
+                      scene.height, ho, mask);
+  t.stages.push_back({"hypotheses", hyp_clock.lap()});
   t.prepare_ms += clock.lap();
 
   std::vector<Detection> detections;
@@ -239,10 +299,23 @@ std::vector<Detection> Detector::detect(const DepthImage& depth, const bp_camera
     crop.radius = float(params_.crop_ratio * model_.diameter);
     // Equal to voxel_subsample(crop_sphere(...)) on a scene with normals everywhere.
     const NeighbourhoodSample sample =
-        sample_neighbourhood(scene, crop, prep.normals, model_.voxel_size, &t.stages);
+        sample_neighbourhood(scene, crop, prep.normals, model_.voxel_size, &t.stages, mask);
     t.prepare_ms += clock.lap();
     Detection d;
     d.neighbourhood = sample.cropped;
+    if (sample.cloud.points.size() < kMinCropPoints) {
+      // Nothing to vote on (a hole, a speck of depth, the edge of the region): said, not voted.
+      if (neighbourhoods) neighbourhoods->push_back(sample.cloud);
+      d.hypothesis = hyps[k];
+      d.index = static_cast<std::uint32_t>(k);
+      d.subsampled = sample.cloud.points.size();
+      d.reason = fmt::format(
+          "skipped: the crop has {} points with depth, {} with a normal after subsampling "
+          "(fewer than {})",
+          sample.cropped, sample.cloud.points.size(), kMinCropPoints);
+      skipped_.push_back(d);
+      continue;
+    }
     candidates.push_back(vote_and_cluster(sample.cloud, d, t));
     clock.lap();
     if (neighbourhoods) neighbourhoods->push_back(sample.cloud);
@@ -259,6 +332,13 @@ std::vector<Detection> Detector::detect(const DepthImage& depth, const bp_camera
 std::vector<Detection> Detector::detect(const PointCloud& input, DetectTimes* times) {
   DetectTimes t;
   Stopwatch clock;
+  skipped_.clear();
+  region_report_.clear();
+  // `auto` (the default) looks for a bin where there is an image to look in; a region asked for
+  // explicitly cannot be honoured on a cloud.
+  if (!params_.roi.empty() || (params_.bin != "none" && params_.bin != "auto"))
+    throw InputError("--roi and --bin W,D,H apply to depth images (--dataset), not to a point "
+                     "cloud");
   check_cloud(input);
   require(!input.points.empty(), "the point cloud is empty");
   PointCloud cloud = input;

@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <Eigen/Core>
@@ -43,16 +44,27 @@ struct DetectParams {
   std::uint32_t refine_iterations = 10;  // ICP steps per candidate (0: verify the voted pose)
   double verify_tolerance = 0.04;  // depth agreement of a verified model point (fraction)
   double verify_noise_factor = 3.5;  // tolerance widens to this x the noise seen (0: fixed)
+  // Where hypotheses and crops may be (bin_spec.hpp, docs/cli.md): "" (anywhere),
+  // "camera:x0,y0,z0,x1,y1,z1" or "bin:..." (mm).
+  std::string roi;
+  std::string bin = "auto";        // none, auto or the interior size "W,D,H" (mm)
+  double bin_margin = 0.1;         // the bin's walls and rim are kept out by this (fraction)
 };
 // The first parameter out of its range: its name (as in a --params file, docs/cli.md), its value
 // and the range allowed ("(0, 1]"). The caller that knows where the value came from (an option,
 // a file) names that in its message.
 struct ParamProblem {
+  ParamProblem(std::string name_, double value_, std::string range_, std::string message_ = {})
+      : name(std::move(name_)), value(value_), range(std::move(range_)),
+        message(std::move(message_)) {}
   std::string name;
   double value = 0;
   std::string range;
+  std::string message;  // a text parameter's complaint ("'x': expected ..."); then no value/range
 };
 std::optional<ParamProblem> find_param_problem(const DetectParams& params);
+// The complaint after the parameter's name: "V must be in RANGE", or a text parameter's message.
+std::string describe(const ParamProblem& problem);
 // InputError naming the parameter ("detection parameter ref-ratio ...") for a value out of range.
 void check(const DetectParams& params);
 
@@ -68,7 +80,8 @@ struct Detection {
   std::uint32_t twin = 0;           // 0: the cluster's pose; k: its k-th near-symmetric copy
                                     // (near_symmetry.hpp)
   std::uint32_t visible = 0, inliers = 0;  // model points seen at the pose, and agreeing
-  std::string reason;               // why the score is 0 or refinement stopped early
+  std::string reason;               // why the score is 0 or refinement stopped early, or why the
+                                    // hypothesis was skipped (Detector::skipped)
   // neighbourhood: points in the crop (from a depth image: pixels with data, whether or not
   // they have a normal, since normals are computed only for the points subsampling keeps).
   std::size_t neighbourhood = 0, subsampled = 0, refs = 0, peaks = 0, clusters = 0;
@@ -81,6 +94,7 @@ struct DetectTimes {
   double cluster_ms = 0;  // poses, compatibility, grouping
   double refine_ms = 0;   // refinement and verification
   std::size_t hypotheses = 0;
+  std::size_t bin_sought = 0, bin_found = 0;  // images a bin was looked for in, and found in
   StageTimings stages;    // every stage in order, for --verbose
   DetectTimes& operator+=(const DetectTimes& o);
   double total_ms() const { return prepare_ms + vote_ms + cluster_ms + refine_ms; }
@@ -119,6 +133,13 @@ class Detector {
   // times. The benchmark varies the reference ratio on these fixed crops.
   Detection detect_subsampled(const PointCloud& subsampled, DetectTimes* times = nullptr);
 
+  // Of the last detect() on a depth image: the hypotheses skipped before voting (their crop had
+  // fewer than kMinCropPoints points with normals after subsampling; score 0, no pose, the
+  // reason says why), in hypothesis order; and what --roi / --bin found (empty without them).
+  const std::vector<Detection>& skipped() const { return skipped_; }
+  const std::string& region_report() const { return region_report_; }
+  static constexpr std::size_t kMinCropPoints = 10;
+
  private:
   // Reference points, votes, clusters of a subsampled neighbourhood with normals: the best
   // `candidates` clusters, most voted first.
@@ -133,6 +154,11 @@ class Detector {
 
   ocl::Device& dev_;
   double program_build_s_ = 0;
+  std::vector<Detection> skipped_;
+  std::string region_report_;
+  // The "no bin found" warning is printed once per Detector, and only for a bin of a given size:
+  // `auto` (the default) is content to find none (DetectTimes counts the images it found one in).
+  bool warned_no_bin_ = false;
   const PpfModel& model_;
   DetectParams params_;
   DeviceModel device_model_;

@@ -34,13 +34,22 @@ void check(const HypothesisOptions& opt) {
 
 std::vector<Hypothesis> find_hypotheses(ocl::Device& dev, const ocl::Buffer<float>& points,
                                         const ocl::Buffer<float>& filtered, std::uint32_t width,
-                                        std::uint32_t height, const HypothesisOptions& opt) {
+                                        std::uint32_t height, const HypothesisOptions& opt,
+                                        const ocl::Buffer<std::uint8_t>* mask) {
   check(opt);
   const std::size_t n = std::size_t(width) * height;
   const Chunks ch = chunks_for(n);
   if (opt.count == 0 || ch.count == 0) return {};
+  if (mask && mask->size() != n)
+    throw InputError("the hypothesis mask has " + std::to_string(mask->size()) +
+                     " bytes for an image of " + std::to_string(n) + " pixels");
   ocl::Buffer<std::uint8_t> excluded(dev, n);
-  excluded.fill(dev, 0);
+  if (mask) {
+    cl::Kernel init = dev.kernel("hypotheses.cl", "hyp_exclude_masked");
+    ocl::launch(dev, init, n, *mask, cl_uint(n), excluded);
+  } else {
+    excluded.fill(dev, 0);
+  }
   ocl::Buffer<float> part_depth(dev, ch.count);
   ocl::Buffer<cl_uint> part_pixel(dev, ch.count);
   ocl::Buffer<bp_hypothesis> hyps(dev, opt.count);
@@ -66,22 +75,29 @@ std::vector<Hypothesis> find_hypotheses(ocl::Device& dev, const ocl::Buffer<floa
 
 std::vector<Hypothesis> find_hypotheses(ocl::Device& dev, const PointImage& points,
                                         const std::vector<float>& filtered,
-                                        const HypothesisOptions& opt) {
+                                        const HypothesisOptions& opt,
+                                        const std::vector<std::uint8_t>* mask) {
   check_filtered(points, filtered);
   check(opt);
   ocl::Buffer<float> p(dev, std::span<const float>(points.xyzw), CL_MEM_READ_ONLY);
   ocl::Buffer<float> f(dev, std::span<const float>(filtered), CL_MEM_READ_ONLY);
-  return find_hypotheses(dev, p, f, points.width, points.height, opt);
+  if (!mask) return find_hypotheses(dev, p, f, points.width, points.height, opt);
+  const ocl::Buffer<std::uint8_t> m(dev, std::span<const std::uint8_t>(*mask), CL_MEM_READ_ONLY);
+  return find_hypotheses(dev, p, f, points.width, points.height, opt, &m);
 }
 
 std::vector<Hypothesis> find_hypotheses_reference(const PointImage& points,
                                                   const std::vector<float>& filtered,
-                                                  const HypothesisOptions& opt) {
+                                                  const HypothesisOptions& opt,
+                                                  const std::vector<std::uint8_t>* mask) {
   check_filtered(points, filtered);
   check(opt);
   const std::size_t n = filtered.size();
+  if (mask && mask->size() != n) throw InputError("the hypothesis mask does not match the image");
   const float radius2 = opt.exclusion_radius * opt.exclusion_radius;
   std::vector<std::uint8_t> excluded(n, 0);
+  if (mask)
+    for (std::size_t i = 0; i < n; ++i) excluded[i] = (*mask)[i] ? 0 : 1;
   std::vector<Hypothesis> out;
   for (std::uint32_t k = 0; k < opt.count; ++k) {
     float best = std::numeric_limits<float>::infinity();

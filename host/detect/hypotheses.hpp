@@ -30,19 +30,24 @@ struct Hypothesis {
 void check(const HypothesisOptions& opt);
 
 // Routine: on the device, from a point image and its filtered depth (one float a pixel,
-// 0 = no data). Highest first; fewer than count when the valid pixels run out.
+// 0 = no data). Highest first; fewer than count when the valid pixels run out. With a mask (one
+// byte a pixel, scene_mask.hpp), pixels it does not keep start excluded: they never become a
+// highest point (the exclusion around each chosen point is unchanged).
 std::vector<Hypothesis> find_hypotheses(ocl::Device& dev, const PointImage& points,
                                         const std::vector<float>& filtered,
-                                        const HypothesisOptions& opt = {});
+                                        const HypothesisOptions& opt = {},
+                                        const std::vector<std::uint8_t>* mask = nullptr);
 // Reference: the same rounds in plain C++ (same float predicate: the same pixels exactly).
 std::vector<Hypothesis> find_hypotheses_reference(const PointImage& points,
                                                   const std::vector<float>& filtered,
-                                                  const HypothesisOptions& opt = {});
+                                                  const HypothesisOptions& opt = {},
+                                                  const std::vector<std::uint8_t>* mask = nullptr);
 
-// The rounds on device buffers (one read-back at the end).
+// The rounds on device buffers (one read-back at the end); mask as above (n bytes) or null.
 std::vector<Hypothesis> find_hypotheses(ocl::Device& dev, const ocl::Buffer<float>& points,
                                         const ocl::Buffer<float>& filtered, std::uint32_t width,
-                                        std::uint32_t height, const HypothesisOptions& opt);
+                                        std::uint32_t height, const HypothesisOptions& opt,
+                                        const ocl::Buffer<std::uint8_t>* mask = nullptr);
 
 // On a prepared scene: the kernels on its device buffers if it has them, else the C++ reference
 // on its host images (a scene from prepare_scene_reference). Appends the stage "hypotheses" to

@@ -117,8 +117,11 @@ std::array<std::uint32_t, 4> crop_pixel_rect(const bp_camera& cam, const CropOpt
 }
 
 CroppedPixels crop_pixels(ocl::Device& dev, const ocl::Buffer<float>& points,
-                          const bp_camera& cam, const CropOptions& opt) {
+                          const bp_camera& cam, const CropOptions& opt,
+                          const ocl::Buffer<std::uint8_t>* mask) {
   const std::array<std::uint32_t, 4> rect = crop_pixel_rect(cam, opt);
+  if (mask && mask->size() != std::size_t(cam.width) * cam.height)
+    throw InputError("the crop mask does not match the camera's image");
   CroppedPixels out;
   if (rect[2] <= rect[0] || rect[3] <= rect[1]) return out;
   const std::uint32_t rows = rect[3] - rect[1];
@@ -126,9 +129,15 @@ CroppedPixels crop_pixels(ocl::Device& dev, const ocl::Buffer<float>& points,
   const cl_float4 centre{{opt.centre.x(), opt.centre.y(), opt.centre.z(), 0.0f}};
   const float radius2 = opt.radius * opt.radius;
   ocl::Buffer<cl_uint> counts(dev, rows);
-  cl::Kernel count = dev.kernel("scene_crop.cl", "crop_rect_count");
   // Fixed work groups: the number of rows changes with every sphere (see ocl::launch_local).
-  ocl::launch_local(dev, count, rows, 8, points, cl_uint(cam.width), r, centre, radius2, counts);
+  if (mask) {
+    cl::Kernel count = dev.kernel("scene_crop.cl", "crop_rect_count_masked");
+    ocl::launch_local(dev, count, rows, 8, points, *mask, cl_uint(cam.width), r, centre, radius2,
+                      counts);
+  } else {
+    cl::Kernel count = dev.kernel("scene_crop.cl", "crop_rect_count");
+    ocl::launch_local(dev, count, rows, 8, points, cl_uint(cam.width), r, centre, radius2, counts);
+  }
   std::vector<cl_uint> offsets = counts.read(dev);
   cl_uint total = 0;
   for (cl_uint& c : offsets) {
@@ -140,9 +149,15 @@ CroppedPixels crop_pixels(ocl::Device& dev, const ocl::Buffer<float>& points,
   ocl::Buffer<cl_uint> offs(dev, std::span<const cl_uint>(offsets), CL_MEM_READ_ONLY);
   ocl::Buffer<cl_uint> out_pixels(dev, total);
   ocl::Buffer<float> out_points(dev, 4 * std::size_t(total));
-  cl::Kernel scatter = dev.kernel("scene_crop.cl", "crop_rect_scatter");
-  ocl::launch_local(dev, scatter, rows, 8, points, cl_uint(cam.width), r, centre, radius2, offs,
-                    out_pixels, out_points);
+  if (mask) {
+    cl::Kernel scatter = dev.kernel("scene_crop.cl", "crop_rect_scatter_masked");
+    ocl::launch_local(dev, scatter, rows, 8, points, *mask, cl_uint(cam.width), r, centre,
+                      radius2, offs, out_pixels, out_points);
+  } else {
+    cl::Kernel scatter = dev.kernel("scene_crop.cl", "crop_rect_scatter");
+    ocl::launch_local(dev, scatter, rows, 8, points, cl_uint(cam.width), r, centre, radius2, offs,
+                      out_pixels, out_points);
+  }
   out.pixels = out_pixels.read(dev);
   const std::vector<float> p = out_points.read(dev);
   out.points.reserve(total);
@@ -150,14 +165,17 @@ CroppedPixels crop_pixels(ocl::Device& dev, const ocl::Buffer<float>& points,
   return out;
 }
 
-CroppedPixels crop_pixels_reference(const PointImage& points, const CropOptions& opt) {
+CroppedPixels crop_pixels_reference(const PointImage& points, const CropOptions& opt,
+                                    const std::vector<std::uint8_t>* mask) {
   check_point_image(points);
   check(opt);
+  if (mask && mask->size() != std::size_t(points.width) * points.height)
+    throw InputError("the crop mask does not match the point image");
   const float radius2 = opt.radius * opt.radius;
   CroppedPixels out;
   for (std::size_t i = 0; i < std::size_t(points.width) * points.height; ++i) {
     const float* p = &points.xyzw[4 * i];
-    if (p[3] == 0.0f ||
+    if ((mask && !(*mask)[i]) || p[3] == 0.0f ||
         !(bp_dist2(p[0], p[1], p[2], opt.centre.x(), opt.centre.y(), opt.centre.z()) <= radius2))
       continue;
     out.pixels.push_back(std::uint32_t(i));

@@ -49,10 +49,13 @@ struct CroppedPixels {
 std::array<std::uint32_t, 4> crop_pixel_rect(const bp_camera& cam, const CropOptions& opt);
 
 // Routine: scans only crop_pixel_rect (kernels crop_rect_count/scatter); points float4 a pixel
-// of a cam.width x cam.height image on the device.
+// of a cam.width x cam.height image on the device. With a "may be used" mask (one byte a pixel,
+// scene_mask.hpp; kernels crop_rect_count/scatter_masked) only the pixels it keeps.
 CroppedPixels crop_pixels(ocl::Device& dev, const ocl::Buffer<float>& points,
-                          const bp_camera& cam, const CropOptions& opt);
+                          const bp_camera& cam, const CropOptions& opt,
+                          const ocl::Buffer<std::uint8_t>* mask = nullptr);
 // Reference: the whole image, plain C++.
-CroppedPixels crop_pixels_reference(const PointImage& points, const CropOptions& opt);
+CroppedPixels crop_pixels_reference(const PointImage& points, const CropOptions& opt,
+                                    const std::vector<std::uint8_t>* mask = nullptr);
 
 }  // namespace binpick

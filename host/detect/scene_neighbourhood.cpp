@@ -72,12 +72,13 @@ std::vector<std::uint32_t> extremes(const PointCloud& s) {
 
 NeighbourhoodSample sample_neighbourhood(const PreparedScene& scene, const CropOptions& crop,
                                          const NormalOptions& normal_opt, float voxel_size,
-                                         StageTimings* timings) {
+                                         StageTimings* timings,
+                                         const ocl::Buffer<std::uint8_t>* mask) {
   if (!scene.device) throw InputError("sample_neighbourhood needs a scene on the device");
   check(normal_opt);
   auto& dev = *scene.device->dev;
   Stopwatch clock;
-  const CroppedPixels c = crop_pixels(dev, scene.device->points, scene.camera, crop);
+  const CroppedPixels c = crop_pixels(dev, scene.device->points, scene.camera, crop, mask);
   if (timings) timings->push_back({"crop", clock.lap()});
 
   NeighbourhoodSample out;
@@ -139,15 +140,22 @@ NeighbourhoodSample sample_neighbourhood(const PreparedScene& scene, const CropO
 NeighbourhoodSample sample_neighbourhood_reference(const PointImage& points,
                                                    const CropOptions& crop,
                                                    const NormalOptions& normal_opt,
-                                                   float voxel_size) {
-  const PointImage normals = normals_from_points_reference(points, normal_opt);
+                                                   float voxel_size,
+                                                   const std::vector<std::uint8_t>* mask) {
+  PointImage normals = normals_from_points_reference(points, normal_opt);
+  if (mask) {
+    if (mask->size() != std::size_t(points.width) * points.height)
+      throw InputError("the neighbourhood mask does not match the point image");
+    for (std::size_t i = 0; i < mask->size(); ++i)
+      if (!(*mask)[i]) normals.xyzw[4 * i + 3] = 0.0f;  // crop_sphere drops it
+  }
   CropOptions with_normals = crop;
   with_normals.require_normals = true;
   NeighbourhoodSample out;
   out.cloud = voxel_subsample_reference(crop_sphere_reference(points, normals, with_normals),
                                         voxel_size)
                   .cloud;
-  out.cropped = crop_pixels_reference(points, crop).pixels.size();
+  out.cropped = crop_pixels_reference(points, crop, mask).pixels.size();
   out.normals = std::size_t(points.width) * points.height;
   out.rounds = 1;
   return out;

@@ -35,15 +35,20 @@ struct NeighbourhoodSample {
 inline constexpr std::size_t kLazyNormalRounds = 3;
 
 // Routine: on a prepared scene on the device (normals not needed). Appends the stages "crop",
-// "subsample" and "normals" to timings if given.
+// "subsample" and "normals" to timings if given. With a "may be used" mask (scene_mask.hpp) only
+// the pixels it keeps enter the crop; normals are still fitted to every measured point near a
+// kept one (a part's normal next to the bin's wall is the part's, whatever the mask says).
 NeighbourhoodSample sample_neighbourhood(const PreparedScene& scene, const CropOptions& crop,
                                          const NormalOptions& normals, float voxel_size,
-                                         StageTimings* timings = nullptr);
+                                         StageTimings* timings = nullptr,
+                                         const ocl::Buffer<std::uint8_t>* mask = nullptr);
 
-// Reference: all normals of the image, crop_sphere_reference, voxel_subsample_reference.
+// Reference: all normals of the image, crop_sphere_reference, voxel_subsample_reference; with a
+// mask, the masked pixels' normals are dropped before the crop.
 NeighbourhoodSample sample_neighbourhood_reference(const PointImage& points,
                                                    const CropOptions& crop,
                                                    const NormalOptions& normals,
-                                                   float voxel_size);
+                                                   float voxel_size,
+                                                   const std::vector<std::uint8_t>* mask = nullptr);
 
 }  // namespace binpick

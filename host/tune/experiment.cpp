@@ -122,7 +122,7 @@ ExperimentResult run_experiment(const Model& part, const ExperimentOptions& o, s
   for (double noise : o.noise) {
     const BatchSummary b = detect_to_csv(detector, model, dataset_dir(o, noise), results_csv(o, noise));
     log << fmt::format("detect {}: {}\n", results_csv(o, noise).string(), summary_line(b)) << std::flush;
-    inputs.push_back({dataset_dir(o, noise), results_csv(o, noise)});
+    inputs.push_back({dataset_dir(o, noise), results_csv(o, noise), {}});
   }
   r.detect_s = seconds_since(start);
 

@@ -15,8 +15,11 @@ constexpr double kMaxStepDivision = 20.0;
 }  // namespace
 
 BinWorld::BinWorld(const DropOptions& options, const PartShape& part)
+    : BinWorld(options, std::vector<const PartShape*>{&part}) {}
+
+BinWorld::BinWorld(const DropOptions& options, std::vector<const PartShape*> kinds)
     : options_(options),
-      part_(part),
+      kinds_(std::move(kinds)),
       // Bullet multiplies the two bodies' coefficients of a contact.
       rolling_friction_(btScalar(std::sqrt(options.rolling_friction_mm / kMmPerUnit))),
       rest_(options.rest_linear_speed_mm_s / kMmPerUnit, options.rest_angular_speed_rad_s,
@@ -27,17 +30,29 @@ BinWorld::BinWorld(const DropOptions& options, const PartShape& part)
   // thresholds this long; the same duration as our own rest test. (A process-wide global.)
   gDeactivationTime = btScalar(options.rest_seconds);
 
-  const btVector3 half = to_units(options.bin_size_mm) * btScalar(0.5);
-  const btScalar t = kWallThickness;
-  // The floor reaches well past the walls, so a part thrown out lands and comes to rest
-  // (and is reported) instead of falling forever.
-  add_static_box(btVector3(3 * half.x() + t, 3 * half.y() + t, t / 2), btVector3(0, 0, -t / 2));
-  for (const btScalar side : {btScalar(-1), btScalar(1)}) {
-    add_static_box(btVector3(t / 2, half.y() + t, half.z()),
-                   btVector3(side * (half.x() + t / 2), 0, half.z()));
-    add_static_box(btVector3(half.x() + t, t / 2, half.z()),
-                   btVector3(0, side * (half.y() + t / 2), half.z()));
+  thinnest_mm_ = INFINITY;
+  for (const PartShape* k : kinds_) {
+    largest_radius_mm_ = std::max(largest_radius_mm_, k->bounding_radius_mm());
+    thinnest_mm_ = std::min(thinnest_mm_, k->thinnest_mm());
   }
+
+  const auto bin = bin_of(options);
+  if (bin->boxes.empty()) {
+    add_static_mesh(bin->mesh);
+  } else {
+    for (const Eigen::AlignedBox3d& box : bin->boxes)
+      add_static_box(to_units(Eigen::Vector3d(box.sizes() / 2)),
+                     to_units(Eigen::Vector3d(box.center())));
+  }
+  // The ground under the bin reaches well past it, so a part thrown out lands and comes to
+  // rest (and is reported) instead of falling forever. The camera does not see it.
+  const btVector3 lo = to_units(Eigen::Vector3d(bin->bounds.min()));
+  const btVector3 hi = to_units(Eigen::Vector3d(bin->bounds.max()));
+  const btVector3 reach = (hi - lo) * btScalar(1.5) + btVector3(10, 10, 0);
+  const btScalar g = kGroundThickness;
+  add_static_box(btVector3(reach.x(), reach.y(), g / 2),
+                 btVector3((lo.x() + hi.x()) / 2, (lo.y() + hi.y()) / 2, lo.z() - g / 2));
+  lost_below_ = lo.z() - g;
 }
 
 BinWorld::~BinWorld() {
@@ -47,8 +62,24 @@ BinWorld::~BinWorld() {
 }
 
 void BinWorld::add_static_box(const btVector3& half_extents, const btVector3& centre) {
-  box_shapes_.push_back(std::make_unique<btBoxShape>(half_extents));
-  btRigidBody::btRigidBodyConstructionInfo info(0, nullptr, box_shapes_.back().get());
+  static_shapes_.push_back(std::make_unique<btBoxShape>(half_extents));
+  add_static(static_shapes_.back().get(), centre);
+}
+
+void BinWorld::add_static_mesh(const Mesh& mesh) {
+  for (const auto& p : mesh.positions)
+    for (int k = 0; k < 3; ++k) mesh_vertices_.push_back(float(p[k] / kMmPerUnit));
+  for (const auto& t : mesh.triangles)
+    for (const std::uint32_t i : t) mesh_indices_.push_back(int(i));
+  mesh_arrays_ = std::make_unique<btTriangleIndexVertexArray>(
+      int(mesh.triangles.size()), mesh_indices_.data(), int(3 * sizeof(int)),
+      int(mesh.positions.size()), mesh_vertices_.data(), int(3 * sizeof(float)));
+  static_shapes_.push_back(std::make_unique<btBvhTriangleMeshShape>(mesh_arrays_.get(), true));
+  add_static(static_shapes_.back().get(), btVector3(0, 0, 0));
+}
+
+void BinWorld::add_static(btCollisionShape* shape, const btVector3& centre) {
+  btRigidBody::btRigidBodyConstructionInfo info(0, nullptr, shape);
   info.m_startWorldTransform.setIdentity();
   info.m_startWorldTransform.setOrigin(centre);
   info.m_friction = btScalar(options_.friction);
@@ -58,9 +89,9 @@ void BinWorld::add_static_box(const btVector3& half_extents, const btVector3& ce
   world_.addRigidBody(static_bodies_.back().get());
 }
 
-btRigidBody* BinWorld::add_part(const btTransform& body_pose) {
-  btRigidBody::btRigidBodyConstructionInfo info(1, nullptr, part_.shape(),
-                                                part_.inertia_per_mass());
+btRigidBody* BinWorld::add_part(const btTransform& body_pose, int kind) {
+  const PartShape& part = shape(kind);
+  btRigidBody::btRigidBodyConstructionInfo info(1, nullptr, part.shape(), part.inertia_per_mass());
   info.m_startWorldTransform = body_pose;
   info.m_friction = btScalar(options_.friction);
   info.m_restitution = btScalar(options_.restitution);
@@ -71,6 +102,7 @@ btRigidBody* BinWorld::add_part(const btTransform& body_pose) {
   btRigidBody* body = part_bodies_.back().get();
   body->setUserIndex(static_cast<int>(parts_.size()));
   parts_.push_back(body);
+  kinds_of_parts_.push_back(kind);
   rest_.add();
   world_.addRigidBody(body);
   return body;
@@ -78,13 +110,13 @@ btRigidBody* BinWorld::add_part(const btTransform& body_pose) {
 
 double BinWorld::next_step_length() const {
   // Fastest point of any moving part: centre speed plus spin times radius.
-  const double radius = part_.bounding_radius_mm() / kMmPerUnit;
   double fastest = 0.0;
   for (const btRigidBody* body : parts_)
     if (body->isInWorld() && body->isActive() && !body->isStaticObject())
       fastest = std::max(fastest, double(body->getLinearVelocity().length()) +
-                                      body->getAngularVelocity().length() * radius);
-  const double travel = options_.step_travel * part_.thinnest_mm() / kMmPerUnit;
+                                      body->getAngularVelocity().length() *
+                                          shape(kind(*body)).bounding_radius_mm() / kMmPerUnit);
+  const double travel = options_.step_travel * thinnest_mm_ / kMmPerUnit;
   const double longest = options_.time_step_s;
   if (fastest * longest <= travel) return longest;
   return std::max(travel / fastest, longest / kMaxStepDivision);
@@ -121,7 +153,7 @@ void BinWorld::freeze(btRigidBody* body) {
 
 void BinWorld::thaw(btRigidBody* body) {
   world_.removeRigidBody(body);
-  body->setMassProps(1, part_.inertia_per_mass());  // also clears the static flag
+  body->setMassProps(1, shape(kind(*body)).inertia_per_mass());  // also clears the static flag
   body->updateInertiaTensor();
   world_.addRigidBody(body);
   body->activate(true);

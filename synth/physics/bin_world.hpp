@@ -1,5 +1,7 @@
-// The Bullet world of one bin: gravity, a static floor and four thick walls, and the part
-// bodies with their rest tracking. Owns everything Bullet needs and tears it down in order.
+// The Bullet world of one bin: gravity, the static bin (synth/bin/bin_model.hpp: the boxes of
+// the built-in bin, or a triangle mesh), a ground under it that catches parts thrown out, and
+// the part bodies (one or several kinds) with their rest tracking. Owns everything Bullet needs
+// and tears it down in order.
 #pragma once
 
 #include <btBulletDynamicsCommon.h>
@@ -15,16 +17,18 @@ namespace binpick {
 
 class BinWorld {
  public:
-  // Walls and floor this thick (units) stop any part that moves less than this per step.
-  static constexpr btScalar kWallThickness = 20;
+  // The ground under the bin is this thick (units): a part below it tunnelled through.
+  static constexpr btScalar kGroundThickness = 20;
 
   BinWorld(const DropOptions& options, const PartShape& part);
+  // kinds: the shapes of the kinds of part (outlive the world), at least one.
+  BinWorld(const DropOptions& options, std::vector<const PartShape*> kinds);
   ~BinWorld();
   BinWorld(const BinWorld&) = delete;
   BinWorld& operator=(const BinWorld&) = delete;
 
-  // A dynamic part released at rest at `body_pose` (principal frame -> world, units).
-  btRigidBody* add_part(const btTransform& body_pose);
+  // A dynamic part of `kind` released at rest at `body_pose` (principal frame -> world, units).
+  btRigidBody* add_part(const btTransform& body_pose, int kind = 0);
   // Advances the simulation by one step and returns its length (s): time_step_s, shorter
   // while a part moves fast enough to pass through another (see DropOptions::step_travel).
   double step();
@@ -45,25 +49,40 @@ class BinWorld {
 
   // Every part added, in order.
   const std::vector<btRigidBody*>& parts() const { return parts_; }
+  int kind(const btRigidBody& body) const {
+    return kinds_of_parts_[std::size_t(body.getUserIndex())];
+  }
   btDispatcher& dispatcher() { return dispatcher_; }
-  const PartShape& part() const { return part_; }
+  const PartShape& shape(int kind) const { return *kinds_[std::size_t(kind)]; }
+  // Of the largest kind, mm.
+  double largest_radius_mm() const { return largest_radius_mm_; }
+  // A part whose centre of mass is below this (units) fell through the ground.
+  btScalar lost_below() const { return lost_below_; }
 
  private:
+  void add_static(btCollisionShape* shape, const btVector3& centre);
   void add_static_box(const btVector3& half_extents, const btVector3& centre);
+  void add_static_mesh(const Mesh& mesh);
   double next_step_length() const;
 
   const DropOptions options_;
-  const PartShape& part_;
+  const std::vector<const PartShape*> kinds_;
+  double largest_radius_mm_ = 0, thinnest_mm_ = 0;
+  btScalar lost_below_ = 0;
   const btScalar rolling_friction_;  // per body, also spinning friction
   btDefaultCollisionConfiguration collision_configuration_;
   btCollisionDispatcher dispatcher_{&collision_configuration_};
   btDbvtBroadphase broadphase_;
   btSequentialImpulseConstraintSolver solver_;
   btDiscreteDynamicsWorld world_{&dispatcher_, &broadphase_, &solver_, &collision_configuration_};
-  std::vector<std::unique_ptr<btBoxShape>> box_shapes_;
+  std::vector<std::unique_ptr<btCollisionShape>> static_shapes_;
+  std::vector<float> mesh_vertices_;   // units; the triangle mesh shape reads them in place
+  std::vector<int> mesh_indices_;
+  std::unique_ptr<btTriangleIndexVertexArray> mesh_arrays_;
   std::vector<std::unique_ptr<btRigidBody>> static_bodies_;
   std::vector<std::unique_ptr<btRigidBody>> part_bodies_;
   std::vector<btRigidBody*> parts_;
+  std::vector<int> kinds_of_parts_;  // by user index
   RestTracker rest_;  // indexed by a part body's user index = its index in parts_ (bin: -1)
 };
 

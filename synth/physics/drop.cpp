@@ -8,6 +8,7 @@
 #include <random>
 #include <string>
 
+#include "host/core/error.hpp"
 #include "host/core/timing.hpp"
 #include "synth/physics/bin_world.hpp"
 #include "synth/physics/bullet_units.hpp"
@@ -99,7 +100,7 @@ class BinDrop {
     int moving = 0;
     for (btRigidBody* body : world_.parts()) {
       if (!body->isInWorld()) continue;
-      if (body->getCenterOfMassPosition().z() < -BinWorld::kWallThickness)
+      if (body->getCenterOfMassPosition().z() < world_.lost_below())
         world_.remove(body);  // tunnelled through the floor: it would fall forever
       else if (!world_.at_rest(*body))
         ++moving;
@@ -117,12 +118,37 @@ class BinDrop {
 
 }  // namespace
 
+std::shared_ptr<const BinModel> bin_of(const DropOptions& options) {
+  if (options.bin) return options.bin;
+  return std::make_shared<const BinModel>(built_in_bin(options.bin_size_mm, options.walls));
+}
+
 DropResult drop_parts(const ConvexParts& hulls, const Mesh& part, const DropOptions& options,
                       const ProgressFn& progress) {
+  const std::vector<int> one_kind(std::size_t(std::max(options.objects, 0)), 0);
+  return drop_parts({DropKind{&hulls, &part}}, one_kind, options, progress);
+}
+
+DropResult drop_parts(const std::vector<DropKind>& kinds, const std::vector<int>& sequence,
+                      const DropOptions& options, const ProgressFn& progress) {
   validate_drop_options(options);
-  const PartShape shape(hulls, mass_properties(part));
-  const double radius_mm = shape.bounding_radius_mm();
-  BinWorld world(options, shape);
+  if (kinds.empty()) throw InputError("no kind of part to drop");
+  if (sequence.size() != std::size_t(options.objects))
+    throw InputError("the drop sequence names " + std::to_string(sequence.size()) + " parts for " +
+                     std::to_string(options.objects) + " objects");
+  for (const int k : sequence)
+    if (k < 0 || std::size_t(k) >= kinds.size())
+      throw InputError("the drop sequence names an unknown kind");
+  std::vector<std::unique_ptr<PartShape>> shapes;
+  std::vector<const PartShape*> shape_list;
+  double radius_mm = 0.0;
+  for (const DropKind& k : kinds) {
+    if (!k.hulls || !k.mesh) throw InputError("a kind of part without hulls or mesh");
+    shapes.push_back(std::make_unique<PartShape>(*k.hulls, mass_properties(*k.mesh)));
+    shape_list.push_back(shapes.back().get());
+    radius_mm = std::max(radius_mm, shapes.back()->bounding_radius_mm());
+  }
+  BinWorld world(options, shape_list);
   std::mt19937_64 rng(options.seed);
 
   DropResult result;
@@ -139,7 +165,7 @@ DropResult drop_parts(const ConvexParts& hulls, const Mesh& part, const DropOpti
       Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
       pose.linear() = uniform_rotation(rng).toRotationMatrix();
       pose.translation() = at;
-      world.add_part(to_units(pose));
+      world.add_part(to_units(pose), sequence[world.parts().size()]);
     }
     drop.settle(wave, options.freeze_resting, "wave " + std::to_string(wave + 1));
   }
@@ -154,14 +180,15 @@ DropResult drop_parts(const ConvexParts& hulls, const Mesh& part, const DropOpti
       drop.settle(stats.waves - 1, true, "the final settling");
   }
 
-  const Eigen::Isometry3d part_in_body = shape.body_in_part().inverse();
   for (const btRigidBody* body : world.parts()) {
     const Eigen::Isometry3d body_pose = to_mm(body->getWorldTransform());
     if (!body->isInWorld() || !inside_bin(body_pose.translation(), options.bin_size_mm)) {
       ++stats.parts_left_bin;
       continue;
     }
-    result.poses.push_back(body_pose * part_in_body);
+    const int kind = world.kind(*body);
+    result.poses.push_back(body_pose * shapes[std::size_t(kind)]->body_in_part().inverse());
+    result.kinds.push_back(kind);
   }
   if (stats.parts_left_bin > 0)
     append_message(stats.message, std::to_string(stats.parts_left_bin) +

@@ -7,10 +7,12 @@
 #include <Eigen/Geometry>
 #include <cstdint>
 #include <functional>
+#include <memory>
 #include <string>
 #include <vector>
 
 #include "host/core/mesh.hpp"
+#include "synth/bin/bin_model.hpp"
 #include "synth/decompose/convex_parts.hpp"
 
 namespace binpick {
@@ -19,6 +21,11 @@ namespace binpick {
 // quickly (bench/programs/bench_synth_physics.cpp).
 struct DropOptions {
   Eigen::Vector3d bin_size_mm{600.0, 400.0, 300.0};  // interior: x width, y depth, z wall height
+  // The bin the parts collide with (synth/bin/bin_model.hpp): `bin` if set (a mesh bin), else
+  // the built-in bin with these walls around bin_size_mm. The interior (bin_size_mm) places
+  // the drop positions and decides which parts ended in the bin either way.
+  BinWalls walls;
+  std::shared_ptr<const BinModel> bin;
   int objects = 350;
   int grid_x = 7;                 // drop positions along x per wave
   int grid_y = 5;                 // along y; a wave is grid_x * grid_y parts, the last partial
@@ -91,8 +98,20 @@ struct DropStats {
 
 struct DropResult {
   std::vector<Eigen::Isometry3d> poses;  // part frame -> world, mm; one per part in the bin
+  std::vector<int> kinds;                // per pose: which of the dropped kinds it is
   DropStats stats;
 };
+
+// One kind of part in a mixed drop: its hulls collide, its closed mesh (mm) gives mass, centre
+// of mass and inertia.
+struct DropKind {
+  const ConvexParts* hulls = nullptr;
+  const Mesh* mesh = nullptr;
+};
+
+// The bin the options describe (DropOptions::bin, or the built-in bin). Throws InputError for
+// bad walls.
+std::shared_ptr<const BinModel> bin_of(const DropOptions& options);
 
 // Throws InputError for a bin, count, grid, height, speed or time that is not positive and
 // finite, or a part too large for the grid of drop positions.
@@ -103,5 +122,11 @@ void validate_drop_options(const DropOptions& options);
 // only with the same rest_seconds (Bullet's deactivation time is a process-wide global).
 DropResult drop_parts(const ConvexParts& hulls, const Mesh& part, const DropOptions& options,
                       const ProgressFn& progress = {});
+
+// Several kinds of part in one pile: the k-th part released is kinds[sequence[k]], with
+// sequence.size() == options.objects. Waves are spaced for the largest kind. With one kind and
+// sequence all 0, the same bin as drop_parts, bit for bit.
+DropResult drop_parts(const std::vector<DropKind>& kinds, const std::vector<int>& sequence,
+                      const DropOptions& options, const ProgressFn& progress = {});
 
 }  // namespace binpick

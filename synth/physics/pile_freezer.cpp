@@ -46,7 +46,7 @@ FreezeCounts update_frozen_parts(BinWorld& world) {
   for (const btRigidBody* body : world.parts())
     if (hit.count(body) > 0 && body->isInWorld())
       hit_centres.push_back(body->getCenterOfMassPosition());
-  const btScalar reach = btScalar(2 * world.part().bounding_radius_mm() / kMmPerUnit);
+  const btScalar reach = btScalar(2 * world.largest_radius_mm() / kMmPerUnit);
 
   FreezeCounts counts;
   for (btRigidBody* body : world.parts()) {

@@ -102,7 +102,8 @@ GBufferOutput bin_gbuffer_reference(const GBufferInput& in, const GBufferParams&
       const std::size_t i = std::size_t(v) * p.width + u;
       const std::uint32_t id = in.ids[i];
       const float b = in.zbuffer[i];
-      if (id == 0 || id > p.instance_count || !(b >= 0.0f && b < 1.0f)) continue;
+      const bool is_static = id == kStaticSurfaceId;
+      if (id == 0 || (id > p.instance_count && !is_static) || !(b >= 0.0f && b < 1.0f)) continue;
       const float z = p.near_mm * p.far_mm / (p.far_mm + b * (p.near_mm - p.far_mm));
       const Eigen::Vector3f ray((float(u) - p.cx) / p.fx, (float(v) - p.cy) / p.fy, 1.0f);
       const Eigen::Vector3f to_camera = -ray.normalized();
@@ -123,6 +124,7 @@ GBufferOutput bin_gbuffer_reference(const GBufferInput& in, const GBufferParams&
       }
       const float intensity = kAmbient + (1.0f - kAmbient) * std::max(normal.dot(to_camera), 0.0f);
       out.gray[i] = std::uint8_t(std::min(std::floor(255.0f * intensity + 0.5f), 255.0f));
+      if (is_static) continue;  // a surface, but no part's
       out.instance[i] = std::int32_t(id) - 1;
       out.visible.add(id - 1, int(u), int(v));
     }

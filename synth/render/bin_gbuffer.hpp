@@ -24,8 +24,11 @@ struct GBufferParams {
 GBufferParams gbuffer_params(const RenderCamera& camera, double noise_sigma_mm, std::uint64_t seed,
                              std::uint32_t instance_count);
 
+// The id of a surface that belongs to no part (the bin): shaded, instance -1, counted for none.
+inline constexpr std::uint32_t kStaticSurfaceId = 0xffffffffu;
+
 // The attachments as read back: a pixel is a surface where 0 <= zbuffer < 1 and
-// 1 <= id <= instance_count (id = part + 1, 0 = background).
+// 1 <= id <= instance_count (id = part + 1, 0 = background) or id = kStaticSurfaceId.
 struct GBufferInput {
   std::vector<float> zbuffer;          // 1 a pixel, row-major
   std::vector<std::uint32_t> ids;      // 1 a pixel

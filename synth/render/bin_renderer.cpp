@@ -18,6 +18,8 @@ double ms_since(Clock::time_point start) {
   return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
 }
 
+std::vector<Mesh> checked_parts(const std::vector<Mesh>& parts);
+
 Mesh checked_part(const Mesh& part) {
   if (part.triangles.empty()) throw InputError("cannot render a part mesh without triangles");
   for (const auto& t : part.triangles)
@@ -28,6 +30,13 @@ Mesh checked_part(const Mesh& part) {
                      std::to_string(part.positions.size()) +
                      " vertices (compute_crease_normals gives a mesh its normals)");
   return part;
+}
+
+std::vector<Mesh> checked_parts(const std::vector<Mesh>& parts) {
+  if (parts.empty()) throw InputError("cannot render a bin without a part mesh");
+  std::vector<Mesh> out;
+  for (const Mesh& m : parts) out.push_back(checked_part(m));
+  return out;
 }
 
 void check_poses(const std::vector<Eigen::Isometry3d>& poses) {
@@ -50,8 +59,12 @@ struct BinRenderer::Device {
   BinRaster raster;
   GBufferStage gbuffer;
   CoverageStage coverage;
-  Device(vkrt::Context& c, const Mesh& part, const RenderCamera& camera, bool cull)
-      : ctx(c), raster(c, part, camera, cull), gbuffer(c, camera.width, camera.height), coverage(c) {}
+  Device(vkrt::Context& c, const std::vector<Mesh>& parts, const BinModel* bin,
+         const RenderCamera& camera, bool cull)
+      : ctx(c),
+        raster(c, parts, bin ? &bin->mesh : nullptr, bin && bin->double_sided, camera, cull),
+        gbuffer(c, camera.width, camera.height),
+        coverage(c) {}
 };
 
 BinRenderer::BinRenderer(const Mesh& part, const RenderCamera& camera, bool cull_back_faces)
@@ -59,23 +72,42 @@ BinRenderer::BinRenderer(const Mesh& part, const RenderCamera& camera, bool cull
 
 BinRenderer::BinRenderer(const Mesh& part, const RenderCamera& camera, bool cull_back_faces,
                          vkrt::Context& ctx)
-    : camera_(camera), part_(checked_part(part)) {
+    : BinRenderer(std::vector<Mesh>{part}, nullptr, camera, cull_back_faces, ctx) {}
+
+BinRenderer::BinRenderer(const std::vector<Mesh>& parts, const BinModel* bin,
+                         const RenderCamera& camera, bool cull_back_faces)
+    : BinRenderer(parts, bin, camera, cull_back_faces, vkrt::Context::shared()) {}
+
+BinRenderer::BinRenderer(const std::vector<Mesh>& parts, const BinModel* bin,
+                         const RenderCamera& camera, bool cull_back_faces, vkrt::Context& ctx)
+    : camera_(camera), parts_(checked_parts(parts)) {
   check_camera(camera);
-  device_ = std::make_unique<Device>(ctx, part_, camera_, cull_back_faces);
+  if (bin && bin->mesh.normals.size() != bin->mesh.positions.size())
+    throw InputError("the bin mesh needs per-vertex normals");
+  device_ = std::make_unique<Device>(ctx, parts_, bin, camera_, cull_back_faces);
 }
 
 BinRenderer::~BinRenderer() = default;
 
 RenderedBin BinRenderer::render(const std::vector<Eigen::Isometry3d>& part_to_camera,
                                 const RenderOptions& options) {
+  return render_scene(RenderScene{part_to_camera, {}, std::nullopt}, options);
+}
+
+RenderedBin BinRenderer::render_scene(const RenderScene& scene, const RenderOptions& options) {
+  const auto& part_to_camera = scene.part_to_camera;
   check_poses(part_to_camera);
+  if (scene.world_to_camera && !scene.world_to_camera->matrix().allFinite())
+    throw InputError("the bin's pose is not finite");
   const auto parts = std::uint32_t(part_to_camera.size());
+  const std::vector<int> kinds = scene.kinds.empty() ? std::vector<int>(parts, 0) : scene.kinds;
   Device& d = *device_;
   timings_ = {};
 
   auto start = Clock::now();
-  const vkrt::Buffer instances = d.raster.instance_buffer(part_to_camera);
-  d.raster.draw_scene(instances, parts);
+  const RasterInstances instances =
+      d.raster.instances(part_to_camera, kinds, scene.world_to_camera);
+  d.raster.draw_scene(instances);
   timings_.raster_ms = ms_since(start);
 
   start = Clock::now();
@@ -103,7 +135,8 @@ RenderedBin BinRenderer::render(const std::vector<Eigen::Isometry3d>& part_to_ca
   if (!options.count_unoccluded) return out;
   start = Clock::now();
   std::vector<PixelRect> rects(parts);
-  for (std::uint32_t i = 0; i < parts; ++i) rects[i] = projected_rect(part_, part_to_camera[i], camera_);
+  for (std::uint32_t i = 0; i < parts; ++i)
+    rects[i] = projected_rect(parts_[std::size_t(kinds[i])], part_to_camera[i], camera_);
   PartPixelBuffers alone(d.ctx, parts);
   std::vector<std::array<int, 2>> shifts(parts, {0, 0});
   for (const AtlasBatch& batch : pack_atlas(rects, d.raster.atlas_width(), d.raster.atlas_height())) {

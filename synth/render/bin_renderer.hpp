@@ -1,18 +1,22 @@
-// Rendering a synthetic bin as the sensor sees it (paper, section III-A): all parts in one
-// instanced Vulkan raster pass into a z-buffer, a part-id and a normal attachment, then a
-// compute pass to depth (equation 1), points, normals, intensity and per-part visible pixels;
-// optionally each part alone (tiles of an atlas, one more pass) for its unoccluded pixels.
-// Only parts are drawn, not the bin (as in the paper's figure 2).
+// Rendering a synthetic bin as the sensor sees it (paper, section III-A): all parts (one
+// instanced draw per kind of part) and the bin itself in one Vulkan raster pass into a
+// z-buffer, a part-id and a normal attachment, then a compute pass to depth (equation 1),
+// points, normals, intensity and per-part visible pixels; optionally each part alone (tiles of
+// an atlas, one more pass) for its unoccluded pixels. The bin's pixels are surfaces like any
+// other (depth, intensity) but belong to no part: instance -1, counted for none. Without a bin
+// mesh only the parts are drawn (as in the paper's figure 2).
 #pragma once
 
 #include <array>
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <vector>
 
 #include <Eigen/Geometry>
 
 #include "host/core/mesh.hpp"
+#include "synth/bin/bin_model.hpp"
 #include "synth/render/bin_camera.hpp"
 
 namespace binpick {
@@ -49,8 +53,16 @@ struct RenderTimings {
   double coverage_ms = 0;  // atlas packing, passes and bin_coverage.comp (px_all)
 };
 
-// Pipelines, attachments and buffers for one part mesh and one camera, reused across renders
-// (building them compiles shaders: keep a renderer for a series of bins).
+// What one render shows: the parts (poses and kinds) and where the bin is.
+struct RenderScene {
+  std::vector<Eigen::Isometry3d> part_to_camera;  // mm
+  std::vector<int> kinds;                         // per part, its mesh; empty: all the first
+  // The bin mesh is in the world frame: world -> camera places it. None: no bin is drawn.
+  std::optional<Eigen::Isometry3d> world_to_camera;
+};
+
+// Pipelines, attachments and buffers for the part meshes, the bin and one camera, reused across
+// renders (building them compiles shaders: keep a renderer for a series of bins).
 class BinRenderer {
  public:
   // Throws InputError for a mesh without triangles or per-vertex normals, or an unusable
@@ -59,19 +71,27 @@ class BinRenderer {
   // pass false for an open or inconsistently wound mesh.
   explicit BinRenderer(const Mesh& part, const RenderCamera& camera, bool cull_back_faces = true);
   BinRenderer(const Mesh& part, const RenderCamera& camera, bool cull_back_faces, vkrt::Context& ctx);
+  // Several kinds of part (kind k = parts[k]) and the bin (none: parts only). The bin is drawn
+  // with back faces culled only if it is closed (not double_sided).
+  BinRenderer(const std::vector<Mesh>& parts, const BinModel* bin, const RenderCamera& camera,
+              bool cull_back_faces = true);
+  BinRenderer(const std::vector<Mesh>& parts, const BinModel* bin, const RenderCamera& camera,
+              bool cull_back_faces, vkrt::Context& ctx);
   ~BinRenderer();
   BinRenderer(const BinRenderer&) = delete;
   BinRenderer& operator=(const BinRenderer&) = delete;
 
+  // Parts of the first kind, no bin.
   RenderedBin render(const std::vector<Eigen::Isometry3d>& part_to_camera,
                      const RenderOptions& options = {});
+  RenderedBin render_scene(const RenderScene& scene, const RenderOptions& options = {});
   const RenderTimings& last_timings() const { return timings_; }
   const RenderCamera& camera() const { return camera_; }
 
  private:
   struct Device;  // the Vulkan objects (bin_renderer.cpp)
   RenderCamera camera_;
-  Mesh part_;
+  std::vector<Mesh> parts_;
   std::unique_ptr<Device> device_;
   RenderTimings timings_;
 };

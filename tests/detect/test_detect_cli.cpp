@@ -259,6 +259,66 @@ TEST_F(DetectCli, BadInputGetsOneClearMessage) {
   make_dataset(*dir_ / "data", 3);
 }
 
+// --roi, --bin and --bin-margin: malformed, inverted, NaN or meaningless values get one clear
+// message naming the option (or the --params file's key) and exit 2; --bin auto on images with no
+// bin warns once and detects in the whole image; --verbose says what the mask kept.
+TEST_F(DetectCli, BinAndRoiOptions) {
+  const std::string data = (*dir_ / "data").string(), out = (*dir_ / "bin.csv").string();
+  const std::string base = fmt::format("detect --model {} --dataset {} --out {} ", model_, data, out);
+  struct Case { std::string args, message; };
+  const std::vector<Case> cases = {
+      {"--roi camera:1,2,3", "--roi 'camera:1,2,3': not six finite numbers"},
+      {"--roi camera:0,0,0,-1,1,1", "inverted along x"},
+      {"--roi camera:0,0,0,1,1,nan", "--roi"},
+      {"--roi camera:0,0,0,1,1,inf", "--roi"},
+      {"--roi box:0,0,0,1,1,1", "unknown frame 'box'"},
+      {"--roi 0,0,0,1,1,1", "--roi"},
+      {"--roi bin:0,0,0,1,1,1 --bin none", "needs --bin auto"},
+      {"--bin maybe", "--bin 'maybe': expected none, auto or"},
+      {"--bin 600,400", "--bin"},
+      {"--bin 600,0,300", "--bin"},
+      {"--bin-margin -1", "--bin-margin -1 must be in [0, 10]"},
+      {"--bin-margin nan", "--bin-margin"},
+  };
+  for (const Case& c : cases) {
+    const auto r = test::run_binpick(base + c.args);
+    EXPECT_EQ(r.status, 2) << c.args << "\n" << r.err;
+    EXPECT_NE(r.err.find(c.message), std::string::npos) << c.args << "\n" << r.err;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << c.args << "\n" << r.err;
+  }
+  // The same through a --params file, named by the file and the key.
+  const fs::path params = *dir_ / "bin_params.json";
+  for (const auto& [json, message] : std::vector<std::pair<std::string, std::string>>{
+           {R"({"bin": "sometimes"})", "bin_params.json: bin 'sometimes'"},
+           {R"({"roi": 5})", "'roi' must be a string"},
+           {R"({"roi": "camera:0,0,0,1,1,0"})", "bin_params.json: roi"},
+           {R"({"bin_margin": "big"})", "must be a number"}}) {
+    { std::ofstream(params) << json; }
+    const auto r = test::run_binpick(base + "--params " + params.string());
+    EXPECT_EQ(r.status, 2) << json << "\n" << r.err;
+    EXPECT_NE(r.err.find(message), std::string::npos) << json << "\n" << r.err;
+  }
+  // A bracket over a floor: no bin. `auto` (the default) says so in --verbose and in the
+  // summary, without a warning; a bin of a given size that is not there: one warning for the
+  // three images. Results as usual.
+  auto r = test::run_binpick(base + "--bin auto --hypotheses 2 --verbose");
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_EQ(r.err.find("warning: no bin found"), std::string::npos) << r.err;
+  EXPECT_NE(r.out.find("bin: not found"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("a bin found in 0 of 3 images"), std::string::npos) << r.out;
+  EXPECT_FALSE(bop::read_results_csv(out).empty());
+  r = test::run_binpick(base + "--bin 600,400,300 --hypotheses 2");
+  ASSERT_EQ(r.status, 0) << r.err;
+  std::size_t warnings = 0;
+  for (std::size_t at = 0; (at = r.err.find("warning: no bin found", at)) != std::string::npos; ++at)
+    ++warnings;
+  EXPECT_EQ(warnings, 1u) << r.err;
+  // A camera-frame ROI that leaves only the part's neighbourhood: --verbose says what it kept.
+  r = test::run_binpick(base + "--roi camera:-100,-100,500,100,100,640 --hypotheses 2 --verbose");
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.out.find("pixels with depth may be used"), std::string::npos) << r.out;
+}
+
 TEST(ResultsCsv, RoundTripsAndValidates) {
   const auto dir = test::fresh_temp_dir("results_csv");
   bop::ResultRow a;

@@ -159,6 +159,8 @@ TEST(DetectSynthBins, TopVotedHypothesisIsRightInMostBins) {
 // deterministic and the floors, set just under what was measured when they were written, catch a
 // drop at once. "Right" as in the report's loose operating point: within 10 % of the diameter
 // and 15 degrees of a part (symmetric poses equal).
+// The paper's scene (the bin not rendered): realistic bins are measured by `binpick run` (a
+// sparse layer of thin parts on a visible floor is still weak, docs/parameters.md).
 TEST(DetectSynthBins, NoisyBinsOfEveryPartKeepTheirPrecision) {
   int top_right = 0, images = 0, all_right = 0, hypotheses = 0;
   std::string report;
@@ -166,7 +168,8 @@ TEST(DetectSynthBins, NoisyBinsOfEveryPartKeepTheirPrecision) {
     const auto dir = test::fresh_temp_dir("detect_noisy_" + name);
     std::vector<bop::ResultRow> rows;
     ASSERT_NO_FATAL_FAILURE(
-        synth_train_detect(name, dir, "--bins 3 --objects 35 --noise 0.02 --seed 5", rows));
+        synth_train_detect(name, dir, "--bins 3 --objects 35 --noise 0.02 --seed 5 --bin-render none",
+                           rows));
     const Model part = cli::load_part({"builtin:" + name, {}});
     const double d = builtin_part_nominal_diameter(name);
     int part_top = 0, part_all = 0;

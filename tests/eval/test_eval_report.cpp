@@ -94,7 +94,7 @@ TEST(EvalReport, WritesEveryFileAndReferencesThem) {
   ReportOptions options;
   options.out = dir / "report";
   options.pictures = 1;
-  const auto evaluations = evaluate_inputs({{dir / "ds", dir / "ds.csv"}}, options.eval);
+  const auto evaluations = evaluate_inputs({{dir / "ds", dir / "ds.csv", {}}}, options.eval);
   ASSERT_EQ(evaluations.size(), 1u);
   EXPECT_EQ(evaluations[0].dataset.label, "ds");
   EXPECT_NEAR(evaluations[0].summary.loose.top, 1.0, 1e-12);
@@ -171,7 +171,7 @@ TEST(EvalReport, VoteCountScoresAreAWarningNotAPlot) {
   ReportOptions options;
   options.out = dir / "report";
   options.pictures = 0;
-  const auto evaluations = evaluate_inputs({{dir / "ds", dir / "ds.csv"}}, options.eval);
+  const auto evaluations = evaluate_inputs({{dir / "ds", dir / "ds.csv", {}}}, options.eval);
   const ReportFiles files = write_report(evaluations, options);
   ASSERT_FALSE(files.warnings.empty());
   EXPECT_EQ(files.warnings[0].rfind("ds: 3 of 3 scores are outside [0, 1] (highest 900)", 0), 0u)
@@ -194,7 +194,7 @@ TEST(EvalReport, CurvesAreOrderedAndLabelledByNoise) {
   write_toy_dataset(dir / "clean", 0.0);
   bop::write_results_csv(dir / "r.csv", toy_results());
   const auto evaluations =
-      evaluate_inputs({{dir / "noisy", dir / "r.csv"}, {dir / "clean", dir / "r.csv"}});
+      evaluate_inputs({{dir / "noisy", dir / "r.csv", {}}, {dir / "clean", dir / "r.csv", {}}});
   ASSERT_EQ(evaluations.size(), 2u);
   EXPECT_EQ(evaluations[0].dataset.label, "sigma 0 % of d");
   EXPECT_EQ(evaluations[1].dataset.label, "sigma 3 % of d");

@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <cstdlib>
+#include <algorithm>
 #include <random>
 
 #include "host/core/error.hpp"
@@ -20,12 +21,14 @@ const bool validation_on = [] { return setenv("BINPICK_VK_VALIDATION", "1", 1) =
 
 GBufferInput random_input(std::uint32_t w, std::uint32_t h, std::uint32_t parts, std::mt19937& rng) {
   std::uniform_real_distribution<float> b01(0.0f, 1.0f), n11(-1.0f, 1.0f);
-  std::uniform_int_distribution<std::uint32_t> id(0, parts + 2);  // some ids out of range
+  // Some ids out of range (background), some the bin's (a surface of no part).
+  std::uniform_int_distribution<std::uint32_t> id(0, parts + 3);
   const std::size_t n = std::size_t(w) * h;
   GBufferInput in{std::vector<float>(n), std::vector<std::uint32_t>(n), std::vector<float>(4 * n)};
   for (std::size_t i = 0; i < n; ++i) {
     in.zbuffer[i] = b01(rng);
     in.ids[i] = id(rng);
+    if (in.ids[i] == parts + 3) in.ids[i] = kStaticSurfaceId;
     for (int k = 0; k < 4; ++k) in.raster_normals[4 * i + k] = n11(rng);
   }
   in.zbuffer[0] = 1.0f;                       // the far plane: background whatever the id
@@ -72,9 +75,14 @@ TEST(BinGBuffer, BackgroundIsZeroAndSurfaceIsLit) {
   const GBufferInput in = random_input(40, 30, 3, rng);
   RenderCamera cam{40, 30, 100.0, 100.0, 19.5, 14.5, 350.0, 1050.0};
   const auto out = bin_gbuffer(in, gbuffer_params(cam, 0.0, 0, 3));
+  std::size_t bin_pixels = 0;
   for (std::size_t i = 0; i < in.ids.size(); ++i) {
-    const bool surface = in.ids[i] >= 1 && in.ids[i] <= 3 && in.zbuffer[i] < 1.0f;
-    EXPECT_EQ(out.instance[i] >= 0, surface) << i;
+    const bool part = in.ids[i] >= 1 && in.ids[i] <= 3 && in.zbuffer[i] < 1.0f;
+    const bool bin = in.ids[i] == kStaticSurfaceId && in.zbuffer[i] < 1.0f;
+    const bool surface = part || bin;
+    bin_pixels += bin;
+    EXPECT_EQ(out.instance[i] >= 0, part) << i;  // the bin's pixels are no part's
+    EXPECT_EQ(out.depth_mm[i] > 0, surface) << i;
     if (!surface) {
       EXPECT_EQ(out.depth_mm[i], 0.0f);
       EXPECT_EQ(out.gray[i], 0);
@@ -88,6 +96,12 @@ TEST(BinGBuffer, BackgroundIsZeroAndSurfaceIsLit) {
       EXPECT_LE(n.dot(p), 0.0f);  // faces the camera
     }
   }
+  EXPECT_GT(bin_pixels, 0u);
+  // Visible counts are the parts' pixels alone.
+  std::uint32_t counted = 0;
+  for (const std::uint32_t c : out.visible.count) counted += c;
+  EXPECT_EQ(counted, std::size_t(std::count_if(out.instance.begin(), out.instance.end(),
+                                               [](std::int32_t i) { return i >= 0; })));
 }
 
 TEST(BinNoise, IsStandardNormalAndSeeded) {

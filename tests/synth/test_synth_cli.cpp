@@ -37,7 +37,9 @@ TEST(SynthCli, HelpNamesTheOptions) {
   const auto r = test::run_binpick("synth --help");
   ASSERT_EQ(r.status, 0) << r.err;
   for (const char* option : {"--model", "--out", "--bins", "--objects", "--seed", "--noise",
-                             "--bin-size", "--grid", "--final-settle", "--max-wall-seconds"})
+                             "--bin-size", "--grid", "--final-settle", "--max-wall-seconds",
+                             "--bin-render", "--bin-wall", "--bin-rim", "--bin-mesh",
+                             "--distractors", "--intrinsics", "--camera-tilt"})
     EXPECT_NE(r.out.find(option), std::string::npos) << option;
 }
 
@@ -46,7 +48,17 @@ TEST(SynthCli, BadOptionsFailWithOneMessageAndWriteNothing) {
   const fs::path out = dir.path / "data";
   for (const std::string extra : {"--bins 0", "--objects 0", "--noise -1", "--noise nan",
                                   "--width 5", "--bin-size 1,2", "--seed x", "--drop-height -5",
-                                  "--camera-height 10", "--grid 0,5"}) {
+                                  "--camera-height 10", "--grid 0,5",
+                                  // the bin, the distractors and the camera
+                                  "--bin-render half", "--bin-wall 0", "--bin-rim -1",
+                                  "--bin-wall nan", "--bin-mesh /nonexistent/bin.ply",
+                                  "--distractors ,builtin:bolt", "--distractors builtin:bolt,",
+                                  "--distractors builtin:bolt:1.5", "--distractors builtin:bolt:0",
+                                  "--distractors builtin:bolt:nan",
+                                  "--distractors builtin:bolt:0.6,builtin:tee:0.5",
+                                  "--distractors builtin:nosuch", "--camera-tilt nan",
+                                  "--camera-tilt 95", "--intrinsics 1,2,3",
+                                  "--intrinsics -5,5,1,1", "--intrinsics 5,5,nan,1"}) {
     const auto r = test::run_binpick(synth_args(out, dir.path / "cache", extra));
     EXPECT_EQ(r.status, 2) << extra;  // CLI11's parse errors too (--seed x, --bin-size 1,2)
     EXPECT_FALSE(r.err.empty()) << extra;

@@ -1,0 +1,246 @@
+#include "host/detect/bin_fit.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <numbers>
+#include <stdexcept>
+
+#include <Eigen/Geometry>
+#include <fmt/format.h>
+
+#include "host/detect/bin_planes.hpp"
+#include "host/detect/bin_rim.hpp"
+
+namespace binpick {
+namespace {
+
+constexpr double kDeg = std::numbers::pi / 180.0;
+
+double quantile(std::vector<double> xs, double q) {
+  const std::size_t k = std::min(xs.size() - 1, std::size_t(q * double(xs.size() - 1)));
+  std::nth_element(xs.begin(), xs.begin() + std::ptrdiff_t(k), xs.end());
+  return xs[k];
+}
+
+// The fraction of the image a plane's inliers span (5th to 95th percentile), the smaller of
+// the two directions: a floor or a rim spans much of the view, a part's face does not.
+double image_span(const PlaneSamples& s, const FoundPlane& p) {
+  std::vector<double> u, v;
+  for (std::uint32_t i : p.inliers) u.push_back(s.u[i]), v.push_back(s.v[i]);
+  return std::min((quantile(u, 0.95) - quantile(u, 0.05)) / s.width,
+                  (quantile(v, 0.95) - quantile(v, 0.05)) / s.height);
+}
+
+// The focal length (pixels) seen in the samples: neighbours in a row differ by stride pixels and
+// by stride / f in x / z. The median over the row pairs.
+double focal_estimate(const PlaneSamples& s) {
+  std::vector<double> f;
+  for (std::size_t i = 0; i + 1 < s.points.size(); ++i) {
+    if (s.v[i] != s.v[i + 1]) continue;
+    const double a = s.points[i].x() / s.points[i].z(), b = s.points[i + 1].x() / s.points[i + 1].z();
+    if (b - a > 1e-9) f.push_back(double(s.u[i + 1] - s.u[i]) / (b - a));
+  }
+  return f.empty() ? 1e9 : quantile(f, 0.5);
+}
+
+}  // namespace
+
+double BinFit::floor_d() const { return -axes.col(2).dot(origin); }
+
+double BinFit::tilt_degrees() const {
+  return std::acos(std::clamp(-axes(2, 2), -1.0, 1.0)) / kDeg;
+}
+
+BinFit fit_bin(ocl::Device& dev, const std::vector<float>& xyzw, std::uint32_t width,
+               std::uint32_t height, const BinFitOptions& opt) {
+  BinFit bin;
+  if (opt.spec.mode == BinSpec::Mode::none) throw std::logic_error("fit_bin: no bin asked for");
+  const PlaneSamples s = sample_points(xyzw, width, height);
+  bin.samples = s.points.size();
+  if (s.points.size() < 100) {
+    bin.why = "too few points with depth";
+    return bin;
+  }
+  std::vector<double> z;
+  for (const auto& p : s.points) z.push_back(p.z());
+  bin.tol = opt.tol > 0 ? opt.tol : std::max(2.0, 0.003 * quantile(z, 0.5));
+
+  PlaneSearch ps;
+  ps.tol = float(bin.tol);
+  ps.seed = opt.seed;
+  const std::vector<FoundPlane> planes = find_planes(dev, s, ps);
+  bin.planes = planes.size();
+  Eigen::Vector3d up(0, 0, -1);
+  std::size_t best = 0;
+  for (const FoundPlane& p : planes)
+    if (p.normal.z() <= -std::cos(60 * kDeg) && p.inliers.size() > best &&
+        image_span(s, p) >= 0.25) {
+      best = p.inliers.size();
+      up = p.normal;
+    }
+  Eigen::Vector3d e1 = Eigen::Vector3d::UnitX() - up.x() * up;
+  if (e1.norm() < 1e-6) e1 = Eigen::Vector3d::UnitY() - up.y() * up;
+  e1.normalize();
+  const Eigen::Vector3d e2 = up.cross(e1);
+
+  RimOptions ro;
+  ro.tol = bin.tol;
+  ro.focal = focal_estimate(s);
+  const RimFit rim = fit_rim(s, up, e1, e2, ro);
+  if (!rim.found) {
+    bin.why = rim.why;
+    return bin;
+  }
+  bin.rim_points = rim.points;
+  const Eigen::Vector3d a1 = std::cos(rim.angle) * e1 + std::sin(rim.angle) * e2;
+  const Eigen::Vector3d a2 = up.cross(a1);
+  const Eigen::Vector3d axis[2] = {a1, a2};
+  std::array<double, 4> edge = rim.edge;
+  // A side of the frame out of view (a tilted camera) or hidden: with a given size, the other
+  // side's edge plus that size; else the nearest wall plane beyond the edge seen.
+  const bool sized = opt.spec.mode == BinSpec::Mode::sized;
+  for (int k = 0; k < 2; ++k) {
+    const bool lo = rim.seen[2 * k], hi = rim.seen[2 * k + 1];
+    if (lo && hi) continue;
+    const int known = lo ? 2 * k : 2 * k + 1, missing = lo ? 2 * k + 1 : 2 * k;
+    const double dir = lo ? 1.0 : -1.0;  // from the edge seen toward the one missing
+    if (sized) {
+      const int other = 1 - k;
+      if (!rim.seen[2 * other] || !rim.seen[2 * other + 1]) {
+        bin.why = "two sides of the rim are out of view";
+        return bin;
+      }
+      // The given size nearer the complete axis' is that axis'; this one gets the other.
+      const double seen_other = edge[2 * other + 1] - edge[2 * other];
+      const double w = opt.spec.size.x(), d = opt.spec.size.y();
+      edge[missing] = edge[known] + dir * (std::abs(w - seen_other) < std::abs(d - seen_other) ? d : w);
+      continue;
+    }
+    double nearest = INFINITY;
+    for (const FoundPlane& p : planes) {
+      if (std::abs(p.normal.dot(up)) > std::sin(10 * kDeg) ||
+          std::abs(p.normal.dot(axis[k])) < std::cos(10 * kDeg))
+        continue;
+      std::vector<double> c;
+      for (std::uint32_t i : p.inliers) c.push_back(axis[k].dot(s.points[i].cast<double>()));
+      const double beyond = dir * (quantile(c, 0.5) - edge[known]);
+      if (beyond > 4 * bin.tol && beyond < nearest) nearest = beyond;
+    }
+    if (!std::isfinite(nearest)) {
+      bin.why = "a side of the rim is out of view and no wall plane was found in its place";
+      return bin;
+    }
+    edge[missing] = edge[known] + dir * nearest;
+  }
+  const double inside_share = share_inside(s, up, a1, a2, rim.height, edge, bin.tol);
+  if (inside_share > kMaxInsideShare) {
+    bin.why = fmt::format(
+        "the structure at the highest height along the border is not a frame ({:.0f} % of the "
+        "points at its height lie inside it)",
+        100.0 * inside_share);
+    return bin;
+  }
+  const Eigen::Vector2d size(edge[1] - edge[0], edge[3] - edge[2]);
+  const Eigen::Vector2d centre(0.5 * (edge[0] + edge[1]), 0.5 * (edge[2] + edge[3]));
+  Eigen::Vector3d x = a1, y = a2;
+  double long_side = size.x(), short_side = size.y();
+  if (size.y() > size.x()) {
+    x = a2, y = -a1;
+    std::swap(long_side, short_side);
+  }
+  if (x.x() < 0) x = -x, y = -y;
+
+  // The floor: below the rim, inside the rim's rectangle.
+  const auto inside = [&](const Eigen::Vector3d& p) {
+    const double q1 = a1.dot(p), q2 = a2.dot(p);
+    return q1 >= edge[0] && q1 <= edge[1] && q2 >= edge[2] && q2 <= edge[3];
+  };
+  double floor_h = 0;
+  if (opt.spec.mode == BinSpec::Mode::sized) {
+    floor_h = rim.height - opt.spec.size.z();
+  } else {
+    std::size_t most = 0;
+    for (const FoundPlane& p : planes) {
+      if (p.normal.dot(up) < std::cos(5 * kDeg)) continue;
+      double sum = 0;
+      std::size_t count = 0;
+      for (std::uint32_t i : p.inliers) {
+        const Eigen::Vector3d q = s.points[i].cast<double>();
+        if (!inside(q)) continue;
+        sum += up.dot(q);
+        ++count;
+      }
+      if (count < 50 || count <= most || sum / double(count) > rim.height - 3 * bin.tol) continue;
+      most = count;
+      floor_h = sum / double(count);
+      bin.floor_plane = true;
+    }
+    if (!bin.floor_plane) {
+      std::vector<double> h;
+      for (const auto& p : s.points)
+        if (inside(p.cast<double>())) h.push_back(up.dot(p.cast<double>()));
+      if (h.size() < 20) {
+        bin.why = "no points inside the rim";
+        return bin;
+      }
+      floor_h = quantile(h, 0.01);
+    }
+  }
+  if (!(rim.height - floor_h > std::max(3 * bin.tol, opt.min_height))) {
+    bin.why = fmt::format("the rim found is only {:.1f} mm over the floor (a bin needs {:.1f})",
+                          rim.height - floor_h, std::max(3 * bin.tol, opt.min_height));
+    return bin;
+  }
+  bin.found = true;
+  bin.axes.col(0) = x;
+  bin.axes.col(1) = y;
+  bin.axes.col(2) = up;
+  bin.origin = centre.x() * a1 + centre.y() * a2 + floor_h * up;
+  bin.measured = {long_side, short_side, rim.height - floor_h};
+  if (opt.spec.mode == BinSpec::Mode::sized)
+    bin.interior = {std::max(opt.spec.size.x(), opt.spec.size.y()),
+                    std::min(opt.spec.size.x(), opt.spec.size.y()), opt.spec.size.z()};
+  else
+    bin.interior = bin.measured;
+  return bin;
+}
+
+RegionBox bin_interior_box(const BinFit& bin, double margin, double above) {
+  RegionBox b;
+  b.R = bin.axes.transpose().cast<float>();
+  b.t = bin.origin.cast<float>();
+  b.lo = Eigen::Vector3d(-0.5 * bin.interior.x() + margin, -0.5 * bin.interior.y() + margin,
+                         -margin).cast<float>();
+  b.hi = Eigen::Vector3d(0.5 * bin.interior.x() - margin, 0.5 * bin.interior.y() - margin,
+                         bin.interior.z() + above).cast<float>();
+  return b;
+}
+
+RegionBox roi_box(const RoiSpec& roi, const BinFit* bin) {
+  RegionBox b;
+  if (roi.frame == RoiSpec::Frame::bin) {
+    if (!bin || !bin->found) throw std::logic_error("roi_box: a bin-frame ROI without a bin");
+    b.R = bin->axes.transpose().cast<float>();
+    b.t = bin->origin.cast<float>();
+  }
+  b.lo = roi.lo.cast<float>();
+  b.hi = roi.hi.cast<float>();
+  return b;
+}
+
+std::string describe(const BinFit& bin) {
+  if (!bin.found) return "bin: not found (" + bin.why + ")";
+  const Eigen::Vector3d up = bin.axes.col(2);
+  return fmt::format(
+      "bin: interior {:.1f} x {:.1f} x {:.1f} mm (seen inside the rim: {:.1f} x {:.1f}), rim "
+      "{:.1f} mm above the floor; floor {} up . p + {:.1f} = 0 with up ({:.4f}, {:.4f}, {:.4f}), "
+      "tilted {:.1f} deg from the optical axis; floor centre ({:.1f}, {:.1f}, {:.1f}) mm; {} "
+      "samples, {} planes, {} rim points, tolerance {:.1f} mm",
+      bin.interior.x(), bin.interior.y(), bin.interior.z(), bin.measured.x(), bin.measured.y(),
+      bin.interior.z(), bin.floor_plane ? "plane" : "(not seen as a plane)", bin.floor_d(),
+      up.x(), up.y(), up.z(), bin.tilt_degrees(), bin.origin.x(), bin.origin.y(), bin.origin.z(),
+      bin.samples, bin.planes, bin.rim_points, bin.tol);
+}
+
+}  // namespace binpick

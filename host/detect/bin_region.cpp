@@ -1,0 +1,55 @@
+#include "host/detect/bin_region.hpp"
+
+#include <algorithm>
+
+#include <fmt/format.h>
+
+#include "host/core/error.hpp"
+#include "host/detect/scene_lowpass.hpp"
+
+namespace binpick {
+
+SceneRegionMask apply_region(PreparedScene& scene, const RegionSetup& setup, int lowpass_radius,
+                             StageTimings* timings) {
+  SceneRegionMask out;
+  if (!setup.wanted()) return out;
+  if (!scene.device) throw InputError("apply_region needs a scene on the device");
+  ocl::Device& dev = *scene.device->dev;
+  const std::size_t n = std::size_t(scene.width) * scene.height;
+  Stopwatch clock;
+  SceneRegion region;
+  if (setup.bin.mode != BinSpec::Mode::none) {
+    BinFitOptions bo;
+    bo.spec = setup.bin;
+    bo.min_height = setup.min_height;
+    out.bin = fit_bin(dev, scene.device->points.read(dev), scene.width, scene.height, bo);
+    out.report = describe(*out.bin);
+    if (out.bin->found) {
+      region.bin = bin_interior_box(*out.bin, setup.margin, setup.above);
+    } else {
+      out.warning = fmt::format("no bin found ({}); detecting in the whole image{}", out.bin->why,
+                                setup.roi && setup.roi->frame == RoiSpec::Frame::bin
+                                    ? ", without the bin-frame --roi"
+                                    : "");
+    }
+    if (timings) timings->push_back({"bin fit", clock.lap()});
+  }
+  if (setup.roi && (setup.roi->frame == RoiSpec::Frame::camera || region.bin))
+    region.roi = roi_box(*setup.roi, out.bin ? &*out.bin : nullptr);
+  if (!region.active()) return out;
+
+  out.mask.emplace(scene_mask(dev, scene.device->points, n, region));
+  {
+    ocl::Buffer<float> kept(dev, 4 * n), row_sums(dev, 2 * n);
+    enqueue_masked_points(dev, scene.device->points, *out.mask, n, kept);
+    enqueue_lowpass_depth(dev, kept, scene.width, scene.height, lowpass_radius, row_sums,
+                          scene.device->filtered);
+    ocl::finish(dev);
+  }
+  const std::vector<std::uint8_t> m = out.mask->read(dev);
+  out.kept = std::size_t(std::count(m.begin(), m.end(), std::uint8_t(1)));
+  if (timings) timings->push_back({"mask", clock.lap()});
+  return out;
+}
+
+}  // namespace binpick

@@ -1,0 +1,42 @@
+// The region detection may use in one depth image (--roi, --bin): fits the bin if one is asked
+// for (bin_fit.hpp), builds the "may be used" mask on the device (scene_mask.hpp) and recomputes
+// the scene's low-pass range image from the kept points only, so that the highest points, the
+// crops and the votes see nothing outside the region. Verification still sees every measured
+// point (a pose that runs into the bin's wall is seen through, as it should be).
+#pragma once
+
+#include <cstddef>
+#include <optional>
+#include <string>
+
+#include "host/core/timing.hpp"
+#include "host/detect/bin_fit.hpp"
+#include "host/detect/bin_spec.hpp"
+#include "host/detect/scene_mask.hpp"
+#include "host/detect/scene_prepare.hpp"
+
+namespace binpick {
+
+struct RegionSetup {
+  std::optional<RoiSpec> roi;
+  BinSpec bin;
+  double margin = 0;  // mm, the bin's walls and rim kept out by this much
+  double above = 0;   // mm, the interior reaches this far over the rim
+  double min_height = 0;  // mm, a shallower "bin" is not one (BinFitOptions::min_height)
+  bool wanted() const { return roi.has_value() || bin.mode != BinSpec::Mode::none; }
+};
+
+struct SceneRegionMask {
+  std::optional<ocl::Buffer<std::uint8_t>> mask;  // none: the whole image may be used
+  std::optional<BinFit> bin;                      // when one was asked for
+  std::string report;   // for --verbose: the bin found and the pixels kept
+  std::string warning;  // the bin asked for was not found (the whole image is used, or the ROI)
+  std::size_t kept = 0;  // pixels the mask keeps (when there is one)
+};
+
+// On a scene prepared on the device (prepare_scene): its `filtered` buffer is replaced by the
+// low-pass of the kept points when a mask is made. Appends "bin fit" and "mask" to timings.
+SceneRegionMask apply_region(PreparedScene& scene, const RegionSetup& setup, int lowpass_radius,
+                             StageTimings* timings = nullptr);
+
+}  // namespace binpick

@@ -1,0 +1,222 @@
+#include "host/detect/bin_rim.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+namespace binpick {
+namespace {
+
+struct Histogram {
+  double lo = 0, width = 1;
+  std::vector<double> count;
+  int bin(double x) const { return int(std::floor((x - lo) / width)); }
+  double left(int k) const { return lo + width * k; }
+};
+
+Histogram histogram(const std::vector<double>& xs, double width) {
+  Histogram h;
+  h.width = width;
+  if (xs.empty()) return h;
+  const auto [mn, mx] = std::minmax_element(xs.begin(), xs.end());
+  h.lo = *mn - width;
+  h.count.assign(std::size_t((*mx - h.lo) / width) + 2, 0.0);
+  for (double x : xs) h.count[std::size_t(h.bin(x))] += 1;
+  return h;
+}
+
+double sharpness(const Histogram& h) {
+  double s = 0;
+  for (double c : h.count) s += c * c;
+  return s;
+}
+
+double quantile(std::vector<double> xs, double q) {
+  const std::size_t k = std::min(xs.size() - 1, std::size_t(q * double(xs.size() - 1)));
+  std::nth_element(xs.begin(), xs.begin() + std::ptrdiff_t(k), xs.end());
+  return xs[k];
+}
+
+// The frame's two sides along one axis: the inner edge of each, and whether it is there.
+struct Sides {
+  bool lo_seen = false, hi_seen = false;
+  double lo = 0, hi = 0;
+  double mid = 0;  // the split between the two sides
+};
+
+// share: a side's bins hold at least this fraction of its peak; gap: empty bins allowed (0, 1);
+// judge: a side must stand out of the median count (only where the other axis' sides spread
+// evenly over the histogram, i.e. in the coarse pass). mid: the split between the sides, NaN to
+// take the middle of the points (the fine pass takes the coarse one's: with a side out of view
+// its own middle would split the other side).
+Sides find_sides(const std::vector<double>& xs, double width, double half_spacing, double share,
+                 int gap, bool judge, double mid) {
+  Sides out;
+  if (xs.size() < 10) return out;
+  const Histogram h = histogram(xs, width);
+  if (std::isnan(mid)) mid = 0.5 * (quantile(xs, 0.02) + quantile(xs, 0.98));
+  out.mid = mid;
+  const int n = int(h.count.size()), m = std::clamp(h.bin(mid), 0, n - 1);
+  std::vector<double> nonzero;
+  for (double c : h.count)
+    if (c > 0) nonzero.push_back(c);
+  const double background = quantile(nonzero, 0.5);
+  int lo = 0, hi = n - 1;
+  for (int k = 0; k <= m && k < n; ++k)
+    if (h.count[k] > h.count[lo]) lo = k;
+  for (int k = n - 1; k > m && k >= 0; --k)
+    if (h.count[k] > h.count[hi]) hi = k;
+  const auto real = [&](int k) {
+    return h.count[k] >= std::max(3.0, judge ? 4.0 * background : 0.0);
+  };
+  out.lo_seen = lo < m && real(lo);
+  out.hi_seen = hi > m && real(hi);
+  // Walk inward over a side's bins (a gap allowed: the samples are about a bin apart, and an
+  // oblique rim is sparse); the edge is the innermost point of the run.
+  if (out.lo_seen) {
+    const double thr = std::max(1.0, share * h.count[lo]);
+    int a = lo;
+    while (true) {
+      if (a + 1 < m && h.count[a + 1] >= thr) ++a;
+      else if (gap > 0 && a + 2 < m && h.count[a + 2] >= thr) a += 2;
+      else break;
+    }
+    out.lo = h.left(lo);
+    for (double x : xs)
+      if (h.bin(x) >= lo && h.bin(x) <= a) out.lo = std::max(out.lo, x);
+    // The true edge lies between the innermost sample and the next one inward, which is not
+    // on the rim: half a sample spacing in, on average.
+    out.lo += half_spacing;
+  }
+  if (out.hi_seen) {
+    const double thr = std::max(1.0, share * h.count[hi]);
+    int b = hi;
+    while (true) {
+      if (b - 1 > m && h.count[b - 1] >= thr) --b;
+      else if (gap > 0 && b - 2 > m && h.count[b - 2] >= thr) b -= 2;
+      else break;
+    }
+    out.hi = h.left(hi + 1);
+    for (double x : xs)
+      if (h.bin(x) >= b && h.bin(x) <= hi) out.hi = std::min(out.hi, x);
+    out.hi -= half_spacing;
+  }
+  return out;
+}
+
+}  // namespace
+
+RimFit fit_rim(const PlaneSamples& s, const Eigen::Vector3d& up, const Eigen::Vector3d& e1,
+               const Eigen::Vector3d& e2, const RimOptions& opt) {
+  RimFit rim;
+  const double bw = opt.band * s.width, bh = opt.band * s.height;
+  const auto side_mask = [&](std::size_t i) {
+    return (s.u[i] < bw ? 1 : 0) | (s.u[i] >= s.width - bw ? 2 : 0) | (s.v[i] < bh ? 4 : 0) |
+           (s.v[i] >= s.height - bh ? 8 : 0);
+  };
+  std::vector<std::size_t> band;
+  std::vector<double> heights;
+  for (std::size_t i = 0; i < s.points.size(); ++i)
+    if (side_mask(i)) {
+      band.push_back(i);
+      heights.push_back(up.dot(s.points[i].cast<double>()));
+    }
+  if (band.size() < 50) {
+    rim.why = "too few points with depth along the image border";
+    return rim;
+  }
+  const Histogram h = histogram(heights, opt.tol);
+  const int n = int(h.count.size());
+  std::vector<double> smooth(n, 0);
+  for (int k = 0; k < n; ++k)
+    for (int j = std::max(0, k - 1); j <= std::min(n - 1, k + 1); ++j) smooth[k] += h.count[j];
+  const double biggest = *std::max_element(smooth.begin(), smooth.end());
+  // A low bar (the ground around a bin can hold most of the border): the sides test decides.
+  const double floor_count = std::max({0.03 * biggest, 0.01 * double(band.size()), 20.0});
+  std::vector<std::size_t> on_rim;
+  for (int k = n - 1; k >= 0 && !rim.found; --k) {
+    const bool peak = (k == 0 || smooth[k] >= smooth[k - 1]) &&
+                      (k == n - 1 || smooth[k] > smooth[k + 1]);
+    if (!peak || smooth[k] < floor_count) continue;
+    const double centre = h.left(k) + 0.5 * h.width;
+    on_rim.clear();
+    double sum = 0;
+    int sides[4] = {0, 0, 0, 0};
+    for (std::size_t j = 0; j < band.size(); ++j)
+      if (std::abs(heights[j] - centre) <= 1.5 * opt.tol) {
+        on_rim.push_back(band[j]);
+        sum += heights[j];
+        for (int b = 0; b < 4; ++b) sides[b] += (side_mask(band[j]) >> b) & 1;
+      }
+    const double side_need = std::max(5.0, 0.05 * double(on_rim.size()));
+    int covered = 0;
+    for (int b = 0; b < 4; ++b) covered += sides[b] >= side_need;
+    if (covered < 3) continue;
+    rim.found = true;
+    rim.height = sum / double(on_rim.size());
+    rim.points = on_rim.size();
+  }
+  if (!rim.found) {
+    rim.why = "no structure at one height runs along three sides of the image border";
+    return rim;
+  }
+
+  std::vector<double> x(on_rim.size()), y(on_rim.size());
+  for (std::size_t j = 0; j < on_rim.size(); ++j) {
+    const Eigen::Vector3d p = s.points[on_rim[j]].cast<double>();
+    x[j] = e1.dot(p), y[j] = e2.dot(p);
+  }
+  const double width = std::max(opt.tol, 4.0);
+  double best = -1;
+  std::vector<double> xr(x.size()), yr(y.size());
+  for (int step = 0; step < 180; ++step) {
+    const double a = step * 0.5 * std::numbers::pi / 180.0, c = std::cos(a), sn = std::sin(a);
+    for (std::size_t j = 0; j < x.size(); ++j) xr[j] = c * x[j] + sn * y[j], yr[j] = -sn * x[j] + c * y[j];
+    const double score = sharpness(histogram(xr, width)) + sharpness(histogram(yr, width));
+    if (score > best) best = score, rim.angle = a;
+  }
+  const double c = std::cos(rim.angle), sn = std::sin(rim.angle);
+  for (std::size_t j = 0; j < x.size(); ++j) xr[j] = c * x[j] + sn * y[j], yr[j] = -sn * x[j] + c * y[j];
+  // Coarse sides first; then each side's edge from the points off the other axis' sides (a
+  // corner's points belong to both, and the other sides' points run up to the edge).
+  const Sides cx = find_sides(xr, width, 0.0, 0.3, 0, true, NAN),
+              cy = find_sides(yr, width, 0.0, 0.3, 0, true, NAN);
+  const auto off = [&](const Sides& other, double v) {
+    return (!other.lo_seen || v > other.lo + width) && (!other.hi_seen || v < other.hi - width);
+  };
+  std::vector<double> xs, ys, depth;
+  for (std::size_t j = 0; j < x.size(); ++j) {
+    if (off(cy, yr[j])) xs.push_back(xr[j]);
+    if (off(cx, xr[j])) ys.push_back(yr[j]);
+  }
+  for (std::size_t i : on_rim) depth.push_back(s.points[i].z());
+  const double spacing = opt.focal > 0 ? s.stride * quantile(depth, 0.5) / opt.focal : 0.0;
+  const Sides fx = find_sides(xs, width, 0.5 * spacing, 0.05, 1, false, cx.mid);
+  const Sides fy = find_sides(ys, width, 0.5 * spacing, 0.05, 1, false, cy.mid);
+  rim.edge = {fx.lo, fx.hi, fy.lo, fy.hi};
+  // A side counts when both passes saw it.
+  rim.seen = {cx.lo_seen && fx.lo_seen, cx.hi_seen && fx.hi_seen, cy.lo_seen && fy.lo_seen,
+              cy.hi_seen && fy.hi_seen};
+  if (!(rim.seen[0] || rim.seen[1]) || !(rim.seen[2] || rim.seen[3])) {
+    rim.found = false;
+    rim.why = "the structure at the rim's height is not a rectangular frame";
+  }
+  return rim;
+}
+
+double share_inside(const PlaneSamples& s, const Eigen::Vector3d& up, const Eigen::Vector3d& a1,
+                    const Eigen::Vector3d& a2, double height, const std::array<double, 4>& edge,
+                    double tol) {
+  std::size_t level = 0, inside = 0;
+  for (const Eigen::Vector3f& pf : s.points) {
+    const Eigen::Vector3d p = pf.cast<double>();
+    if (std::abs(up.dot(p) - height) > 1.5 * tol) continue;
+    ++level;
+    const double q1 = a1.dot(p), q2 = a2.dot(p);
+    inside += q1 > edge[0] + 2 * tol && q1 < edge[1] - 2 * tol && q2 > edge[2] + 2 * tol &&
+              q2 < edge[3] - 2 * tol;
+  }
+  return level ? double(inside) / double(level) : 0.0;
+}
+
+}  // namespace binpick

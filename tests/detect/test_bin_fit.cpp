@@ -1,0 +1,226 @@
+// The bin fit (--bin auto / W,D,H; host/detect/bin_fit.cpp) on analytic bins (bin_scene.hpp):
+// the floor plane, the rim's height and the interior's size and place within a few mm and
+// degrees of the truth, straight down and tilted, turned, with holes; a scene without a bin says
+// so; and the mask it makes keeps the highest points off the rim. Also --roi / --bin parsing.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "host/core/error.hpp"
+#include "host/detect/bin_fit.hpp"
+#include "host/detect/bin_region.hpp"
+#include "host/detect/bin_spec.hpp"
+#include "host/detect/hypotheses.hpp"
+#include "host/detect/scene_prepare.hpp"
+#include "tests/detect/bin_scene.hpp"
+
+using namespace binpick;
+using namespace binpick::test;
+
+namespace {
+
+double angle_deg(const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
+  return std::acos(std::clamp(a.normalized().dot(b.normalized()), -1.0, 1.0)) * 180.0 / M_PI;
+}
+
+BinFit fit(const BinScene& scene, const BinSpec& spec) {
+  const PointImage pts = depth_to_points_reference(scene.depth, scene.cam);
+  BinFitOptions o;
+  o.spec = spec;
+  return fit_bin(ocl::Device::shared(), pts.xyzw, pts.width, pts.height, o);
+}
+
+// The fit against the scene's truth: up, floor, rim height, interior size, centre and the long
+// axis.
+void expect_matches(const BinFit& b, const BinScene& scene, const BinSceneSpec& s, bool floor_plane) {
+  ASSERT_TRUE(b.found) << b.why;
+  SCOPED_TRACE(describe(b));
+  const Eigen::Vector3d up_true = scene.bin_to_cam.col(2), x_true = scene.bin_to_cam.col(0);
+  EXPECT_LT(angle_deg(b.axes.col(2), up_true), 1.0);
+  // The long axis, up to its sign.
+  EXPECT_LT(std::min(angle_deg(b.axes.col(0), x_true), angle_deg(b.axes.col(0), -x_true)), 1.5);
+  EXPECT_NEAR(b.interior.z(), s.H, 3.0);
+  EXPECT_NEAR(b.interior.x(), s.W, 6.0);
+  EXPECT_NEAR(b.interior.y(), s.D, 6.0);
+  const Eigen::Vector3d o = scene.to_bin(b.origin);  // the found floor centre in the true frame
+  EXPECT_NEAR(o.x(), 0.0, 4.0);
+  EXPECT_NEAR(o.y(), 0.0, 4.0);
+  EXPECT_NEAR(o.z(), 0.0, 3.0);
+  EXPECT_EQ(b.floor_plane, floor_plane);
+  // Right-handed, orthonormal.
+  EXPECT_NEAR((b.axes.transpose() * b.axes - Eigen::Matrix3d::Identity()).norm(), 0.0, 1e-9);
+  EXPECT_NEAR(b.axes.determinant(), 1.0, 1e-9);
+}
+
+}  // namespace
+
+TEST(BinFit, FindsTheBinLookingStraightDown) {
+  const BinSceneSpec s;
+  const BinScene scene = make_bin_scene(s);
+  expect_matches(fit(scene, {BinSpec::Mode::find, {}}), scene, s, true);
+}
+
+TEST(BinFit, FindsTheBinWithATiltedCameraAndATurnedBin) {
+  for (auto [tilt, yaw] : {std::pair{15.0, 0.0}, {25.0, 10.0}, {10.0, -35.0}}) {
+    SCOPED_TRACE(testing::Message() << "tilt " << tilt << " yaw " << yaw);
+    BinSceneSpec s;
+    s.tilt_deg = tilt, s.yaw_deg = yaw;
+    s.distance = 1100;
+    const BinScene scene = make_bin_scene(s);
+    const BinFit b = fit(scene, {BinSpec::Mode::find, {}});
+    expect_matches(b, scene, s, true);
+    EXPECT_NEAR(b.tilt_degrees(), tilt, 1.0);
+  }
+}
+
+// Tilted so far and so near that the far side of the rim is out of view: the far wall's plane
+// ends the interior there.
+TEST(BinFit, FarRimOutOfViewEndsAtTheWall) {
+  BinSceneSpec s;
+  s.tilt_deg = 32, s.distance = 980;
+  const BinScene scene = make_bin_scene(s);
+  // The premise: no pixel sees the far rim's top (y > D/2, at the rim's height).
+  const PointImage pts = depth_to_points_reference(scene.depth, scene.cam);
+  std::size_t far_rim = 0;
+  for (std::size_t i = 0; i < pts.xyzw.size() / 4; ++i) {
+    if (pts.xyzw[4 * i + 3] == 0.0f) continue;
+    const Eigen::Vector3d q = scene.to_bin(Eigen::Vector3d(pts.xyzw[4 * i], pts.xyzw[4 * i + 1], pts.xyzw[4 * i + 2]));
+    far_rim += q.y() > s.D / 2 && q.z() > s.H - 1;
+  }
+  EXPECT_EQ(far_rim, 0u);
+  expect_matches(fit(scene, {BinSpec::Mode::find, {}}), scene, s, true);
+}
+
+// With half the pixels lost in blobs and stripes the fit still holds.
+TEST(BinFit, FindsTheBinThroughLargeHoles) {
+  BinSceneSpec s;
+  s.tilt_deg = 12;
+  BinScene scene = make_bin_scene(s);
+  punch_holes(scene.depth, 0.5, 3);
+  expect_matches(fit(scene, {BinSpec::Mode::find, {}}), scene, s, true);
+}
+
+// A full bin: the floor is hidden; with the size given, the floor is the rim minus H.
+TEST(BinFit, GivenSizeNeedsNoFloor) {
+  BinSceneSpec s;
+  s.spheres.clear();
+  for (int i = -3; i <= 3; ++i)
+    for (int j = -2; j <= 2; ++j) s.spheres.push_back({i * 58.0, j * 58.0, 80, 45});
+  const BinScene scene = make_bin_scene(s);
+  const BinFit b = fit(scene, {BinSpec::Mode::sized, {300, 400, 180}});
+  ASSERT_TRUE(b.found) << b.why;
+  EXPECT_EQ(b.interior, Eigen::Vector3d(400, 300, 180));  // W the longer side
+  EXPECT_NEAR(scene.to_bin(b.origin).z(), 0.0, 3.0);
+  EXPECT_NEAR(b.measured.x(), 400, 6.0);
+}
+
+// A full bin seen tilted: the floor is hidden under the parts, so "up" comes from the walls
+// (or the rim's plane); with the size given the floor is the rim minus H.
+TEST(BinFit, FullBinTiltedCamera) {
+  BinSceneSpec s;
+  s.tilt_deg = 20;
+  s.spheres.clear();
+  for (int i = -3; i <= 3; ++i)
+    for (int j = -2; j <= 2; ++j) s.spheres.push_back({i * 58.0, j * 58.0, 80.0 + 10.0 * ((i + j + 6) % 3), 45});
+  const BinScene scene = make_bin_scene(s);
+  const BinFit b = fit(scene, {BinSpec::Mode::sized, {400, 300, 180}});
+  ASSERT_TRUE(b.found) << b.why;
+  SCOPED_TRACE(describe(b));
+  EXPECT_LT(angle_deg(b.axes.col(2), scene.bin_to_cam.col(2)), 1.5);
+  EXPECT_NEAR(scene.to_bin(b.origin).z(), 0.0, 4.0);
+  EXPECT_NEAR(b.measured.x(), 400, 6.0);
+  EXPECT_NEAR(b.measured.y(), 300, 6.0);
+}
+
+TEST(BinFit, NoBinIsSaidNotGuessed) {
+  // A floor with a few blobs and no walls.
+  BinSceneSpec s;
+  s.H = 0.5, s.wall = 0;
+  const BinScene scene = make_bin_scene(s);
+  const BinFit b = fit(scene, {BinSpec::Mode::find, {}});
+  EXPECT_FALSE(b.found) << describe(b);
+  EXPECT_FALSE(b.why.empty());
+  EXPECT_NE(describe(b).find("not found"), std::string::npos);
+  // A single layer of parts over the whole view, their tops at one height along every side of
+  // the image: a layer, not a frame.
+  BinSceneSpec layer = s;
+  layer.spheres.clear();
+  for (int i = -7; i <= 7; ++i)
+    for (int j = -5; j <= 5; ++j) layer.spheres.push_back({i * 60.0, j * 60.0, 20, 20});
+  const BinFit l = fit(make_bin_scene(layer), {BinSpec::Mode::find, {}});
+  EXPECT_FALSE(l.found) << describe(l);
+  // Nothing at all.
+  DepthImage empty{320, 240, std::vector<std::uint16_t>(320 * 240, 0)};
+  empty.raw[5] = 1000;
+  BinScene e = scene;
+  e.depth = empty;
+  EXPECT_FALSE(fit(e, {BinSpec::Mode::find, {}}).found);
+}
+
+// The highest points of the bare scene are on the rim; with the bin's mask none is, and every
+// one lies inside the interior (a margin from the walls).
+TEST(BinFit, MaskKeepsTheHighestPointsOffTheBin) {
+  for (double tilt : {0.0, 20.0}) {
+    BinSceneSpec s;
+    s.tilt_deg = tilt;
+    const BinScene scene = make_bin_scene(s);
+    auto& dev = ocl::Device::shared();
+    ScenePrepOptions po;
+    po.normals_everywhere = false;
+    po.read_back = false;
+    HypothesisOptions ho;
+    ho.count = 6;
+    ho.exclusion_radius = 40;
+    const auto on_bin = [&](const Hypothesis& h) {
+      const Eigen::Vector3d q = scene.to_bin(h.point.cast<double>());
+      return std::abs(q.x()) > s.W / 2 - 3 || std::abs(q.y()) > s.D / 2 - 3 || q.z() > s.H - 3;
+    };
+    {
+      const PreparedScene bare = prepare_scene(dev, scene.depth, scene.cam, po);
+      const auto hyps = find_hypotheses(bare, ho);
+      ASSERT_FALSE(hyps.empty());
+      EXPECT_TRUE(on_bin(hyps.front())) << "the test scene's highest point should be the rim";
+    }
+    PreparedScene prepared = prepare_scene(dev, scene.depth, scene.cam, po);
+    RegionSetup setup;
+    setup.bin.mode = BinSpec::Mode::find;
+    setup.margin = 6;
+    setup.above = 50;
+    const SceneRegionMask m = apply_region(prepared, setup, po.lowpass_radius);
+    ASSERT_TRUE(m.mask.has_value()) << m.warning;
+    EXPECT_TRUE(m.warning.empty());
+    const auto hyps = find_hypotheses(dev, prepared.device->points, prepared.device->filtered,
+                                      prepared.width, prepared.height, ho, &*m.mask);
+    ASSERT_GE(hyps.size(), 4u);
+    const std::vector<std::uint8_t> mask = m.mask->read(dev);
+    for (const Hypothesis& h : hyps) {
+      EXPECT_FALSE(on_bin(h)) << "tilt " << tilt << ": hypothesis at pixel " << h.u << "," << h.v
+                              << " at " << scene.to_bin(h.point.cast<double>()).transpose() << "; " << m.report;
+      EXPECT_EQ(mask[h.pixel], 1);
+    }
+  }
+}
+
+TEST(BinSpecText, ParsesAndRejects) {
+  const auto roi = parse_roi("camera:-10,-20,500,10.5,20,900");
+  ASSERT_TRUE(roi.has_value());
+  EXPECT_EQ(roi->frame, RoiSpec::Frame::camera);
+  EXPECT_EQ(roi->hi, Eigen::Vector3d(10.5, 20, 900));
+  EXPECT_EQ(parse_roi("bin:-200,-150,0,200,150,300")->frame, RoiSpec::Frame::bin);
+  EXPECT_FALSE(parse_roi("").has_value());
+  for (const char* bad : {"camera", "camera:1,2,3", "box:0,0,0,1,1,1", "camera:0,0,0,1,1,nan",
+                          "camera:0,0,0,1,1,inf", "camera:1,0,0,0,1,1", "camera:0,0,0,1,1,0",
+                          "camera:0,0,0,1,1,1,1", "camera:0,,0,1,1,1", "camera:0,0,0,1,1,1x"}) {
+    try {
+      parse_roi(bad);
+      ADD_FAILURE() << "accepted " << bad;
+    } catch (const InputError& e) {
+      EXPECT_NE(std::string(e.what()).find(bad), std::string::npos) << e.what();
+    }
+  }
+  EXPECT_EQ(parse_bin("none").mode, BinSpec::Mode::none);
+  EXPECT_EQ(parse_bin("auto").mode, BinSpec::Mode::find);
+  EXPECT_EQ(parse_bin("600,400,300").size, Eigen::Vector3d(600, 400, 300));
+  for (const char* bad : {"", "yes", "600,400", "600,400,0", "600,-400,300", "600,400,nan"})
+    EXPECT_THROW(parse_bin(bad), InputError) << bad;
+}
