@@ -27,8 +27,11 @@ int main(int argc, char** argv) {
     app.parse(argc, argv);
     return 0;
   } catch (const CLI::ParseError& e) {
-    // --help (0), or a usage error with CLI11's own message: bad input, so 2 like every other.
-    return app.exit(e) == 0 ? 0 : 2;
+    // --help (exit code 0) prints the help; a usage error is bad input: one line and 2, like
+    // every other.
+    if (e.get_exit_code() == 0) return app.exit(e);
+    std::cerr << "binpick: error: " << e.what() << " (see binpick VERB --help)\n";
+    return 2;
   } catch (const binpick::InputError& e) {
     std::cerr << "binpick: error: " << e.what() << "\n";
     return 2;

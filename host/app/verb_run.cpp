@@ -12,6 +12,7 @@
 #include "host/app/detect_options.hpp"
 #include "host/app/model_options.hpp"
 #include "host/app/train_options.hpp"
+#include "host/app/scene_options.hpp"
 #include "host/app/verbs.hpp"
 #include "host/core/error.hpp"
 #include "host/tune/experiment.hpp"
@@ -26,6 +27,7 @@ struct RunArgs {
   TrainArgs train;
   std::string noise = "0";
   DetectCliOptions detect;
+  SceneArgs scene;
 };
 
 void run_run(RunArgs& a) {
@@ -37,8 +39,12 @@ void run_run(RunArgs& a) {
   o.max_wall_seconds = a.dataset.max_wall_seconds;
   o.train = train_params_of(a.train);
   o.detect = resolve(a.detect);
+  apply_scene_args(a.scene, o.scene);
   check(o);  // before the slow stages: bad options fail fast
-  const auto r = run_experiment(load_part_finding_symmetries(o.part), o, std::cout);
+  std::vector<Model> distractors;
+  for (const DistractorSpec& d : o.scene.distractors)
+    distractors.push_back(load_part_finding_symmetries({d.model, {}}));
+  const auto r = run_experiment(load_part_finding_symmetries(o.part), o, std::cout, distractors);
   std::cout << "\n" << results_table(r.evaluations);
   for (const auto& w : r.report.warnings) std::cerr << "binpick: warning: " << w << "\n";
   std::cout << fmt::format(
@@ -63,6 +69,7 @@ void add_run_verb(CLI::App& app) {
                    "working directory: noise_S/ datasets, model.ppfm, results/, report/")
       ->required();
   add_dataset_options(verb, a->dataset, "bins per noise level");
+  add_scene_options(verb, a->scene);
   verb->add_option("--noise", a->noise,
                    "noise levels, comma separated: Gaussian depth noise sigma as a fraction of the "
                    "diameter (the paper: 0,0.01,0.02,0.03,0.04,0.05)")

@@ -10,7 +10,7 @@
 #include "host/app/dataset_options.hpp"
 #include "host/app/model_options.hpp"
 #include "host/app/verbs.hpp"
-#include "synth/sensor/sensor_options.hpp"
+#include "host/app/scene_options.hpp"
 #include "host/train/symmetry_describe.hpp"
 #include "synth/part_mix.hpp"
 #include "synth/synthesize.hpp"
@@ -25,9 +25,8 @@ struct SynthArgs {
   std::vector<double> bin_size{600.0, 400.0, 300.0};
   std::vector<int> grid{7, 5};
   std::string cache_dir;
-  std::string bin_render = "full";
+  SceneArgs scene;
   std::string bin_mesh;
-  std::string distractors;
   std::vector<double> intrinsics;
 };
 
@@ -44,9 +43,8 @@ void run_synth(const SynthArgs& args) {
   o.drop.grid_x = args.grid[0];
   o.drop.grid_y = args.grid[1];
   o.decompose.cache_dir = args.cache_dir;
-  o.bin_render = args.bin_render == "none" ? BinRender::none : BinRender::full;
+  apply_scene_args(args.scene, o);
   o.bin_mesh = args.bin_mesh;
-  if (!args.distractors.empty()) o.distractors = parse_distractors(args.distractors);
   if (!args.intrinsics.empty())
     o.intrinsics = std::array<double, 4>{args.intrinsics[0], args.intrinsics[1], args.intrinsics[2],
                                          args.intrinsics[3]};
@@ -83,6 +81,7 @@ void add_synth_verb(CLI::App& app) {
   SynthOptions& o = args->options;
   verb->add_option("--out", o.out, "dataset directory (created)")->required();
   add_dataset_options(verb, args->dataset, "number of bins (BOP scenes)");
+  add_scene_options(verb, args->scene);
   verb->add_option("--noise", o.noise,
                    "Gaussian depth noise along the ray, sigma as a fraction of the part diameter "
                    "(the paper: 0 to 0.05)")
@@ -101,23 +100,12 @@ void add_synth_verb(CLI::App& app) {
                    "camera distance from the centre of the bin floor along the optical axis "
                    "(untilted: its height above the floor), mm")
       ->capture_default_str();
-  verb->add_option("--camera-tilt", o.camera_tilt_deg,
-                   "turn the camera about the bin's x axis through the centre of the bin floor, "
-                   "which stays on the optical axis at --camera-height; positive moves the "
-                   "camera towards -y, looking at the +y wall (degrees, -80 to 80)")
-      ->capture_default_str();
   verb->add_option("--intrinsics", args->intrinsics,
                    "camera intrinsics fx,fy,cx,cy in pixels (default: square pixels, principal "
                    "point at the image centre, the focal length that shows the whole bin "
                    "interior from the untilted camera)")
       ->delimiter(',')
       ->expected(4);
-  add_sensor_options(verb, o.sensor);
-  verb->add_option("--bin-render", args->bin_render,
-                   "full: the camera sees the bin (floor, walls, rim) as well as the parts; none: "
-                   "the parts alone, as in the paper (the parts collide with the bin either way)")
-      ->check(CLI::IsMember({"full", "none"}))
-      ->capture_default_str();
   verb->add_option("--bin-wall", o.drop.walls.wall_mm,
                    "built-in bin: wall and floor thickness, mm (the rim is as thick)")
       ->capture_default_str();
@@ -130,10 +118,6 @@ void add_synth_verb(CLI::App& app) {
                    "static triangle mesh) and the camera: world frame, mm, the interior floor's "
                    "centre at the origin, floor at z = 0, z up (--bin-size still places the drop "
                    "grid and the camera)");
-  verb->add_option("--distractors", args->distractors,
-                   "other parts mixed into the bin, MODEL[:FRACTION],... (MODEL a file in mm or "
-                   "builtin:NAME; FRACTION of --objects, default 0.25 split evenly over the "
-                   "distractors given); obj_ids 2, 3, ... in this order");
   verb->add_option("--max-wave-seconds", o.drop.max_wave_seconds,
                    "simulated seconds a wave may take to come to rest before the next is released")
       ->capture_default_str();

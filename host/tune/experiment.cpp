@@ -23,7 +23,7 @@ fs::path results_csv(const ExperimentOptions& o, double noise) {
 }
 
 SynthOptions synth_options(const ExperimentOptions& o, double noise) {
-  SynthOptions s;
+  SynthOptions s = o.scene;
   s.out = dataset_dir(o, noise);
   s.bins = o.bins;
   s.seed = o.seed;
@@ -92,7 +92,8 @@ void check(const ExperimentOptions& o) {
   binpick::check(o.detect);
 }
 
-ExperimentResult run_experiment(const Model& part, const ExperimentOptions& o, std::ostream& log) {
+ExperimentResult run_experiment(const Model& part, const ExperimentOptions& o, std::ostream& log,
+                                const std::vector<Model>& distractors) {
   check(o);
   ExperimentResult r;
   const std::string description = describe(o.part);
@@ -100,7 +101,7 @@ ExperimentResult run_experiment(const Model& part, const ExperimentOptions& o, s
   auto start = std::chrono::steady_clock::now();
   for (double noise : o.noise) {
     const SynthOptions s = synth_options(o, noise);
-    const SynthSummary made = synthesize(part, description, s);
+    const SynthSummary made = synthesize(part, description, s, distractors);
     r.bins_made += made.bins_made;
     r.bins_reused += made.bins_skipped;
     log << fmt::format("synth  {}: {} bins made, {} already there\n", s.out.string(),

@@ -10,6 +10,8 @@
 //                              precision.png, score_threshold.png, pictures/
 #pragma once
 
+#include "synth/synthesize.hpp"
+
 #include <cstdint>
 #include <filesystem>
 #include <iosfwd>
@@ -35,6 +37,9 @@ struct ExperimentOptions {
   PpfTrainParams train;
   DetectParams detect;
   int pictures = 3;                // images pictured per dataset in the report
+  // What the bins look like beyond the paper's (the bin rendered, distractors, camera tilt,
+  // sensor model): each dataset's synth options start from these.
+  SynthOptions scene;
 };
 
 // Throws InputError (naming the option) for an empty or out-of-range noise list, two noise
@@ -63,9 +68,10 @@ struct ExperimentResult {
 };
 
 // Runs every stage on `part` (loaded from options.part), writing one line per stage and dataset
-// to `log` (the stages' progress bars go to stderr).
+// to `log` (the stages' progress bars go to stderr). `distractors`: the models of
+// options.scene.distractors, in order.
 ExperimentResult run_experiment(const Model& part, const ExperimentOptions& options,
-                                std::ostream& log);
+                                std::ostream& log, const std::vector<Model>& distractors = {});
 
 // The final table: noise, bins, hypotheses, precision top/all at both operating points, the
 // wrong fraction at the score threshold keeping 90 % of right poses (loose point), ms per

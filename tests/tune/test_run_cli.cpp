@@ -98,7 +98,11 @@ TEST(RunCli, BadOptionsExit2WithOneMessage) {
        {"--model builtin:bracket --noise ''", "--model builtin:bracket --noise 0,0",
         "--model builtin:bracket --noise 0,-0.01", "--model builtin:nosuch",
         "--model builtin:bracket --bins 0", "--model builtin:bracket --hypotheses -1",
-        "--model builtin:bracket --params /nonexistent.json"}) {
+        "--model builtin:bracket --params /nonexistent.json",
+        "--model builtin:bracket --distractors builtin:bolt:1.5",
+        "--model builtin:bracket --distractors builtin:nosuch",
+        "--model builtin:bracket --camera-tilt 95", "--model builtin:bracket --bin-render some",
+        "--model builtin:bracket --sensor-model structured-light --grazing-limit nan"}) {
     const auto r = test::run_binpick("run " + args + " --out " + out);
     EXPECT_EQ(r.status, 2) << args << "\n" << r.err;
     EXPECT_NE(r.err.find("binpick: error: "), std::string::npos) << args << "\n" << r.err;
