@@ -206,12 +206,13 @@ BinFit fit_bin(ocl::Device& dev, const std::vector<float>& xyzw, std::uint32_t w
   return bin;
 }
 
-RegionBox bin_interior_box(const BinFit& bin, double margin, double above) {
+RegionBox bin_interior_box(const BinFit& bin, double margin, double above,
+                           double floor_clearance) {
   RegionBox b;
   b.R = bin.axes.transpose().cast<float>();
   b.t = bin.origin.cast<float>();
   b.lo = Eigen::Vector3d(-0.5 * bin.interior.x() + margin, -0.5 * bin.interior.y() + margin,
-                         -margin).cast<float>();
+                         floor_clearance >= 0 ? floor_clearance : -margin).cast<float>();
   b.hi = Eigen::Vector3d(0.5 * bin.interior.x() - margin, 0.5 * bin.interior.y() - margin,
                          bin.interior.z() + above).cast<float>();
   return b;

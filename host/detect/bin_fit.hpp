@@ -57,9 +57,12 @@ struct BinFit {
 BinFit fit_bin(ocl::Device& dev, const std::vector<float>& xyzw, std::uint32_t width,
                std::uint32_t height, const BinFitOptions& opt);
 
-// The interior shrunk by margin (mm) on the sides, from margin below the floor (the floor
-// itself stays: a thin part lies on it) to `above` over the rim (parts may pile higher).
-RegionBox bin_interior_box(const BinFit& bin, double margin, double above);
+// The interior shrunk by margin (mm) on the sides, up to `above` over the rim (parts may pile
+// higher). From floor_clearance (mm) above the floor when it is >= 0: the floor itself is no
+// part, and where much of it shows, its points outvote a part in the crops; else from margin
+// below the floor (the floor stays).
+RegionBox bin_interior_box(const BinFit& bin, double margin, double above,
+                           double floor_clearance = -1);
 
 // The ROI's box; a bin-frame ROI needs a found bin (std::logic_error otherwise).
 RegionBox roi_box(const RoiSpec& roi, const BinFit* bin);

@@ -25,7 +25,8 @@ SceneRegionMask apply_region(PreparedScene& scene, const RegionSetup& setup, int
     out.bin = fit_bin(dev, scene.device->points.read(dev), scene.width, scene.height, bo);
     out.report = describe(*out.bin);
     if (out.bin->found) {
-      region.bin = bin_interior_box(*out.bin, setup.margin, setup.above);
+      const bool clear = setup.clear_floor && out.bin->floor_plane;
+      region.bin = bin_interior_box(*out.bin, setup.margin, setup.above, clear ? out.bin->tol : -1);
     } else {
       out.warning = fmt::format("no bin found ({}); detecting in the whole image{}", out.bin->why,
                                 setup.roi && setup.roi->frame == RoiSpec::Frame::bin

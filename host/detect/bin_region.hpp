@@ -23,6 +23,9 @@ struct RegionSetup {
   double margin = 0;  // mm, the bin's walls and rim kept out by this much
   double above = 0;   // mm, the interior reaches this far over the rim
   double min_height = 0;  // mm, a shallower "bin" is not one (BinFitOptions::min_height)
+  // Keep the floor out: points less than the bin fit's plane tolerance above a fitted floor
+  // are not used (bin_interior_box); false: the floor stays, from margin below it.
+  bool clear_floor = true;
   bool wanted() const { return roi.has_value() || bin.mode != BinSpec::Mode::none; }
 };
 

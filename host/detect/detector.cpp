@@ -1,5 +1,7 @@
 #include "host/detect/detector.hpp"
 #include "host/detect/near_symmetry.hpp"
+#include "host/detect/floor_check.hpp"
+#include "host/detect/bin_fit.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -168,7 +170,7 @@ std::vector<PoseCluster> Detector::vote_and_cluster(const PointCloud& subsampled
 
 std::vector<Detection> Detector::refine_and_rank(
     std::vector<Detection> detections, const std::vector<std::vector<PoseCluster>>& candidates,
-    const ocl::Buffer<float>& points, const bp_camera& cam, DetectTimes& t) {
+    const ocl::Buffer<float>& points, const bp_camera& cam, DetectTimes& t, const BinFit* bin) {
   Stopwatch clock;
   std::vector<PoseToRefine> poses;
   struct Owner {
@@ -196,8 +198,21 @@ std::vector<Detection> Detector::refine_and_rank(
   const auto sums = [&](const std::vector<bp_pose_fit>& fits) {
     return pose_fit_sums(dev_, points, cam, fit_model_, fits);
   };
-  const std::vector<RefinedPose> refined =
+  std::vector<RefinedPose> refined =
       refine_and_verify(sums, cam, fit_geometry_, fit_model_.size, poses, ro);
+  if (bin && bin->found) {
+    // Below the floor by more than the larger of the verification tolerance and a tenth of the
+    // diameter: a right pose's error or a thin part's, and the floor fit's, stay inside it.
+    const Eigen::Vector3d up = bin->axes.col(2);
+    for (RefinedPose& r : refined) {
+      const double margin = std::max(double(r.tolerance), 0.1 * model_.diameter);
+      const double below = fraction_below_floor(model_.cloud, r.R, r.t, up, bin->floor_d(), margin);
+      if (below > kMaxBelowFloor && r.score > 0) {
+        r.score = 0;
+        r.reason = fmt::format("{:.0f} % of the part below the bin's floor", 100 * below);
+      }
+    }
+  }
   std::vector<bool> taken(detections.size(), false);
   for (std::size_t i = 0; i < refined.size(); ++i) {
     const auto [k, c, twin] = owner[i];
@@ -324,7 +339,8 @@ std::vector<Detection> Detector::detect(const DepthImage& depth, const bp_camera
     detections.push_back(d);
   }
   t.hypotheses += hyps.size();
-  detections = refine_and_rank(std::move(detections), candidates, scene.device->points, cam, t);
+  detections = refine_and_rank(std::move(detections), candidates, scene.device->points, cam, t,
+                               masked.bin ? &*masked.bin : nullptr);
   if (times) *times += t;
   return detections;
 }

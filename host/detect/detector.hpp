@@ -25,6 +25,8 @@
 
 namespace binpick {
 
+struct BinFit;
+
 // Every parameter of detection; the paper's values are the defaults (docs/parameters.md).
 // Ratios are fractions of the model's diameter.
 struct DetectParams {
@@ -146,11 +148,12 @@ class Detector {
   std::vector<PoseCluster> vote_and_cluster(const PointCloud& subsampled, Detection& d,
                                             DetectTimes& t);
   // Refines and verifies every hypothesis' candidates against a point image on the device
-  // (one batch for all), keeps each hypothesis' best and ranks them.
+  // (one batch for all), keeps each hypothesis' best and ranks them. With a bin found, a pose
+  // that sinks the part into its floor scores 0 (floor_check.hpp).
   std::vector<Detection> refine_and_rank(std::vector<Detection> detections,
                                          const std::vector<std::vector<PoseCluster>>& candidates,
                                          const ocl::Buffer<float>& points, const bp_camera& cam,
-                                         DetectTimes& t);
+                                         DetectTimes& t, const BinFit* bin = nullptr);
 
   ocl::Device& dev_;
   double program_build_s_ = 0;
