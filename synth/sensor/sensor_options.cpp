@@ -30,7 +30,15 @@ void add_sensor_options(CLI::App* verb, SensorModel& m) {
                    "(projector shadows, no depth at grazing angles and edges, noise a + b z^2, "
                    "quantisation; docs/sensor_model.md). The options below apply to "
                    "structured-light only")
-      ->transform(CLI::CheckedTransformer(kinds))
+      ->transform(CLI::Validator(
+          [kinds](std::string& value) -> std::string {
+            const auto it = kinds.find(value);
+            if (it == kinds.end()) return value + " is not ideal or structured-light";
+            value = std::to_string(static_cast<int>(it->second));
+            return "";
+          },
+          ""))
+      ->option_text("ideal|structured-light")
       ->default_str(sensor_kind_name(m.kind));
   verb->add_option("--baseline", m.baseline_mm,
                    "projector offset from the camera along the camera's x axis, mm (negative: "

@@ -1,6 +1,7 @@
-// The "may be used" mask (kernels/scene_mask.cl), its use by the highest points
-// (hyp_exclude_masked) and by the crops (crop_rect_count/scatter_masked), and the bin fit's plane
-// scoring (kernels/bin_planes.cl), each against its plain C++ reference on random input: the
+// The "may be used" mask (kernels/scene_mask.cl: scene_mask, masked_points), its use by the
+// highest points (hyp_exclude_masked) and by the crops (crop_rect_count_masked,
+// crop_rect_scatter_masked), and the bin fit's plane scoring (kernels/bin_planes.cl:
+// bin_plane_inliers), each against its plain C++ reference on random input: the
 // predicates are shared (kernels/scene_mask_shared.h, FP_CONTRACT OFF), so masks, counts, pixels
 // and points compare exactly. Also the degenerate inputs: no box, an empty box, no data.
 #include <gtest/gtest.h>
