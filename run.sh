@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# binpick's entry point: ./run.sh demo | test | bench
+# binpick's entry point: ./run.sh demo | test [--sanitize] | bench | fuzz [SECONDS]
 # Each command installs the Debian packages it needs (only the missing ones), configures and
 # builds Release into build/, then does its job.
 set -euo pipefail
@@ -14,14 +14,18 @@ BUILD_PACKAGES=(
   gnuplot-nox fonts-dejavu-core
 )
 BENCH_PACKAGES=(libopencv-contrib-dev)
+FUZZ_PACKAGES=(clang)  # libFuzzer and its sanitizers come with Debian's clang
 
 usage() {
   cat <<TXT
-usage: ./run.sh demo | test | bench
+usage: ./run.sh demo | test [--sanitize] | bench | fuzz [SECONDS]
   demo   build, then run 'binpick demo' (the whole loop on a built-in part)
-  test   build, then run the test suite with ctest
+  test   build, then run the test suite with ctest; --sanitize: build with AddressSanitizer
+         and UndefinedBehaviorSanitizer into build-sanitize/ and run the suite there
   bench  build (with OpenCV for the comparison), then run the benchmarks:
          build/bench/bench.md and bench.json; extra arguments go to 'binpick bench'
+  fuzz   build the libFuzzer targets with clang into build-fuzz/ and run each for SECONDS
+         (default 60) from its seed corpus fuzz/corpus/NAME; fails if any input crashes
 TXT
 }
 
@@ -59,8 +63,18 @@ case "$cmd" in
     ;;
   test)
     install_packages "${BUILD_PACKAGES[@]}"
-    build
-    ctest --test-dir build --output-on-failure -j"$(nproc)"
+    if [ "${2:-}" = "--sanitize" ]; then
+      # Debug info and -O1 keep the sanitized suite's reports readable and its run time bearable.
+      cmake -S . -B build-sanitize -DCMAKE_BUILD_TYPE=RelWithDebInfo -DBINPICK_SANITIZE=ON >/dev/null
+      cmake --build build-sanitize -j"$(nproc)"
+      ASAN_OPTIONS=${ASAN_OPTIONS:-detect_leaks=0} UBSAN_OPTIONS=${UBSAN_OPTIONS:-print_stacktrace=1} \
+        ctest --test-dir build-sanitize --output-on-failure -j"$(nproc)"
+    elif [ -n "${2:-}" ]; then
+      usage >&2; exit 2
+    else
+      build
+      ctest --test-dir build --output-on-failure -j"$(nproc)"
+    fi
     ;;
   bench)
     install_packages "${BUILD_PACKAGES[@]}" "${BENCH_PACKAGES[@]}"
@@ -78,6 +92,47 @@ case "$cmd" in
            --benchmark_out="build/bench/micro/$name.json" --benchmark_out_format=json
     done
     echo "run.sh: report in build/bench/bench.md (and bench.json); micro-benchmarks in build/bench/micro/"
+    ;;
+  fuzz)
+    seconds=${2:-60}
+    [[ "$seconds" =~ ^[1-9][0-9]*$ ]] || { echo "run.sh fuzz: SECONDS must be a positive integer" >&2; exit 2; }
+    install_packages "${BUILD_PACKAGES[@]}" "${FUZZ_PACKAGES[@]}"
+    cmake -S . -B build-fuzz -DCMAKE_BUILD_TYPE=RelWithDebInfo -DBINPICK_FUZZ=ON \
+          -DCMAKE_C_COMPILER=clang -DCMAKE_CXX_COMPILER=clang++ >/dev/null
+    targets=$(cd fuzz && ls fuzz_*.cpp | sed 's/\.cpp$//')
+    # shellcheck disable=SC2086
+    cmake --build build-fuzz -j"$(nproc)" --target $targets
+    failed=()
+    summary=""
+    for target in $targets; do
+      name=${target#fuzz_}
+      work=build-fuzz/corpus-work/$name   # new inputs go here, not into the repository
+      crashes=build-fuzz/crashes/$name
+      log=build-fuzz/logs/$name.log
+      mkdir -p "$work" "$crashes" build-fuzz/logs
+      corpora=("$work" "fuzz/corpus/$name")
+      [ -d "fuzz/regressions/$name" ] && corpora+=("fuzz/regressions/$name")
+      echo "== $target: ${seconds} s"
+      status=0
+      # A leak, a hang (-timeout, seconds per input) or an allocation over 2 GB is a crash too.
+      "build-fuzz/$target" -max_total_time="$seconds" \
+        -timeout=20 -rss_limit_mb=2048 -print_final_stats=1 -artifact_prefix="$crashes/" \
+        "${corpora[@]}" >"$log" 2>&1 || status=$?
+      runs=$(sed -n 's/^stat::number_of_executed_units: *//p' "$log" | tail -1)
+      cov=$(grep -Eo 'cov: [0-9]+ ft: [0-9]+' "$log" | tail -1)
+      if [ "$status" -ne 0 ]; then
+        failed+=("$name")
+        echo "   CRASH (exit $status); log: $log; input: $(ls "$crashes" | head -1)"
+        grep -E '^(==[0-9]+==ERROR|SUMMARY|.*runtime error)' "$log" | head -3 | sed 's/^/   /'
+      fi
+      summary+=$(printf '%-15s %12s executions  %s\n' "$name" "${runs:-?}" "${cov:-cov: ?}")$'\n'
+    done
+    echo "== per target: executions, coverage (libFuzzer cov: edges, ft: features)"
+    printf '%s' "$summary"
+    if [ "${#failed[@]}" -gt 0 ]; then
+      echo "run.sh fuzz: crashes in: ${failed[*]} (inputs in build-fuzz/crashes/NAME/)" >&2
+      exit 1
+    fi
     ;;
   -h|--help|help) usage ;;
   *) usage >&2; exit 2 ;;

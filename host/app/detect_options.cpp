@@ -74,6 +74,10 @@ void add_detect_cli_options(CLI::App* verb, DetectCliOptions& a, const std::stri
           "and crops");
   add("bin-margin", p.bin_margin,
       "how far the bin's walls and rim are kept out, fraction of the diameter, in [0, 10]");
+  add("instances", a.instances,
+      "detections per image: 0 = one per hypothesis (the paper's); N in [1, 1000] = the N best "
+          "verified poses of different parts (for BOP's recall), from max(hypotheses, N) highest "
+          "points and every candidate of each, score-0 poses left out");
 }
 
 DetectParams resolve(const DetectCliOptions& a) {
@@ -85,6 +89,7 @@ DetectParams resolve(const DetectCliOptions& a) {
   p.spread_votes = narrow(a.spread_votes, "--spread-votes");
   p.local_peaks = narrow(a.local_peaks, "--local-peaks");
   p.refine_iterations = narrow(a.refine_iterations, "--refine-iterations");
+  p.instances = narrow(a.instances, "--instances");
   if (!a.params_file.empty()) {
     std::set<std::string> given;
     for (const auto& [name, option] : a.options)

@@ -68,6 +68,7 @@ const std::map<std::string, Field>& fields() {
       {"roi", text(&DetectParams::roi)},
       {"bin", text(&DetectParams::bin)},
       {"bin-margin", real(&DetectParams::bin_margin)},
+      {"instances", count(&DetectParams::instances)},
   };
   return table;
 }

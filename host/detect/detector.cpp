@@ -2,6 +2,7 @@
 #include "host/detect/near_symmetry.hpp"
 #include "host/detect/floor_check.hpp"
 #include "host/detect/bin_fit.hpp"
+#include "host/detect/instance_select.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -58,6 +59,7 @@ std::optional<ParamProblem> find_param_problem(const DetectParams& p) {
       {in(p.verify_tolerance, 0, 1) && p.verify_tolerance > 0, {"verify-tolerance", p.verify_tolerance, "(0, 1]"}},
       {in(p.verify_noise_factor, 0, 100), {"verify-noise-factor", p.verify_noise_factor, "[0, 100]"}},
       {in(p.bin_margin, 0, 10), {"bin-margin", p.bin_margin, "[0, 10]"}},
+      {p.instances <= 1000, {"instances", double(p.instances), "[0, 1000]"}},
   };
   for (const auto& [ok, problem] : rules)
     if (!ok) return problem;
@@ -213,6 +215,31 @@ std::vector<Detection> Detector::refine_and_rank(
       }
     }
   }
+  if (params_.instances > 0) {
+    // Every refined pose competes (instance_select.hpp), not only each hypothesis' best.
+    std::vector<Detection> poses;
+    poses.reserve(refined.size());
+    for (std::size_t i = 0; i < refined.size(); ++i) {
+      const auto [k, c, twin] = owner[i];
+      Detection d = detections[k];
+      const RefinedPose& r = refined[i];
+      d.R = r.R;
+      d.t = r.t;
+      d.score = r.score;
+      d.votes = candidates[k][c].votes;
+      d.candidate = c;
+      d.twin = twin;
+      d.visible = r.visible;
+      d.inliers = r.inliers;
+      d.reason = r.reason;
+      poses.push_back(std::move(d));
+    }
+    const double ms = clock.lap();
+    t.refine_ms += ms;
+    t.stages.push_back({"refine+verify", ms});
+    return select_instances(std::move(poses), fit_geometry_.centroid,
+                            kDuplicateRatio * model_.diameter, params_.instances);
+  }
   std::vector<bool> taken(detections.size(), false);
   for (std::size_t i = 0; i < refined.size(); ++i) {
     const auto [k, c, twin] = owner[i];
@@ -297,7 +324,7 @@ std::vector<Detection> Detector::detect(const DepthImage& depth, const bp_camera
     warned_no_bin_ = true;
   }
   HypothesisOptions ho;
-  ho.count = params_.hypotheses;
+  ho.count = std::max(params_.hypotheses, params_.instances);
   ho.exclusion_radius = float(params_.exclusion_ratio * model_.diameter);
   Stopwatch hyp_clock;
   const std::vector<Hypothesis> hyps =
@@ -361,7 +388,7 @@ std::vector<Detection> Detector::detect(const PointCloud& input, DetectTimes* ti
   if (cloud.normals.empty())
     cloud.normals = cloud_normals(cloud, float(params_.normal_ratio * model_.diameter));
   CloudHypothesisOptions ho;
-  ho.hypotheses.count = params_.hypotheses;
+  ho.hypotheses.count = std::max(params_.hypotheses, params_.instances);
   ho.hypotheses.exclusion_radius = float(params_.exclusion_ratio * model_.diameter);
   const std::vector<Hypothesis> hyps = find_hypotheses(cloud, ho);
   const double prep_ms = clock.lap();

@@ -51,6 +51,10 @@ struct DetectParams {
   std::string roi;
   std::string bin = "auto";        // none, auto or the interior size "W,D,H" (mm)
   double bin_margin = 0.1;         // the bin's walls and rim are kept out by this (fraction)
+  // 0: one detection per hypothesis, each its best candidate (the paper's). N > 0: the N best
+  // verified poses of different parts (instance_select.hpp), from max(hypotheses, N) highest
+  // points and every candidate of each; poses with score 0 are left out.
+  std::uint32_t instances = 0;
 };
 // The first parameter out of its range: its name (as in a --params file, docs/cli.md), its value
 // and the range allowed ("(0, 1]"). The caller that knows where the value came from (an option,
@@ -116,7 +120,8 @@ class Detector {
   const DetectParams& params() const { return params_; }
 
   // A depth image (BOP: raw * depth_scale mm). Detections best first (verified score; ties:
-  // votes, then height order); a hypothesis without any vote gives no detection. InputError for an image that
+  // votes, then height order); a hypothesis without any vote gives no detection. With
+  // params.instances > 0, up to that many detections of different parts instead (see there). InputError for an image that
   // does not match the camera or has no valid pixel.
   // If neighbourhoods is given, each hypothesis' subsampled neighbourhood (what it voted on) is
   // appended to it in hypothesis order, for the benchmark (which hands the same crops to

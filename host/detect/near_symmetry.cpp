@@ -1,5 +1,6 @@
 #include "host/detect/near_symmetry.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 #include <Eigen/Eigenvalues>

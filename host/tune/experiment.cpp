@@ -22,6 +22,29 @@ fs::path results_csv(const ExperimentOptions& o, double noise) {
   return o.out / "results" / (noise_dir_name(noise) + ".csv");
 }
 
+// The toolkit-ready copy of a level's results, and OUT/bop/NAME -> ../noise_S so that the
+// toolkit finds the dataset under the name the results file gives (OUT/bop as its
+// datasets_path). An existing entry of that name that is not the link is left alone, said in
+// the log.
+void export_for_bop_toolkit(const ExperimentOptions& o, double noise, std::ostream& log) {
+  const fs::path copy = o.out / "results" / toolkit_results_name(noise);
+  fs::copy_file(results_csv(o, noise), copy, fs::copy_options::overwrite_existing);
+  const fs::path link = o.out / "bop" / bop_dataset_name(noise);
+  const fs::path target = fs::path("..") / noise_dir_name(noise);
+  fs::create_directories(link.parent_path());
+  std::error_code ec;
+  const bool present = fs::exists(fs::symlink_status(link, ec));
+  if (!present) {
+    fs::create_directory_symlink(target, link, ec);
+    if (ec)
+      log << fmt::format("bop    {}: not made ({}); point the toolkit at {}\n", link.string(),
+                         ec.message(), dataset_dir(o, noise).string());
+  } else if (!fs::is_symlink(link) || fs::read_symlink(link, ec) != target) {
+    log << fmt::format("bop    {} exists and is not a link to {}: left as it is\n",
+                       link.string(), target.string());
+  }
+}
+
 SynthOptions synth_options(const ExperimentOptions& o, double noise) {
   SynthOptions s = o.scene;
   s.out = dataset_dir(o, noise);
@@ -71,6 +94,16 @@ std::string noise_dir_name(double noise) {
                                   noise * std::pow(10.0, decimals)) > 1e-6)
     ++decimals;
   return fmt::format("noise_{:.{}f}", noise, decimals);
+}
+
+std::string bop_dataset_name(double noise) {
+  std::string digits = noise_dir_name(noise).substr(std::string("noise_").size());
+  std::erase(digits, '.');
+  return "noise" + digits;
+}
+
+std::string toolkit_results_name(double noise) {
+  return "binpick_" + bop_dataset_name(noise) + "-test.csv";
 }
 
 void check(const ExperimentOptions& o) {
@@ -123,6 +156,7 @@ ExperimentResult run_experiment(const Model& part, const ExperimentOptions& o, s
   for (double noise : o.noise) {
     const BatchSummary b = detect_to_csv(detector, model, dataset_dir(o, noise), results_csv(o, noise));
     log << fmt::format("detect {}: {}\n", results_csv(o, noise).string(), summary_line(b)) << std::flush;
+    export_for_bop_toolkit(o, noise, log);
     inputs.push_back({dataset_dir(o, noise), results_csv(o, noise), {}});
   }
   r.detect_s = seconds_since(start);

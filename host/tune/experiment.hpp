@@ -5,7 +5,11 @@
 //
 //   OUT/noise_0.00/            dataset (BOP) per noise level
 //   OUT/model.ppfm (+ .json)   the trained model and what it was trained from
-//   OUT/results/noise_0.00.csv detection results (BOP results CSV)
+//   OUT/results/noise_0.00.csv detection results (BOP results CSV), the file detection resumes
+//   OUT/results/binpick_noise000-test.csv  the same rows named as the BOP toolkit parses a
+//                              results file (METHOD_DATASET-SPLIT.csv), rewritten every run
+//   OUT/bop/noise000 -> ../noise_0.00      the dataset under that name (a symlink), for the
+//                              toolkit's datasets_path
 //   OUT/report/                report.html, report.json, curves.csv, score_curves.csv,
 //                              precision.png, score_threshold.png, pictures/
 #pragma once
@@ -57,6 +61,15 @@ std::vector<double> parse_number_list(const std::string& text, const std::string
 
 // "noise_0.00": two decimals, more when the level needs them (0.005 -> noise_0.005).
 std::string noise_dir_name(double noise);
+
+// The level's dataset name for the BOP toolkit: noise_dir_name's digits without the point
+// ("noise000" for 0, "noise002" for 0.02, "noise0005" for 0.005, "noise100" for 1). The toolkit
+// splits a results file name at '_', '-' and '.', so the name holds none of them; levels with
+// distinct directories get distinct names (the point always follows the first digit).
+std::string bop_dataset_name(double noise);
+
+// "binpick_noise002-test.csv": METHOD_DATASET-SPLIT.csv with method binpick and split test.
+std::string toolkit_results_name(double noise);
 
 struct ExperimentResult {
   std::vector<eval::DatasetEvaluation> evaluations;  // by noise

@@ -12,6 +12,7 @@
 #include <nlohmann/json.hpp>
 
 #include "host/formats/bop/results_csv.hpp"
+#include "host/tune/experiment.hpp"
 #include "tests/support/cli_run.hpp"
 
 using namespace binpick;
@@ -58,6 +59,17 @@ TEST(RunCli, MakesOneReportWithACurvePerNoiseLevelAndResumes) {
     EXPECT_FALSE(bop::read_results_csv(out / "results" / (std::string(noise) + ".csv")).empty());
   }
   EXPECT_TRUE(fs::is_regular_file(out / "model.ppfm"));
+  // The same results named as the BOP toolkit parses them (METHOD_DATASET-SPLIT.csv), and each
+  // dataset under that DATASET name in OUT/bop.
+  for (const auto& [noise, name] : {std::pair{"noise_0.00", "noise000"}, {"noise_0.02", "noise002"}}) {
+    const fs::path toolkit = out / "results" / fmt::format("binpick_{}-test.csv", name);
+    EXPECT_EQ(test::slurp(toolkit), test::slurp(out / "results" / (std::string(noise) + ".csv")))
+        << toolkit;
+    const fs::path link = out / "bop" / name;
+    EXPECT_TRUE(fs::is_symlink(link)) << link;
+    EXPECT_EQ(fs::read_symlink(link), fs::path("..") / noise) << link;
+    EXPECT_TRUE(fs::is_regular_file(link / "test" / "000001" / "scene_gt.json")) << link;
+  }
   // The final table: a heading with both operating points and one row per noise level.
   EXPECT_NE(r.out.find("loose 10%/15deg"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("strict 5%/5deg"), std::string::npos) << r.out;
@@ -88,7 +100,32 @@ TEST(RunCli, MakesOneReportWithACurvePerNoiseLevelAndResumes) {
   EXPECT_NE(r.out.find("0 bins made, 2 already there"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("reused"), std::string::npos) << r.out;
   EXPECT_EQ(test::slurp(out / "results" / "noise_0.02.csv"), results);  // not detected again
+  EXPECT_EQ(test::slurp(out / "results" / "binpick_noise002-test.csv"), results);
+  EXPECT_EQ(r.err.find("left as it is"), std::string::npos) << r.err;
+  EXPECT_EQ(r.out.find("left as it is"), std::string::npos) << r.out;
   fs::remove_all(dir);
+}
+
+TEST(RunCli, ToolkitDatasetNamesHoldNoSeparator) {
+  EXPECT_EQ(bop_dataset_name(0.0), "noise000");
+  EXPECT_EQ(bop_dataset_name(0.02), "noise002");
+  EXPECT_EQ(bop_dataset_name(0.05), "noise005");
+  EXPECT_EQ(bop_dataset_name(0.005), "noise0005");
+  EXPECT_EQ(bop_dataset_name(0.1), "noise010");
+  EXPECT_EQ(bop_dataset_name(1.0), "noise100");
+  EXPECT_EQ(toolkit_results_name(0.02), "binpick_noise002-test.csv");
+  // As the toolkit reads it: name.split('.')[0].split('_') -> method, DATASET-SPLIT.
+  std::set<std::string> seen;
+  for (double n : {0.0, 0.001, 0.01, 0.015, 0.1, 0.105, 0.5, 1.0}) {
+    const std::string name = toolkit_results_name(n);
+    const std::string stem = name.substr(0, name.find('.'));
+    ASSERT_EQ(std::count(stem.begin(), stem.end(), '_'), 1) << name;
+    const std::string rest = stem.substr(stem.find('_') + 1);
+    ASSERT_EQ(std::count(rest.begin(), rest.end(), '-'), 1) << name;
+    EXPECT_EQ(rest.substr(0, rest.find('-')), bop_dataset_name(n));
+    EXPECT_EQ(rest.substr(rest.find('-') + 1), "test");
+    EXPECT_TRUE(seen.insert(bop_dataset_name(n)).second) << n;
+  }
 }
 
 TEST(RunCli, BadOptionsExit2WithOneMessage) {

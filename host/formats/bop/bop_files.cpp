@@ -14,6 +14,8 @@ namespace {
 
 using nlohmann::json;
 
+constexpr double kMaxU32 = 4294967295.0, kMinInt = -2147483648.0, kMaxInt = 2147483647.0;
+
 void write_json(const std::filesystem::path& path, const json& j) {
   write_file_atomically(path, [&](std::ostream& out) { out << j.dump(1) << "\n"; });
 }
@@ -42,6 +44,16 @@ struct Reader {
     if (!v.is_number() || !std::isfinite(v.get<double>()))
       fail(where, std::string("\"") + key + "\" is not a finite number");
     return v.get<double>();
+  }
+  // A whole number in [lo, hi]: converting a double outside the target type is undefined.
+  long long integer(const json& j, const char* key, const std::string& where, double lo,
+                    double hi) const {
+    const double v = number(j, key, where);
+    if (v != std::floor(v) || v < lo || v > hi)
+      fail(where, std::string("\"") + key + "\" must be an integer in [" +
+                      std::to_string(static_cast<long long>(lo)) + ", " +
+                      std::to_string(static_cast<long long>(hi)) + "], not " + std::to_string(v));
+    return static_cast<long long>(v);
   }
   template <int N>
   Eigen::Matrix<double, N, 1> vector(const json& j, const char* key, const std::string& where) const {
@@ -112,8 +124,9 @@ Camera read_camera(const std::filesystem::path& path) {
   const json j = read_json(path);
   Reader r{path};
   Camera c{r.number(j, "fx", "camera"), r.number(j, "fy", "camera"), r.number(j, "cx", "camera"),
-           r.number(j, "cy", "camera"), std::uint32_t(r.number(j, "width", "camera")),
-           std::uint32_t(r.number(j, "height", "camera")),
+           r.number(j, "cy", "camera"),
+           std::uint32_t(r.integer(j, "width", "camera", 0, kMaxU32)),
+           std::uint32_t(r.integer(j, "height", "camera", 0, kMaxU32)),
            j.contains("depth_scale") ? r.number(j, "depth_scale", "camera") : 1.0};
   if (!(c.fx > 0 && c.fy > 0 && c.width > 0 && c.height > 0 && c.depth_scale > 0))
     r.fail("camera", "fx, fy, width, height and depth_scale must be positive");
@@ -166,7 +179,7 @@ SceneGroundTruth read_scene_gt(const std::filesystem::path& path) {
     auto& v = out[id];
     for (std::size_t i = 0; i < list.size(); ++i) {
       const std::string at = where + ", instance " + std::to_string(i);
-      v.push_back({int(r.number(list[i], "obj_id", at)),
+      v.push_back({int(r.integer(list[i], "obj_id", at, kMinInt, kMaxInt)),
                    r.pose(list[i], "cam_R_m2c", "cam_t_m2c", at)});
     }
   });
@@ -197,11 +210,15 @@ SceneGroundTruthInfo read_scene_gt_info(const std::filesystem::path& path) {
       const std::string at = where + ", instance " + std::to_string(i);
       GroundTruthInfo g;
       const auto bo = r.vector<4>(list[i], "bbox_obj", at), bv = r.vector<4>(list[i], "bbox_visib", at);
-      for (int k = 0; k < 4; ++k) g.bbox_obj[k] = int(bo[k]), g.bbox_visib[k] = int(bv[k]);
-      g.px_count_all = std::uint32_t(r.number(list[i], "px_count_all", at));
-      g.px_count_visib = std::uint32_t(r.number(list[i], "px_count_visib", at));
+      for (int k = 0; k < 4; ++k) {
+        if (!(std::abs(bo[k]) <= kMaxInt && std::abs(bv[k]) <= kMaxInt))
+          r.fail(at, "a bounding box value is out of range");
+        g.bbox_obj[k] = int(bo[k]), g.bbox_visib[k] = int(bv[k]);
+      }
+      g.px_count_all = std::uint32_t(r.integer(list[i], "px_count_all", at, 0, kMaxU32));
+      g.px_count_visib = std::uint32_t(r.integer(list[i], "px_count_visib", at, 0, kMaxU32));
       if (list[i].contains("px_count_valid"))
-        g.px_count_valid = std::uint32_t(r.number(list[i], "px_count_valid", at));
+        g.px_count_valid = std::uint32_t(r.integer(list[i], "px_count_valid", at, 0, kMaxU32));
       g.visib_fract = r.number(list[i], "visib_fract", at);
       v.push_back(g);
     }

@@ -102,9 +102,12 @@ GrayImage<T> read_gray(const std::filesystem::path& path) {
     if (sizeof(T) == 2) png_set_swap(png);
     image.width = png_get_image_width(png, info);
     image.height = png_get_image_height(png, info);
-    image.pixels.resize(std::size_t(image.width) * image.height);
-    for (std::uint32_t y = 0; y < image.height; ++y)
+    // Grown row by row: a header that announces more rows than the file holds must fail on the
+    // missing data, not on allocating them all first (a 60-byte file can claim 10^12 pixels).
+    for (std::uint32_t y = 0; y < image.height; ++y) {
+      image.pixels.resize(std::size_t(y + 1) * image.width);
       png_read_row(png, reinterpret_cast<png_bytep>(&image.pixels[std::size_t(y) * image.width]), nullptr);
+    }
     png_read_end(png, nullptr);
   } catch (const std::runtime_error& e) {
     png_destroy_read_struct(&png, &info, nullptr);

@@ -193,7 +193,7 @@ Mesh read_ply(std::string_view bytes) {
       has_vertices = true;
     } else if (element.name == "face") {
       read_faces(element, reader, mesh);
-    } else {
+    } else if (!element.properties.empty()) {  // without properties it takes no bytes
       for (std::uint64_t i = 0; i < element.count; ++i) {
         for (const auto& p : element.properties) {
           const auto n = p.is_list ? read_count_or_index(reader, p.count_type, "list length") : 1;

@@ -1,0 +1,146 @@
+#include "fuzz/targets.hpp"
+
+#include <spdlog/spdlog.h>
+#include <unistd.h>
+
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include "host/core/error.hpp"
+#include "host/detect/bin_spec.hpp"
+#include "host/detect/detect_params_file.hpp"
+#include "host/formats/bop/bop_files.hpp"
+#include "host/formats/bop/models_info.hpp"
+#include "host/formats/bop/png_image.hpp"
+#include "host/formats/bop/results_csv.hpp"
+#include "host/formats/mesh/load_model.hpp"
+#include "host/train/ppf_model_file.hpp"
+
+namespace binpick::fuzz {
+namespace {
+
+namespace fs = std::filesystem;
+
+// A directory of this process: the file for readers that only take a path, and the (empty)
+// directory where glTF buffers and OBJ materials named by an input are looked up.
+class Scratch {
+ public:
+  Scratch()
+      : dir_(fs::temp_directory_path() / ("binpick_fuzz_" + std::to_string(::getpid()))) {
+    fs::create_directories(dir_ / "empty");
+  }
+  ~Scratch() {
+    std::error_code ignored;
+    fs::remove_all(dir_, ignored);
+  }
+  const fs::path& dir() const { return dir_; }
+
+ private:
+  fs::path dir_;
+};
+
+const Scratch& scratch() {
+  static const Scratch instance;
+  return instance;
+}
+
+fs::path empty_dir() { return scratch().dir() / "empty"; }
+
+// Writes bytes to the scratch file `name` and returns its path.
+fs::path as_file(std::string_view bytes, const char* name) {
+  const fs::path path = scratch().dir() / name;
+  std::ofstream out(path, std::ios::binary | std::ios::trunc);
+  out.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
+  if (!out) throw std::runtime_error("fuzz: cannot write " + path.string());
+  return path;
+}
+
+void parse_mesh(std::string_view bytes, std::string_view format) {
+  parse_model(bytes, format, ModelOptions{}, empty_dir());
+}
+
+}  // namespace
+
+void parse_ply(std::string_view bytes) { parse_mesh(bytes, "ply"); }
+void parse_stl(std::string_view bytes) { parse_mesh(bytes, "stl"); }
+void parse_obj(std::string_view bytes) { parse_mesh(bytes, "obj"); }
+void parse_gltf(std::string_view bytes) { parse_mesh(bytes, "gltf"); }
+
+void parse_ppfm(std::string_view bytes) { parse_ppf_model(bytes, "fuzz.ppfm"); }
+
+void parse_camera(std::string_view bytes) { bop::read_camera(as_file(bytes, "camera.json")); }
+void parse_scene_camera(std::string_view bytes) {
+  bop::read_scene_cameras(as_file(bytes, "scene_camera.json"));
+}
+void parse_scene_gt(std::string_view bytes) { bop::read_scene_gt(as_file(bytes, "scene_gt.json")); }
+void parse_scene_gt_info(std::string_view bytes) {
+  bop::read_scene_gt_info(as_file(bytes, "scene_gt_info.json"));
+}
+void parse_models_info(std::string_view bytes) {
+  bop::parse_models_info(std::string(bytes), "models_info.json");
+}
+
+// Depth images are read as 16-bit, intensity images and masks as 8-bit: both readers see every
+// input, and it parses if either accepts it.
+void parse_png(std::string_view bytes) {
+  const fs::path path = as_file(bytes, "image.png");
+  bool parsed = false;
+  try {
+    read_png16(path);
+    parsed = true;
+  } catch (const InputError&) {
+  }
+  try {
+    read_png8(path);
+  } catch (const InputError&) {
+    if (!parsed) throw;
+  }
+}
+
+void parse_results_csv(std::string_view bytes) {
+  bop::parse_results_csv(std::string(bytes), "results.csv");
+}
+
+// The file as `detect --params` reads it, with the --roi and --bin texts it may hold.
+void parse_params(std::string_view bytes) {
+  DetectParams params;
+  apply_params_file(as_file(bytes, "params.json"), params);
+  parse_roi(params.roi);
+  parse_bin(params.bin);
+}
+
+const std::vector<Target>& all_targets() {
+  static const std::vector<Target> targets = {
+      {"ply", parse_ply},
+      {"stl", parse_stl},
+      {"obj", parse_obj},
+      {"gltf", parse_gltf},
+      {"ppfm", parse_ppfm},
+      {"camera", parse_camera},
+      {"scene_camera", parse_scene_camera},
+      {"scene_gt", parse_scene_gt},
+      {"scene_gt_info", parse_scene_gt_info},
+      {"models_info", parse_models_info},
+      {"png", parse_png},
+      {"results_csv", parse_results_csv},
+      {"params", parse_params},
+  };
+  return targets;
+}
+
+int run_one_input(Parse parse, const std::uint8_t* data, std::size_t size) {
+  // The mesh loader warns about repairs it makes; millions of inputs would flood the output.
+  static const bool quiet = [] {
+    spdlog::set_level(spdlog::level::off);
+    return true;
+  }();
+  (void)quiet;
+  try {
+    parse(std::string_view(reinterpret_cast<const char*>(data), size));
+  } catch (const InputError&) {
+  }
+  return 0;
+}
+
+}  // namespace binpick::fuzz
