@@ -44,6 +44,22 @@ double focal_estimate(const PlaneSamples& s) {
   return f.empty() ? 1e9 : quantile(f, 0.5);
 }
 
+// How far beyond `known` (along dir * axis) the points more than 3 tol below the rim reach: the
+// 99.5th percentile of their distances beyond it (a stray point does not stretch the interior);
+// 0 if there are too few.
+double farthest_below_rim(const PlaneSamples& s, const Eigen::Vector3d& up,
+                          const Eigen::Vector3d& axis, double dir, double known, double rim_height,
+                          double tol) {
+  std::vector<double> beyond;
+  for (const Eigen::Vector3f& pf : s.points) {
+    const Eigen::Vector3d p = pf.cast<double>();
+    if (up.dot(p) > rim_height - 3 * tol) continue;
+    const double b = dir * (axis.dot(p) - known);
+    if (b > 0) beyond.push_back(b);
+  }
+  return beyond.size() < 20 ? 0.0 : quantile(beyond, 0.995);
+}
+
 }  // namespace
 
 double BinFit::floor_d() const { return -axes.col(2).dot(origin); }
@@ -128,8 +144,16 @@ BinFit fit_bin(ocl::Device& dev, const std::vector<float>& xyzw, std::uint32_t w
       if (beyond > 4 * bin.tol && beyond < nearest) nearest = beyond;
     }
     if (!std::isfinite(nearest)) {
-      bin.why = "a side of the rim is out of view and no wall plane was found in its place";
-      return bin;
+      // Neither rim nor wall seen on this side (out of view, or no depth there: a shiny wall, a
+      // projector shadow): the interior runs to the farthest point seen below the rim beyond the
+      // known edge, so that all it holds stays in and the three rim sides seen stay out.
+      nearest = farthest_below_rim(s, up, axis[k], dir, edge[known], rim.height, bin.tol);
+      if (!(nearest > 4 * bin.tol)) {
+        bin.why = "a side of the rim is out of view and neither a wall plane nor points below "
+                  "the rim were found in its place";
+        return bin;
+      }
+      bin.unseen_sides.push_back(fmt::format("{}{}", dir > 0 ? '+' : '-', k == 0 ? "a1" : "a2"));
     }
     edge[missing] = edge[known] + dir * nearest;
   }
@@ -241,7 +265,12 @@ std::string describe(const BinFit& bin) {
       bin.interior.x(), bin.interior.y(), bin.interior.z(), bin.measured.x(), bin.measured.y(),
       bin.interior.z(), bin.floor_plane ? "plane" : "(not seen as a plane)", bin.floor_d(),
       up.x(), up.y(), up.z(), bin.tilt_degrees(), bin.origin.x(), bin.origin.y(), bin.origin.z(),
-      bin.samples, bin.planes, bin.rim_points, bin.tol);
+      bin.samples, bin.planes, bin.rim_points, bin.tol) +
+         (bin.unseen_sides.empty()
+              ? std::string()
+              : fmt::format("; {} side(s) of the rim unseen, the interior taken to the farthest "
+                            "point below the rim there",
+                            bin.unseen_sides.size()));
 }
 
 }  // namespace binpick

@@ -11,7 +11,8 @@
 // (within 60 degrees of the optical axis) and spans at least a quarter of the image both ways
 // (the floor, or the rim's plane), else the optical axis; the rim = the highest structure at one
 // height along the image border, and the interior = the rectangle inside its frame (bin_rim.hpp;
-// a side out of view ends at the nearest wall plane beyond the side seen, or at the given size);
+// a side out of view ends at the nearest wall plane beyond the side seen, or at the given size,
+// or, with neither rim nor wall seen there, at the farthest point seen below the rim);
 // the floor = the plane parallel to up with the most points inside that rectangle, below the rim
 // (else the lowest points inside it). With a given size, the rim and its rectangle's centre and
 // orientation are found the same way and the floor is the rim minus H.
@@ -44,6 +45,9 @@ struct BinFit {
   Eigen::Vector3d interior = Eigen::Vector3d::Zero();   // W, D, H (mm)
   Eigen::Vector3d measured = Eigen::Vector3d::Zero();   // W, D seen inside the rim; H (sized: as given)
   bool floor_plane = false;  // the floor is a fitted plane (else rim - H or the lowest points)
+  // Sides of the rim where neither the rim nor a wall plane was seen ("+a1" ...): the interior
+  // there ends at the farthest point seen below the rim, so W or D may be short of the truth.
+  std::vector<std::string> unseen_sides;
   std::size_t samples = 0, planes = 0, rim_points = 0;
   double tol = 0;
   // The floor plane in the camera frame: up . p + floor_d = 0 (up = axes.col(2)).

@@ -91,6 +91,39 @@ TEST(BinFit, FarRimOutOfViewEndsAtTheWall) {
   expect_matches(fit(scene, {BinSpec::Mode::find, {}}), scene, s, true);
 }
 
+// One side of the bin without any depth (its rim, its wall and a strip of floor: a shiny wall,
+// or the projector's mirror reflection on a structured-light sensor): the three rim sides seen
+// hold, and the interior runs to the farthest point seen below the rim on the fourth.
+TEST(BinFit, RimSideWithoutDepthEndsAtTheFarthestPointSeen) {
+  for (double yaw : {0.0, 20.0}) {
+    SCOPED_TRACE(testing::Message() << "yaw " << yaw);
+    BinSceneSpec s;
+    s.tilt_deg = 10, s.yaw_deg = yaw;
+    BinScene scene = make_bin_scene(s);
+    const PointImage before = depth_to_points_reference(scene.depth, scene.cam);
+    const double cut = s.W / 2 - 30;  // bin x beyond this: no depth
+    std::size_t blanked = 0;
+    for (std::size_t i = 0; i < before.xyzw.size() / 4; ++i) {
+      const float* p = &before.xyzw[4 * i];
+      if (p[3] == 0.0f) continue;
+      if (scene.to_bin(Eigen::Vector3d(p[0], p[1], p[2])).x() > cut) scene.depth.raw[i] = 0, ++blanked;
+    }
+    ASSERT_GT(blanked, 1000u);
+    const BinFit b = fit(scene, {BinSpec::Mode::find, {}});
+    ASSERT_TRUE(b.found) << b.why;
+    SCOPED_TRACE(describe(b));
+    EXPECT_EQ(b.unseen_sides.size(), 1u);
+    EXPECT_LT(angle_deg(b.axes.col(2), scene.bin_to_cam.col(2)), 1.0);
+    EXPECT_NEAR(b.interior.y(), s.D, 6.0);
+    EXPECT_NEAR(b.interior.z(), s.H, 3.0);
+    // The interior reaches the last floor point seen (cut), not the missing wall (W / 2).
+    EXPECT_NEAR(b.interior.x(), s.W / 2 + cut, 8.0);
+    const Eigen::Vector3d o = scene.to_bin(b.origin);
+    EXPECT_NEAR(o.x(), 0.5 * (cut - s.W / 2), 5.0);
+    EXPECT_NEAR(o.y(), 0.0, 4.0);
+  }
+}
+
 // With half the pixels lost in blobs and stripes the fit still holds.
 TEST(BinFit, FindsTheBinThroughLargeHoles) {
   BinSceneSpec s;
