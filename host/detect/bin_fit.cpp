@@ -95,18 +95,27 @@ BinFit fit_bin(ocl::Device& dev, const std::vector<float>& xyzw, std::uint32_t w
       best = p.inliers.size();
       up = p.normal;
     }
-  Eigen::Vector3d e1 = Eigen::Vector3d::UnitX() - up.x() * up;
-  if (e1.norm() < 1e-6) e1 = Eigen::Vector3d::UnitY() - up.y() * up;
-  e1.normalize();
-  const Eigen::Vector3d e2 = up.cross(e1);
-
   RimOptions ro;
   ro.tol = bin.tol;
   ro.focal = focal_estimate(s);
-  const RimFit rim = fit_rim(s, up, e1, e2, ro);
-  if (!rim.found) {
-    bin.why = rim.why;
-    return bin;
+  Eigen::Vector3d e1, e2;
+  RimFit rim;
+  // Twice at most: then once more with up from the rim's own plane (rim_normal), which is level
+  // where the first plane may lean.
+  for (int pass = 0; pass < 2; ++pass) {
+    e1 = Eigen::Vector3d::UnitX() - up.x() * up;
+    if (e1.norm() < 1e-6) e1 = Eigen::Vector3d::UnitY() - up.y() * up;
+    e1.normalize();
+    e2 = up.cross(e1);
+    rim = fit_rim(s, up, e1, e2, ro);
+    if (!rim.found) {
+      bin.why = rim.why;
+      return bin;
+    }
+    if (pass == 1) break;
+    const std::optional<Eigen::Vector3d> level = rim_normal(s, rim, up, bin.tol);
+    if (!level || std::acos(std::min(1.0, level->dot(up))) < 0.1 * kDeg) break;
+    up = *level;
   }
   bin.rim_points = rim.points;
   const Eigen::Vector3d a1 = std::cos(rim.angle) * e1 + std::sin(rim.angle) * e2;

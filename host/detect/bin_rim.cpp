@@ -4,6 +4,8 @@
 #include <cmath>
 #include <numbers>
 
+#include <Eigen/Eigenvalues>
+
 namespace binpick {
 namespace {
 
@@ -155,6 +157,7 @@ RimFit fit_rim(const PlaneSamples& s, const Eigen::Vector3d& up, const Eigen::Ve
     rim.found = true;
     rim.height = sum / double(on_rim.size());
     rim.points = on_rim.size();
+    rim.samples = on_rim;
   }
   if (!rim.found) {
     rim.why = "no structure at one height runs along three sides of the image border";
@@ -202,6 +205,28 @@ RimFit fit_rim(const PlaneSamples& s, const Eigen::Vector3d& up, const Eigen::Ve
     rim.why = "the structure at the rim's height is not a rectangular frame";
   }
   return rim;
+}
+
+std::optional<Eigen::Vector3d> rim_normal(const PlaneSamples& s, const RimFit& rim,
+                                          const Eigen::Vector3d& up, double tol) {
+  if (!rim.found || rim.samples.size() < 100) return std::nullopt;
+  Eigen::Vector3d mean = Eigen::Vector3d::Zero();
+  for (std::size_t i : rim.samples) mean += s.points[i].cast<double>();
+  mean /= double(rim.samples.size());
+  Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
+  for (std::size_t i : rim.samples) {
+    const Eigen::Vector3d d = s.points[i].cast<double>() - mean;
+    cov += d * d.transpose();
+  }
+  cov /= double(rim.samples.size());
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(cov);  // ascending eigenvalues
+  Eigen::Vector3d n = eig.eigenvectors().col(0);
+  if (n.dot(up) < 0) n = -n;
+  const bool spread = std::sqrt(std::max(0.0, eig.eigenvalues()(1))) > 10 * tol;
+  const bool flat = std::sqrt(std::max(0.0, eig.eigenvalues()(0))) <= tol;
+  const bool near = n.dot(up) >= std::cos(10 * std::numbers::pi / 180);
+  if (!(spread && flat && near)) return std::nullopt;
+  return n;
 }
 
 double share_inside(const PlaneSamples& s, const Eigen::Vector3d& up, const Eigen::Vector3d& a1,

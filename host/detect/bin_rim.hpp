@@ -5,6 +5,7 @@
 
 #include <array>
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -21,6 +22,7 @@ struct RimFit {
   std::string why;            // why not, when not found
   double height = 0;          // up . p of the rim's top
   std::size_t points = 0;     // samples on it
+  std::vector<std::size_t> samples;  // their indices in the PlaneSamples
   double angle = 0;           // radians
   // The interior's inner edges {a1 low, a1 high, a2 low, a2 high}, and which were seen: a side
   // of the frame may be out of view (a tilted camera) or hidden.
@@ -48,6 +50,14 @@ struct RimOptions {
 //    sample spacing. found needs at least one side on each axis.
 RimFit fit_rim(const PlaneSamples& samples, const Eigen::Vector3d& up, const Eigen::Vector3d& e1,
                const Eigen::Vector3d& e2, const RimOptions& opt);
+
+// The normal of the plane through the rim's samples (least squares), facing the camera, if it is
+// a sound plane near `up`: at least 100 samples spread over a frame, not a line (the in-plane
+// spread both ways over 10 tol), RMS distance within tol, within 10 degrees of up. The rim is
+// level by construction, while the plane "up" was first taken from (the floor with flat parts
+// on it, or a layer of parts) may lean: measured 1.7-2.8 degrees on plate-filled bins.
+std::optional<Eigen::Vector3d> rim_normal(const PlaneSamples& samples, const RimFit& rim,
+                                          const Eigen::Vector3d& up, double tol);
 
 // A frame, not a layer: of the samples at the rim's height, at most this share may lie inside
 // the interior. A layer of parts at one height over the whole view is not a rim; a bin filled up
