@@ -4,7 +4,8 @@
  * pose_fit: one work group of BP_FIT_GROUP items per pose. The group clears the pose's z-buffer
  * grid, writes every posed model point's depth into it (atomic_min on the float's bits, which
  * order like the floats for positive values), then classifies every point against the grid
- * and the measured point image and adds up the Gauss-Newton terms. Each work item writes its
+ * and the measured point image and adds up the Gauss-Newton terms, and (outline > 0) classifies
+ * the empty cells next to filled ones against the measured depth. Each work item writes its
  * own partial sums (sums[pose * BP_FIT_GROUP + item]); the host adds the 64 in double, so the
  * result does not depend on a float reduction order. The grid of a pose is touched only by its
  * own group, so the group's barriers are enough. */
@@ -42,7 +43,8 @@ __kernel void pose_fit(__global const float4* points, const bp_camera cam,
   s.cost = 0.0f;
   s.used = 0u;
   s.agreement = 0.0f;
-  s.reserved = 0u;
+  s.outline_continue = 0u;
+  s.outline_step = 0u;
   float a[6];
   float r = 0.0f;
   for (uint j = lid; j < n_model; j += BP_FIT_GROUP) {
@@ -63,6 +65,24 @@ __kernel void pose_fit(__global const float4* points, const bp_camera cam,
       s.jtr[row] += w * a[row] * r;
     }
     s.cost += w * r * r;
+  }
+  if (f.outline > 0.0f) {
+    const uint empty = 0x7f800000u, dim = f.dim;
+    for (uint i = lid; i < cells; i += BP_FIT_GROUP) {
+      if (grid[i] != empty) continue;
+      const uint gu = i % dim, gv = i / dim;
+      /* The nearest filled 4-neighbour (positive floats order like their bits). */
+      uint zn = empty;
+      if (gu + 1u < dim) zn = min(zn, grid[i + 1u]);
+      if (gu > 0u) zn = min(zn, grid[i - 1u]);
+      if (gv + 1u < dim) zn = min(zn, grid[i + dim]);
+      if (gv > 0u) zn = min(zn, grid[i - dim]);
+      if (zn == empty || !bp_fit_outline_pixel(&f, &c, gu, gv, &pixel)) continue;
+      const float4 p = points[pixel];
+      const uint cls = bp_fit_outline_class(&f, as_float(zn), p.z, p.w);
+      if (cls == BP_FIT_OUTLINE_CONTINUE) ++s.outline_continue;
+      else if (cls == BP_FIT_OUTLINE_STEP) ++s.outline_step;
+    }
   }
   sums[(size_t)k * BP_FIT_GROUP + lid] = s;
 }

@@ -12,7 +12,14 @@
  *   see-through  otherwise, measured depth farther: the sensor looks through the part;
  *   occluded     otherwise, measured depth nearer: something lies in front of the part.
  * Visible points with a measured point within `gate` along the ray also give one point-to-plane
- * term of Gauss-Newton ICP (projective association), weighted by Tukey's biweight. */
+ * term of Gauss-Newton ICP (projective association), weighted by Tukey's biweight.
+ *
+ * The outline (with `outline` > 0): every empty z-buffer cell next to one the posed model fills
+ * lies just outside the part's silhouette. A real part's outline is mostly a depth step down to
+ * what it lies on; where the measured surface there continues at the model's depth (within
+ * `outline`), the sensor sees surface where the pose says the part ends: a pose on the wrong
+ * object, or shifted. Counted per cell: continue, step (farther), nothing (nearer: an occluder,
+ * or no depth). */
 #ifndef BINPICK_POSE_FIT_SHARED_H
 #define BINPICK_POSE_FIT_SHARED_H
 
@@ -42,7 +49,8 @@ typedef struct {
   float u0, v0;     /* pixel coordinates of the z-buffer grid's corner */
   float cell;       /* z-buffer cell side, pixels */
   bp_u32 dim;       /* cells per side, <= BP_FIT_MAX_DIM; 0: nothing can be visible */
-  bp_u32 reserved[2];
+  float outline;    /* mm: the outline test's depth tolerance; 0: no outline test */
+  bp_u32 reserved;
 } bp_pose_fit;
 
 /* What one work item (kernel) or one pose (reference) adds up. */
@@ -53,8 +61,13 @@ typedef struct {
   bp_u32 count[BP_FIT_CLASSES]; /* model points per class */
   bp_u32 used;      /* terms with weight > 0 */
   float agreement;  /* sum over inliers of 1 - (r / tolerance)^2: how well, not only whether */
-  bp_u32 reserved;
+  bp_u32 outline_continue; /* outline cells where the measured surface continues */
+  bp_u32 outline_step;     /* outline cells where it steps down */
 } bp_fit_sums;
+
+#define BP_FIT_OUTLINE_NONE 0u
+#define BP_FIT_OUTLINE_CONTINUE 1u
+#define BP_FIT_OUTLINE_STEP 2u
 
 /* Posed model point q = R m + t and normal nq = R n; its pixel (row-major index) and z-buffer
  * cell. Returns 0 if it falls outside the image or the grid, else 2 if it faces the camera and
@@ -122,6 +135,27 @@ BP_FN float bp_fit_term(const bp_pose_fit* f, const float* q, const float* nq, f
   *r = res;
   const float b = 1.0f - u * u;
   return b * b;
+}
+
+/* The pixel at the centre of z-buffer cell (gu, gv); 0 if it falls outside the image. */
+BP_FN int bp_fit_outline_pixel(const bp_pose_fit* f, const bp_camera* cam, bp_u32 gu, bp_u32 gv,
+                               bp_u32* pixel) {
+  const float u = f->u0 + ((float)gu + 0.5f) * f->cell;
+  const float v = f->v0 + ((float)gv + 0.5f) * f->cell;
+  const float pu = BP_FLOOR(u + 0.5f), pv = BP_FLOOR(v + 0.5f);
+  if (!(pu >= 0.0f && pv >= 0.0f && pu < (float)cam->width && pv < (float)cam->height)) return 0;
+  *pixel = (bp_u32)pv * cam->width + (bp_u32)pu;
+  return 1;
+}
+
+/* An outline cell whose filled neighbours' nearest model depth is zn, against the measured depth
+ * pz there (pw = 0: no data). */
+BP_FN bp_u32 bp_fit_outline_class(const bp_pose_fit* f, float zn, float pz, float pw) {
+  if (pw == 0.0f) return BP_FIT_OUTLINE_NONE;
+  const float dz = pz - zn;
+  if (dz > f->outline) return BP_FIT_OUTLINE_STEP;
+  if (dz < -f->outline) return BP_FIT_OUTLINE_NONE;
+  return BP_FIT_OUTLINE_CONTINUE;
 }
 
 #endif /* BINPICK_POSE_FIT_SHARED_H */

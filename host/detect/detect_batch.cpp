@@ -141,6 +141,9 @@ std::string detection_line(std::size_t rank, const Detection& d) {
       "#{} hypothesis {} candidate {}: score {:.3f} ({} of {} visible model points agree), "
       "{} votes",
       rank, d.index, d.candidate, d.score, d.inliers, d.visible, d.votes);
+  if (d.outline_continue + d.outline_step > 0)
+    line += fmt::format("; outline steps down at {} of {} cells", d.outline_step,
+                        d.outline_continue + d.outline_step);
   if (!d.reason.empty()) line += "; " + d.reason;
   return line;
 }

@@ -3,6 +3,7 @@
 #include "host/detect/floor_check.hpp"
 #include "host/detect/bin_fit.hpp"
 #include "host/detect/instance_select.hpp"
+#include "host/detect/outline_test.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -124,6 +125,7 @@ Detector::Detector(const PpfModel& model, const DetectParams& params, ocl::Devic
   fit_geometry_.voxel_size = model_.voxel_size;
   fit_geometry_.centroid = model_centroid(model_.cloud);
   near_symmetries_ = find_near_symmetries(model_.cloud, model_.voxel_size, model_.symmetries);
+  outline_ratio_ = outline_ratio_for(model_.cloud, model_.diameter, params_.verify_tolerance);
 }
 
 std::vector<PoseCluster> Detector::vote_and_cluster(const PointCloud& subsampled, Detection& d,
@@ -197,6 +199,7 @@ std::vector<Detection> Detector::refine_and_rank(
   ro.iterations = params_.refine_iterations;
   ro.tolerance_ratio = float(params_.verify_tolerance);
   ro.noise_factor = float(params_.verify_noise_factor);
+  ro.outline_ratio = outline_ratio_;
   const auto sums = [&](const std::vector<bp_pose_fit>& fits) {
     return pose_fit_sums(dev_, points, cam, fit_model_, fits);
   };
@@ -231,6 +234,8 @@ std::vector<Detection> Detector::refine_and_rank(
       d.twin = twin;
       d.visible = r.visible;
       d.inliers = r.inliers;
+      d.outline_continue = r.outline_continue;
+      d.outline_step = r.outline_step;
       d.reason = r.reason;
       poses.push_back(std::move(d));
     }
@@ -256,6 +261,8 @@ std::vector<Detection> Detector::refine_and_rank(
     d.twin = twin;
     d.visible = r.visible;
     d.inliers = r.inliers;
+    d.outline_continue = r.outline_continue;
+    d.outline_step = r.outline_step;
     d.reason = r.reason;
   }
   const double ms = clock.lap();

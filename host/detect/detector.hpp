@@ -86,6 +86,9 @@ struct Detection {
   std::uint32_t twin = 0;           // 0: the cluster's pose; k: its k-th near-symmetric copy
                                     // (near_symmetry.hpp)
   std::uint32_t visible = 0, inliers = 0;  // model points seen at the pose, and agreeing
+  // Outline cells where the measured surface runs on past the part's edge, and where it steps
+  // down (both 0 without the outline test: pose_fit_shared.h).
+  std::uint32_t outline_continue = 0, outline_step = 0;
   std::string reason;               // why the score is 0 or refinement stopped early, or why the
                                     // hypothesis was skipped (Detector::skipped)
   // neighbourhood: points in the crop (from a depth image: pixels with data, whether or not
@@ -173,6 +176,7 @@ class Detector {
   DeviceFitModel fit_model_;
   std::vector<Eigen::Isometry3d> near_symmetries_;  // model frame (near_symmetry.hpp)
   FitGeometry fit_geometry_;
+  float outline_ratio_ = 0;  // the verification's outline test, 0 for thin parts (outline_test.hpp)
 };
 
 }  // namespace binpick

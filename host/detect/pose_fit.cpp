@@ -27,13 +27,38 @@ void add_partial(const bp_fit_sums& s, FitSums& out) {
   out.agreement += s.agreement;
   for (unsigned c = 0; c < BP_FIT_CLASSES; ++c) out.count[c] += s.count[c];
   out.used += s.used;
+  out.outline_continue += s.outline_continue;
+  out.outline_step += s.outline_step;
 }
 
 void check_fits(const std::vector<bp_pose_fit>& fits) {
   for (const bp_pose_fit& f : fits)
-    if (f.dim > BP_FIT_MAX_DIM || !(f.cell > 0) || !(f.gate > 0) || !(f.tolerance >= 0))
+    if (f.dim > BP_FIT_MAX_DIM || !(f.cell > 0) || !(f.gate > 0) || !(f.tolerance >= 0) ||
+        !(f.outline >= 0))
       throw std::logic_error(fmt::format("pose fit with grid {} x {} cells of {} px, gate {}",
                                          f.dim, f.dim, f.cell, f.gate));
+}
+
+// The outline cells of one pose's z-buffer (pose_fit_shared.h), as the kernel counts them.
+void add_outline_reference(const bp_pose_fit& f, const bp_camera& cam,
+                           const std::vector<float>& grid, const PointImage& image, FitSums& s) {
+  const std::uint32_t dim = f.dim;
+  for (std::uint32_t gv = 0; gv < dim; ++gv)
+    for (std::uint32_t gu = 0; gu < dim; ++gu) {
+      const std::size_t i = std::size_t(gv) * dim + gu;
+      if (std::isfinite(grid[i])) continue;
+      float zn = std::numeric_limits<float>::infinity();
+      if (gu + 1 < dim) zn = std::min(zn, grid[i + 1]);
+      if (gu > 0) zn = std::min(zn, grid[i - 1]);
+      if (gv + 1 < dim) zn = std::min(zn, grid[i + dim]);
+      if (gv > 0) zn = std::min(zn, grid[i - dim]);
+      std::uint32_t pixel = 0;
+      if (!std::isfinite(zn) || !bp_fit_outline_pixel(&f, &cam, gu, gv, &pixel)) continue;
+      const float* p = &image.xyzw[std::size_t(pixel) * 4];
+      const std::uint32_t cls = bp_fit_outline_class(&f, zn, p[2], p[3]);
+      s.outline_continue += cls == BP_FIT_OUTLINE_CONTINUE;
+      s.outline_step += cls == BP_FIT_OUTLINE_STEP;
+    }
 }
 
 }  // namespace
@@ -74,6 +99,7 @@ bp_pose_fit make_pose_fit(const Eigen::Matrix3d& R, const Eigen::Vector3d& t,
   f.gate = th.gate;
   f.tolerance = th.tolerance;
   f.slack = th.slack;
+  f.outline = th.outline;
   f.cell = 1;
   f.dim = 0;  // nothing visible unless the pose lies in front of the camera
   const double near = c.z() - 0.5 * g.diameter;
@@ -148,6 +174,7 @@ std::vector<FitSums> pose_fit_sums_reference(const PointImage& image, const bp_c
       s.jtr += double(w) * double(r) * ad;
       s.cost += double(w) * double(r) * double(r);
     }
+    if (f.outline > 0.0f) add_outline_reference(f, cam, grid, image, s);
   }
   return out;
 }

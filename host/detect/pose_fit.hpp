@@ -35,6 +35,7 @@ struct FitSums {
   double agreement = 0;  // sum over inliers of 1 - (r / tolerance)^2
   std::array<std::uint32_t, BP_FIT_CLASSES> count{};  // indexed by BP_FIT_HIDDEN ...
   std::uint32_t used = 0;
+  std::uint32_t outline_continue = 0, outline_step = 0;  // outline cells (pose_fit_shared.h)
 
   std::uint32_t visible() const;  // all but hidden
 };
@@ -48,6 +49,7 @@ struct FitGeometry {
 };
 struct FitThresholds {
   float gate = 0, tolerance = 0, slack = 0;  // mm
+  float outline = 0;  // mm, the outline test's tolerance; 0: no outline test
 };
 bp_pose_fit make_pose_fit(const Eigen::Matrix3d& R, const Eigen::Vector3d& t,
                           const bp_camera& cam, const FitGeometry& geometry,

@@ -49,6 +49,8 @@ void check(const RefineOptions& o) {
     throw InputError(fmt::format("verify tolerance {} must be in [1e-4, 1]", o.tolerance_ratio));
   if (bad(o.noise_factor, 0, 100))
     throw InputError(fmt::format("verify noise factor {} must be in [0, 100]", o.noise_factor));
+  if (bad(o.outline_ratio, 0, 1))
+    throw InputError(fmt::format("outline tolerance {} must be in [0, 1]", o.outline_ratio));
   if (bad(o.min_support_ratio, 0, 1))
     throw InputError(fmt::format("verify min support {} must be in [0, 1]", o.min_support_ratio));
 }
@@ -105,10 +107,11 @@ std::vector<RefinedPose> refine_and_verify(const FitSumsFn& sums_of, const bp_ca
     }
   }
 
-  const auto final_sums = [&](float tol, float gate) {
+  const auto final_sums = [&](float tol, float gate, float outline) {
+    FitThresholds th = thresholds(g, tol, gate);
+    th.outline = outline;
     fits.clear();
-    for (const PoseToRefine& p : poses)
-      fits.push_back(make_pose_fit(p.R, p.t, cam, g, thresholds(g, tol, gate)));
+    for (const PoseToRefine& p : poses) fits.push_back(make_pose_fit(p.R, p.t, cam, g, th));
     return sums_of(fits);
   };
   // The tolerance follows the sensor's noise, as the best-fitting pose shows it (its residual's
@@ -119,7 +122,7 @@ std::vector<RefinedPose> refine_and_verify(const FitSumsFn& sums_of, const bp_ca
     // Residuals within a wide gate (4 tolerances), Tukey-weighted: their weighted mean square.
     // The weights' sum is the trace of the translation block (unit normals).
     double noise = INFINITY;
-    for (const FitSums& s : final_sums(tolerance, 4 * tolerance)) {
+    for (const FitSums& s : final_sums(tolerance, 4 * tolerance, 0.0f)) {
       const double weight = s.jtj(3, 3) + s.jtj(4, 4) + s.jtj(5, 5);
       if (s.used >= opt.min_pairs && weight > 0) noise = std::min(noise, std::sqrt(s.cost / weight));
     }
@@ -131,7 +134,8 @@ std::vector<RefinedPose> refine_and_verify(const FitSumsFn& sums_of, const bp_ca
       final_gate = 2 * tolerance;
     }
   }
-  const std::vector<FitSums> sums = final_sums(tolerance, final_gate);
+  const std::vector<FitSums> sums =
+      final_sums(tolerance, final_gate, opt.outline_ratio * g.diameter);
   const double min_support = double(opt.min_support_ratio) * model_points;
   for (std::size_t k = 0; k < poses.size(); ++k) {
     RefinedPose& r = out[k];
@@ -144,6 +148,8 @@ std::vector<RefinedPose> refine_and_verify(const FitSumsFn& sums_of, const bp_ca
     r.see_through = s.count[BP_FIT_SEE_THROUGH];
     r.occluded = s.count[BP_FIT_OCCLUDED];
     r.tolerance = tolerance;
+    r.outline_continue = s.outline_continue;
+    r.outline_step = s.outline_step;
     if (r.visible == 0) {
       r.score = 0;
       r.reason = "no model surface visible at this pose";
@@ -155,6 +161,8 @@ std::vector<RefinedPose> refine_and_verify(const FitSumsFn& sums_of, const bp_ca
       // parked over a shadow or beyond the sensor's range is not judged on a few points alone.
       const double support = double(r.visible) - 0.5 * double(r.missing);
       r.score = s.agreement / std::max(support, std::max(min_support, 1.0));
+      const std::uint32_t outline = s.outline_continue + s.outline_step;
+      if (outline > 0) r.score *= double(s.outline_step) / double(outline);
     }
   }
   return out;

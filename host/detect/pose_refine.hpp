@@ -21,6 +21,9 @@
 // sensor sees through it or something lies in front of it counts against the pose. min_support
 // (a fraction of the model's points) keeps a pose that shows the camera only a sliver (a plate
 // edge on) from scoring high on a handful of points.
+// With outline_ratio > 0 the score is then multiplied by the share of the pose's outline where
+// the measured surface steps down rather than continuing at the part's depth (a pose laid on the
+// wrong object, whose surface runs on past the model's edge, loses; docs/pipeline.md).
 // With noise_factor > 0 the tolerance follows the sensor: the residuals of the best-fitting pose
 // within a wide gate give the noise, and the tolerance becomes noise_factor times it, between
 // the fixed tolerance and three times that (docs/parameters.md has the measurement).
@@ -46,6 +49,10 @@ struct RefineOptions {
   // > 0: the verification tolerance widens to this many times the sensor noise seen in the
   // best-fitting pose (at most 3 x the fixed one); 0: fixed.
   float noise_factor = 0.0f;
+  // > 0: the outline test (pose_fit_shared.h) with this depth tolerance, fraction of the
+  // diameter; the score is multiplied by the share of outline cells where the measured surface
+  // steps down (1 - continue / (continue + step)). 0: off (thin parts: pose_refine.cpp).
+  float outline_ratio = 0.0f;
 };
 void check(const RefineOptions& opt);
 
@@ -54,6 +61,7 @@ struct RefinedPose {
   Eigen::Vector3d t = Eigen::Vector3d::Zero();
   double score = 0;            // in [0, 1]
   std::uint32_t visible = 0, missing = 0, inliers = 0, see_through = 0, occluded = 0;
+  std::uint32_t outline_continue = 0, outline_step = 0;  // outline cells (0 without the test)
   std::uint32_t iterations = 0;  // ICP steps taken
   float tolerance = 0;           // mm, the verification tolerance used (the same for all poses)
   std::string reason;          // why the score is 0 or refinement stopped early; empty if neither

@@ -1,6 +1,6 @@
 // Refinement and verification (kernels/pose_fit.cl, host/detect/pose_refine.cpp): the kernel
-// pose_fit against its C++ reference on random poses (class counts exactly, sums to a stated
-// tolerance), ICP converging from a pose one alpha bin off, the verified score preferring the
+// pose_fit against its C++ reference on random poses (class and outline counts exactly, sums to
+// a stated tolerance), ICP converging from a pose one alpha bin off, the verified score preferring the
 // right pose to a more voted wrong one, and the degenerate cases' scores and reasons.
 #include <gtest/gtest.h>
 
@@ -51,7 +51,9 @@ TEST(PoseFit, KernelMatchesReferenceOnRandomPoses) {
   for (int k = 0; k < 40; ++k) {
     const PoseToRefine p = off_pose(s, 15 * std::fabs(N(rng)), {N(rng), N(rng), N(rng)},
                                     4.0 * Eigen::Vector3d(N(rng), N(rng), N(rng)));
-    fits.push_back(make_pose_fit(p.R, p.t, s.cam, s.geometry, {6.0f + k % 5, 2.0f, 5.4f}));
+    // The outline test on three poses of four, with tolerances from 1 to 5 mm.
+    const float outline = k % 4 == 3 ? 0.0f : 1.0f + float(k % 5);
+    fits.push_back(make_pose_fit(p.R, p.t, s.cam, s.geometry, {6.0f + k % 5, 2.0f, 5.4f, outline}));
   }
   // Degenerate: behind the camera, and far outside the image.
   fits.push_back(make_pose_fit(s.R, s.t - Eigen::Vector3d(0, 0, 1000), s.cam, s.geometry, {6, 2, 5.4f}));
@@ -60,9 +62,16 @@ TEST(PoseFit, KernelMatchesReferenceOnRandomPoses) {
   const std::vector<FitSums> want = pose_fit_sums_reference(s.image, s.cam, s.model, fits);
   ASSERT_EQ(got.size(), want.size());
   std::array<std::uint64_t, BP_FIT_CLASSES> seen{};
+  std::uint64_t outline_continue = 0, outline_step = 0;
   for (std::size_t k = 0; k < got.size(); ++k) {
     EXPECT_EQ(got[k].count, want[k].count) << "pose " << k;
     EXPECT_EQ(got[k].used, want[k].used) << "pose " << k;
+    EXPECT_EQ(got[k].outline_continue, want[k].outline_continue) << "pose " << k;
+    EXPECT_EQ(got[k].outline_step, want[k].outline_step) << "pose " << k;
+    if (fits[k].outline == 0.0f) {
+      EXPECT_EQ(got[k].outline_continue + got[k].outline_step, 0u);
+    }
+    outline_continue += got[k].outline_continue, outline_step += got[k].outline_step;
     // Floats summed per work item against doubles per point: relative 1e-4 of the magnitude.
     const double scale = 1.0 + want[k].jtj.cwiseAbs().maxCoeff();
     EXPECT_LT((got[k].jtj - want[k].jtj).cwiseAbs().maxCoeff(), 1e-4 * scale) << "pose " << k;
@@ -74,6 +83,8 @@ TEST(PoseFit, KernelMatchesReferenceOnRandomPoses) {
     for (unsigned c = 0; c < BP_FIT_CLASSES; ++c) seen[c] += got[k].count[c];
   }
   for (unsigned c = 0; c < BP_FIT_CLASSES; ++c) EXPECT_GT(seen[c], 0u) << "class " << c;
+  EXPECT_GT(outline_continue, 0u);
+  EXPECT_GT(outline_step, 0u);
   EXPECT_EQ(got[40].visible(), 0u);
   EXPECT_EQ(got[41].visible(), 0u);
   EXPECT_TRUE(pose_fit_sums(dev, points, s.cam, model, {}).empty());
