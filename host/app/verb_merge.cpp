@@ -41,6 +41,12 @@ void run_merge(const std::string& path) {
     const std::size_t rows = merge_detect_parts(record.out, record.items);
     std::cout << fmt::format("merged {} scenes ({} rows); wrote {}\n", record.items.size(), rows,
                              record.out.string());
+  } else if (record.verb == "run") {
+    throw InputError(fmt::format(
+        "{} is a sharded `binpick run`: its report needs the experiment's options, so run the "
+        "same command without --shard to finish it (every stage resumes; only what is missing "
+        "is done)",
+        record.out.string()));
   } else {
     throw InputError(fmt::format("{}: a shard record of '{}', which merge does not know", path,
                                  record.verb));

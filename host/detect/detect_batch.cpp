@@ -121,12 +121,17 @@ std::string detection_line(std::size_t rank, const Detection& d) {
 
 std::vector<int> batch_scenes(const BatchOptions& opt) {
   bop::check_sensor_name(opt.sensor);
-  const std::vector<int> available = list_scenes(opt.dataset, opt.split);
-  const std::vector<int> scenes = opt.scenes.empty() ? available : opt.scenes;
-  for (int id : scenes)
-    if (!std::binary_search(available.begin(), available.end(), id))
-      throw InputError(fmt::format("scene {} is not in {}", id, (opt.dataset / opt.split).string()));
-  return scenes;
+  if (opt.scenes.empty()) return list_scenes(opt.dataset, opt.split);
+  // Only this shard's scenes must be there: other shards (of `run`) may still be making theirs.
+  std::vector<int> available;
+  for (std::size_t p = 0; p < opt.scenes.size(); ++p) {
+    if (!opt.shard.owns(p)) continue;
+    if (available.empty()) available = list_scenes(opt.dataset, opt.split);
+    if (!std::binary_search(available.begin(), available.end(), opt.scenes[p]))
+      throw InputError(fmt::format("scene {} is not in {}", opt.scenes[p],
+                                   (opt.dataset / opt.split).string()));
+  }
+  return opt.scenes;
 }
 
 std::string batch_fingerprint(const BatchOptions& opt, const DetectParams& params) {

@@ -24,7 +24,7 @@ struct BatchOptions {
   std::filesystem::path dataset;
   std::string split = "test";
   std::string sensor;       // BOP sensor suffix ("": none): scene_camera_SENSOR.json, depth_SENSOR/
-  std::vector<int> scenes;  // empty: every scene of the split
+  std::vector<int> scenes;  // ascending, unique; empty: every scene of the split
   int obj_id = 1;
   std::filesystem::path out;
   std::string model_checksum;  // part of the fingerprint
@@ -69,8 +69,8 @@ std::string skipped_rows(const std::vector<Detection>& skipped, int scene_id, in
 // a 0 score or a refinement cut short.
 std::string detection_line(std::size_t rank, const Detection& d);
 
-// The batch's scenes: opt.scenes, or every scene of the split; InputError for a scene that is
-// not in the dataset.
+// The batch's scenes: opt.scenes, or every scene of the split; InputError for a scene of
+// opt.shard's that is not in the dataset.
 std::vector<int> batch_scenes(const BatchOptions& opt);
 
 // What the parts of a batch are made with (model checksum, object id, split, sensor, dataset,

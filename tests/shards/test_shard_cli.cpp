@@ -2,13 +2,15 @@
 // give byte for byte the unsharded output (detect: the time column aside), the shard that
 // finishes last merges, `binpick merge` names what is missing and is idempotent, a shard of
 // another batch is refused while one is unfinished, `--slurm --dry-run` prints the job array of
-// the shards still to do, and bad sharding options are one usage error.
+// the shards still to do, `run`'s shards end in the unsharded report, and bad sharding options
+// are one usage error.
 #include <gtest/gtest.h>
 
 #include <filesystem>
 #include <string>
 
 #include <fmt/format.h>
+#include <nlohmann/json.hpp>
 
 #include "tests/support/cli_run.hpp"
 
@@ -131,6 +133,49 @@ TEST_F(ShardCli, DetectShardsMergeIntoTheUnshardedResults) {
   r = test::run_binpick(detect("parts.csv", "--slurm --tasks 3 --dry-run"));
   EXPECT_EQ(r.status, 0) << r.err;
   EXPECT_NE(r.out.find("#SBATCH --array=0-2\n"), std::string::npos) << r.out;  // dry run: all
+}
+
+// report.json without what depends on the run's directory and its timing.
+nlohmann::json comparable_report(const fs::path& file) {
+  nlohmann::json j = nlohmann::json::parse(test::slurp(file));
+  for (auto& d : j.at("datasets"))
+    for (const char* key : {"dataset", "results", "ms_per_hypothesis"}) d.erase(key);
+  return j;
+}
+
+TEST_F(ShardCli, RunShardsWriteTheUnshardedReport) {
+  const std::string run = fmt::format(
+      "run --model builtin:bracket --bins 3 --objects 8 --width 480 --height 270 --hypotheses 3 "
+      "--noise 0,0.02 --pictures 1 --out '{}'",
+      path("run").string());
+  const std::string sharded = fmt::format(
+      "run --model builtin:bracket --bins 3 --objects 8 --width 480 --height 270 --hypotheses 3 "
+      "--noise 0,0.02 --pictures 1 --out '{}'",
+      path("run_sharded").string());
+  auto r = test::run_binpick(run);
+  ASSERT_EQ(r.status, 0) << r.err;
+  r = test::run_binpick(sharded + " --shard 2/2");
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.out.find("shard 2/2 done; 4 scenes of other shards still to detect"),
+            std::string::npos) << r.out;
+  EXPECT_FALSE(fs::exists(path("run_sharded") / "report"));
+  r = test::run_binpick("merge " + path("run_sharded").string());
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.err.find("run the same command without --shard"), std::string::npos) << r.err;
+  r = test::run_binpick(sharded + " --shard 1/2");
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.out.find("report: "), std::string::npos) << r.out;  // the last shard reports
+  for (const char* level : {"noise_0.00", "noise_0.02"}) {
+    const fs::path csv = fs::path("results") / (std::string(level) + ".csv");
+    EXPECT_EQ(without_time(test::slurp(path("run_sharded") / csv)),
+              without_time(test::slurp(path("run") / csv))) << level;
+    EXPECT_EQ(test::slurp(path("run_sharded") / level / "test" / "000001" / "depth" / "000000.png"),
+              test::slurp(path("run") / level / "test" / "000001" / "depth" / "000000.png"));
+  }
+  EXPECT_EQ(comparable_report(path("run_sharded") / "report" / "report.json"),
+            comparable_report(path("run") / "report" / "report.json"));
+  EXPECT_EQ(test::slurp(path("run_sharded") / "report" / "curves.csv"),
+            test::slurp(path("run") / "report" / "curves.csv"));
 }
 
 TEST_F(ShardCli, BadShardingIsOneUsageError) {
