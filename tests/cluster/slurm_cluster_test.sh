@@ -6,6 +6,7 @@
 #   - a 4-task detect array gives the single process's results CSV (time column aside),
 #   - a detect array with one task cancelled fails naming that shard; the same command again
 #     resubmits only it and then gives the same CSV,
+#   - a 2-task run array writes the single process's report.json (paths and timing aside),
 # and stops the daemons by their pid files.
 # usage: slurm_cluster_test.sh BINPICK      (exit 77: skipped, with the reason on stdout)
 #        slurm_cluster_test.sh --check      (says whether it would run or skip, exits 0)
@@ -176,4 +177,14 @@ grep -q "shards 4/4 ended without their work" cancel.err || fail "no message nam
 grep -q "submitting shards 4/4 as" rerun.out || fail "the rerun did not submit only shard 4/4: $(cat rerun.out)"
 [ "$(without_time single.csv)" = "$(without_time cancel.csv)" ] || fail "detect: cancel.csv differs after the rerun"
 echo "detect: a cancelled task's shard alone was resubmitted and completed the results (${SECONDS} s)"
+# The whole experiment as a 2-task array: the report of a single process, timing and paths aside.
+run_args=(--model builtin:bracket --bins 3 --objects 8 --width 480 --height 270 --hypotheses 3
+          --noise 0,0.02 --pictures 1)
+"$BINPICK" run "${run_args[@]}" --out run_single >/dev/null
+"$BINPICK" run "${run_args[@]}" --out run_array --slurm --tasks 2 > run.out \
+  || fail "run --slurm: $(cat run.out)"
+comparable() { grep -v -E '"(dataset|results|ms_per_hypothesis)":' "$1"; }
+[ "$(comparable run_single/report/report.json)" = "$(comparable run_array/report/report.json)" ] \
+  || fail "run: report.json differs from the single process's"
+echo "run: a 2-task array wrote the single process's report.json (${SECONDS} s)"
 echo "PASS"
