@@ -69,6 +69,18 @@ void follow(const std::string& job_id, const ShardedBatch& batch, const std::vec
                               shards.size()));
 }
 
+// After the array: the merge, or which shards ended without their work.
+void finish(const ShardedBatch& batch, const fs::path& dir, std::ostream& out) {
+  const MissingWork after = missing_work(batch.record, batch.done);
+  if (!after.shards.empty())
+    throw InputError(fmt::format(
+        "shards {} ended without their work ({}: {}); run the same command again to resubmit "
+        "only them",
+        shard_names(after.shards, batch.record.shards), task_log(dir, after.shards.front()).string(),
+        last_line(task_log(dir, after.shards.front()))));
+  out << batch.merge() << "\n";
+}
+
 }  // namespace
 
 void run_on_slurm(const ShardedBatch& batch, const SlurmOptions& o,
@@ -82,6 +94,18 @@ void run_on_slurm(const ShardedBatch& batch, const SlurmOptions& o,
   if (shards.empty()) {
     out << "every shard is done\n" << batch.merge() << "\n";
     return;
+  }
+  // An earlier submission still queued or running (its follower was interrupted): follow it
+  // rather than run its shards twice.
+  const fs::path job_file = dir / "job_id";
+  if (!o.dry_run && fs::is_regular_file(job_file) && on_path("squeue")) {
+    const std::string earlier = trimmed(read_file_bytes(job_file));
+    if (!earlier.empty() && tasks_in_queue(earlier) > 0) {
+      out << fmt::format("job {} of an earlier submission is still in the queue: following it\n",
+                         earlier) << std::flush;
+      follow(earlier, batch, shards);
+      return finish(batch, dir, out);
+    }
   }
   const SlurmJob job{batch.record.verb, command, shards, dir, fs::current_path()};
   const std::string script = sbatch_script(job, o);
@@ -107,17 +131,10 @@ void run_on_slurm(const ShardedBatch& batch, const SlurmOptions& o,
   if (submitted.status != 0 || job_id.empty() ||
       job_id.find_first_not_of("0123456789") != std::string::npos)
     throw InputError(fmt::format("sbatch {} failed: {}", script_path.string(), reply));
+  write_file_atomically(job_file, [&](std::ostream& s) { s << job_id << "\n"; });
   out << fmt::format("job {}; task logs {}\n", job_id, (dir / "task_I.log").string()) << std::flush;
   follow(job_id, batch, shards);
-
-  const MissingWork after = missing_work(batch.record, batch.done);
-  if (!after.shards.empty())
-    throw InputError(fmt::format(
-        "shards {} ended without their work ({}: {}); run the same command again to resubmit "
-        "only them",
-        shard_names(after.shards, count), task_log(dir, after.shards.front()).string(),
-        last_line(task_log(dir, after.shards.front()))));
-  out << batch.merge() << "\n";
+  finish(batch, dir, out);
 }
 
 }  // namespace binpick

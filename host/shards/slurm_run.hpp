@@ -2,6 +2,8 @@
 // sbatch script into the batch's state directory, submits the shards that are not finished,
 // follows the array with squeue (a progress bar over the shards), then merges. A rerun of the
 // same command resubmits only the shards whose work is missing; with none missing it merges.
+// If the array it submitted last (STATE/slurm/job_id) is still queued or running, because its
+// follower was interrupted, a rerun follows that one instead of submitting its shards twice.
 #pragma once
 
 #include <filesystem>

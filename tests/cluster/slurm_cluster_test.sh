@@ -6,6 +6,7 @@
 #   - a 4-task detect array gives the single process's results CSV (time column aside),
 #   - a detect array with one task cancelled fails naming that shard; the same command again
 #     resubmits only it and then gives the same CSV,
+#   - a rerun while the array of an interrupted follower still runs follows it, not resubmits,
 #   - a 2-task run array writes the single process's report.json (paths and timing aside),
 # and stops the daemons by their pid files.
 # usage: slurm_cluster_test.sh BINPICK      (exit 77: skipped, with the reason on stdout)
@@ -177,6 +178,19 @@ grep -q "shards 4/4 ended without their work" cancel.err || fail "no message nam
 grep -q "submitting shards 4/4 as" rerun.out || fail "the rerun did not submit only shard 4/4: $(cat rerun.out)"
 [ "$(without_time single.csv)" = "$(without_time cancel.csv)" ] || fail "detect: cancel.csv differs after the rerun"
 echo "detect: a cancelled task's shard alone was resubmitted and completed the results (${SECONDS} s)"
+# The follower interrupted while its array runs: the same command follows that array again.
+"$BINPICK" detect "${detect_args[@]}" --out follow.csv --slurm --tasks 4 > follow.out 2>&1 &
+follower=$!
+for _ in $(seq 100); do grep -q "^job " follow.out && break; sleep 0.1; done
+kill $follower
+wait $follower || true
+"$BINPICK" detect "${detect_args[@]}" --out follow.csv --slurm --tasks 4 > refollow.out \
+  || fail "following the earlier array failed: $(cat refollow.out)"
+grep -q "still in the queue: following it" refollow.out \
+  || fail "the rerun did not follow the running array: $(cat refollow.out)"
+[ "$(without_time single.csv)" = "$(without_time follow.csv)" ] || fail "detect: follow.csv differs"
+echo "detect: an interrupted follower's array was followed again, not resubmitted (${SECONDS} s)"
+
 # The whole experiment as a 2-task array: the report of a single process, timing and paths aside.
 run_args=(--model builtin:bracket --bins 3 --objects 8 --width 480 --height 270 --hypotheses 3
           --noise 0,0.02 --pictures 1)
