@@ -19,20 +19,6 @@ namespace {
 
 namespace fs = std::filesystem;
 
-// The CSV without its last (time) column.
-std::string without_time(const std::string& csv) {
-  std::string out;
-  std::size_t start = 0;
-  while (start < csv.size()) {
-    std::size_t end = csv.find('\n', start);
-    if (end == std::string::npos) end = csv.size();
-    const std::string line = csv.substr(start, end - start);
-    out += line.substr(0, line.rfind(',')) + "\n";
-    start = end + 1;
-  }
-  return out;
-}
-
 class ShardCli : public ::testing::Test {
  protected:
   static void SetUpTestSuite() {
@@ -75,6 +61,11 @@ TEST_F(ShardCli, SynthShardsMakeTheUnshardedDataset) {
   r = test::run_binpick("merge " + path("sharded").string());
   EXPECT_EQ(r.status, 2);
   EXPECT_NE(r.err.find("bins 1 are missing (shards 2/2)"), std::string::npos) << r.err;
+  r = test::run_binpick(synth("sharded", "--bins 3 --slurm --tasks 2 --dry-run"));
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.out.find("#SBATCH --array=1\n"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("#SBATCH --job-name=binpick-synth\n"), std::string::npos) << r.out;
+  EXPECT_FALSE(fs::exists(path("sharded") / "shards" / "slurm"));  // a dry run writes nothing
 
   r = test::run_binpick(synth("sharded", "--bins 3 --shard 2/2"));
   ASSERT_EQ(r.status, 0) << r.err;
@@ -123,7 +114,7 @@ TEST_F(ShardCli, DetectShardsMergeIntoTheUnshardedResults) {
   }
   EXPECT_NE(r.out.find("wrote"), std::string::npos) << r.out;  // the last shard merged
   const std::string merged = test::slurp(path("parts.csv"));
-  EXPECT_EQ(without_time(merged), without_time(whole));
+  EXPECT_EQ(test::without_time(merged), test::without_time(whole));
   EXPECT_EQ(test::slurp(path("parts.details.csv")), test::slurp(path("whole.details.csv")));
   r = test::run_binpick("merge " + path("parts.csv").string());
   ASSERT_EQ(r.status, 0) << r.err;
@@ -167,8 +158,8 @@ TEST_F(ShardCli, RunShardsWriteTheUnshardedReport) {
   EXPECT_NE(r.out.find("report: "), std::string::npos) << r.out;  // the last shard reports
   for (const char* level : {"noise_0.00", "noise_0.02"}) {
     const fs::path csv = fs::path("results") / (std::string(level) + ".csv");
-    EXPECT_EQ(without_time(test::slurp(path("run_sharded") / csv)),
-              without_time(test::slurp(path("run") / csv))) << level;
+    EXPECT_EQ(test::without_time(test::slurp(path("run_sharded") / csv)),
+              test::without_time(test::slurp(path("run") / csv))) << level;
     EXPECT_EQ(test::slurp(path("run_sharded") / level / "test" / "000001" / "depth" / "000000.png"),
               test::slurp(path("run") / level / "test" / "000001" / "depth" / "000000.png"));
   }
