@@ -65,8 +65,7 @@ void follow(const std::string& job_id, const ShardedBatch& batch, const std::vec
     if (queued == 0) break;
     std::this_thread::sleep_for(std::chrono::seconds(1));
   }
-  progress.finish(fmt::format("slurm job {}: {} of {} shards done", job_id, shards_done(),
-                              shards.size()));
+  progress.finish(fmt::format("{} of {} shards done", shards_done(), shards.size()));
 }
 
 // After the array: the merge, or which shards ended without their work.
