@@ -73,6 +73,7 @@ case "$cmd" in
       usage >&2; exit 2
     else
       build
+      tests/cluster/slurm_cluster_test.sh --check  # says plainly whether the cluster test runs
       ctest --test-dir build --output-on-failure -j"$(nproc)"
     fi
     ;;

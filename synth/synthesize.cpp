@@ -20,6 +20,7 @@
 #include "host/runtime/vk/vk_context.hpp"
 #include "synth/seeds.hpp"
 #include "synth/synth_manifest.hpp"
+#include "synth/synth_shards.hpp"
 
 namespace binpick {
 namespace {
@@ -88,6 +89,12 @@ SynthSummary synthesize(const Model& model, const std::string& model_description
   const double diameter = inputs.diameter;
   fs::create_directories(o.out / "test");
   check_or_write_manifest(o.out, synth_manifest(o, inputs));
+  const ShardRecord record = synth_shard_record(o.out, o.bins, o.shard.count);
+  const auto done = [&](int b) { return bin_done(o.out, b); };
+  if (o.shard.sharded()) {
+    fs::create_directories(synth_state_dir(o.out));
+    claim_shard_record(synth_shard_record_file(o.out), record, done);
+  }
 
   DropOptions drop_options = o.drop;
   drop_options.bin = load_bin(o);
@@ -119,8 +126,9 @@ SynthSummary synthesize(const Model& model, const std::string& model_description
   if (structured_light) sensor_model.added_sigma_mm = o.noise * diameter;
   const int waves = (o.drop.objects + o.drop.grid_x * o.drop.grid_y - 1) / (o.drop.grid_x * o.drop.grid_y);
   for (int b = 0; b < o.bins; ++b) {
+    if (!o.shard.owns(std::size_t(b))) continue;
     const fs::path scene = o.out / "test" / fmt::format("{:06d}", b);
-    if (fs::exists(scene / "scene_gt.json")) {
+    if (done(b)) {
       ++summary.bins_skipped;
       continue;
     }
@@ -184,6 +192,7 @@ SynthSummary synthesize(const Model& model, const std::string& model_description
     summary.seconds_write += write;
     ++summary.bins_made;
   }
+  summary.bins_missing = int(missing_work(record, done).items.size());
   return summary;
 }
 

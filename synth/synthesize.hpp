@@ -16,6 +16,7 @@
 #include "synth/part_mix.hpp"
 #include "synth/physics/drop.hpp"
 #include "synth/sensor/sensor_model.hpp"
+#include "host/shards/shard.hpp"
 
 namespace binpick {
 
@@ -43,10 +44,12 @@ struct SynthOptions {
                                     // up); empty: the built-in bin (drop.walls)
   std::vector<DistractorSpec> distractors;  // obj_ids 2, 3, ... in this order
   DecomposeOptions decompose;
+  Shard shard;                      // --shard K/N: only bins K-1, K-1+N, ... (synth_shards.hpp)
 };
 
 struct SynthSummary {
   int bins_made = 0, bins_skipped = 0;  // skipped: already complete from an earlier run
+  int bins_missing = 0;                 // bins of other shards not made yet
   double seconds_decompose = 0, seconds_physics = 0, seconds_render = 0, seconds_write = 0;
 };
 

@@ -23,6 +23,7 @@ int main(int argc, char** argv) {
   binpick::cli::add_tune_verb(app);
   binpick::cli::add_run_verb(app);
   binpick::cli::add_bench_verb(app);
+  binpick::cli::add_merge_verb(app);
   try {
     app.parse(argc, argv);
     return 0;

@@ -20,6 +20,9 @@
 #include "host/core/read_file.hpp"
 #include "host/train/ppf_model_file.hpp"
 #include "host/app/detect_options.hpp"
+#include "host/app/shard_options.hpp"
+#include "host/detect/detect_parts.hpp"
+#include "host/shards/slurm_run.hpp"
 #include "host/train/model_store.hpp"
 #include "host/core/timing.hpp"
 
@@ -33,19 +36,45 @@ struct DetectArgs {
   int obj_id = 1;
   bool verbose = false;
   DetectCliOptions detection;  // --params and one option per parameter
+  ShardCliOptions shards;      // --shard K/N, --slurm
 };
+
+// --slurm: the batch's shards as a job array; the parts are done when they carry this run's
+// fingerprint, so changed options resubmit every shard.
+void detect_on_slurm(const DetectArgs& a, const BatchOptions& opt, const DetectParams& params) {
+  const std::vector<int> scenes = batch_scenes(opt);
+  const std::string fingerprint = batch_fingerprint(opt, params);
+  const fs::path stamp = parts_dir(opt.out) / "fingerprint.json";
+  // Until a task has stamped OUT.parts with this run's fingerprint, parts there are another
+  // run's; once stamped, it stays this run's.
+  auto same_run = std::make_shared<bool>(false);
+  const auto done = [=, &opt](int scene) {
+    if (!*same_run) *same_run = fs::is_regular_file(stamp) && read_file_bytes(stamp) == fingerprint;
+    return *same_run && scene_done(opt.out, scene);
+  };
+  ShardRecord record = batch_shard_record(opt, scenes);
+  record.shards = a.shards.slurm.tasks;
+  const ShardedBatch batch{parts_dir(opt.out), record, done, [&] {
+    const std::size_t rows = merge_detect_parts(opt.out, scenes);
+    return fmt::format("merged {} scenes ({} rows); wrote {}", scenes.size(), rows,
+                       opt.out.string());
+  }};
+  run_on_slurm(batch, a.shards.slurm, task_command(own_command_line()), std::cout);
+}
 
 void run_detect(DetectArgs& a) {
   if (a.dataset.empty() == a.cloud.empty())
     throw InputError("give exactly one of --dataset DIR and --cloud FILE.ply");
   const DetectParams params = resolve(a.detection);
+  const Shard shard = shard_of(a.shards);
   check_output_file(a.out);
   const std::string model_bytes = read_file_bytes(a.model);
   const PpfModel model = parse_ppf_model(model_bytes, a.model);
-  Detector detector(model, params);
-
   if (!a.cloud.empty()) {
     if (!a.scenes.empty()) throw InputError("--scenes applies to --dataset only");
+    if (shard.sharded() || a.shards.slurm.enabled)
+      throw InputError("--shard and --slurm apply to --dataset only (a --cloud is one scene)");
+    Detector detector(model, params);
     const auto start = std::chrono::steady_clock::now();
     const PointCloud cloud = read_point_cloud_ply(a.cloud);
     DetectTimes times;
@@ -82,8 +111,17 @@ void run_detect(DetectArgs& a) {
   opt.out = a.out;
   opt.model_checksum = checksum_hex(model_bytes);
   opt.verbose = a.verbose;
+  opt.shard = shard;
+  if (a.shards.slurm.enabled) return detect_on_slurm(a, opt, params);
+  Detector detector(model, params);
   const BatchSummary s = detect_dataset(detector, opt, &std::cout);
-  std::cout << summary_line(s) << "\nwrote " << a.out << "\n";
+  std::cout << summary_line(s) << "\n";
+  if (s.missing == 0)
+    std::cout << "wrote " << a.out << "\n";
+  else
+    std::cout << fmt::format("shard {} done; {} scenes of other shards still to do: the shard "
+                             "that finishes last writes {} (or `binpick merge {}`)\n",
+                             shard.name(), s.missing, a.out, a.out);
 }
 
 }  // namespace
@@ -108,6 +146,7 @@ void add_detect_verb(CLI::App& app) {
   verb->add_option("--obj-id", a->obj_id, "object id written in the results")->capture_default_str();
   verb->add_flag("--verbose", a->verbose, "print per-stage timings of every image");
   add_detect_cli_options(verb, a->detection, "detection");
+  add_shard_options(verb, a->shards, "scenes");
   verb->callback([a] { run_detect(*a); });
 }
 

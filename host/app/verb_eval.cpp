@@ -10,6 +10,7 @@
 
 #include <fmt/format.h>
 
+#include "host/app/shard_options.hpp"
 #include "host/app/verbs.hpp"
 #include "host/core/error.hpp"
 #include "host/eval/eval_run.hpp"
@@ -24,7 +25,13 @@ struct EvalArgs {
   std::int64_t pictures = 3;  // wide, so a negative value reaches our range check
   bool json = false;
   eval::DatasetLayout layout;
+  std::string shard;  // refused: see kUnsharded
 };
+
+// Why eval takes no --shard: its curves and statistics need every result at once.
+constexpr const char* kUnsharded =
+    "its precision curves and score statistics need all results at once; shard `detect` "
+    "(whose merged results are the unsharded ones) and evaluate the merged CSV";
 
 std::vector<eval::EvalInput> inputs_of(const EvalArgs& a) {
   if (a.datasets.empty()) throw InputError("--dataset DIR is required (with its --results CSV)");
@@ -71,6 +78,7 @@ void print_summary(const std::vector<eval::DatasetEvaluation>& evaluations,
 }
 
 void run_eval(const EvalArgs& args) {
+  refuse_shard(args.shard, "eval", kUnsharded);
   const auto inputs = inputs_of(args);
   if (args.pictures < 0 || args.pictures > 1000)
     throw InputError(fmt::format("--pictures {} must be in [0, 1000]", args.pictures));
@@ -117,6 +125,7 @@ void add_eval_verb(CLI::App& app) {
       ->capture_default_str();
   verb->add_flag("--json", args->json,
                  "print the summary as JSON (the content of report.json) instead of a table");
+  add_unsharded_option(verb, args->shard, kUnsharded);
   verb->callback([args] { run_eval(*args); });
 }
 

@@ -13,6 +13,9 @@
 #include "host/app/model_options.hpp"
 #include "host/app/train_options.hpp"
 #include "host/app/scene_options.hpp"
+#include "host/app/shard_options.hpp"
+#include "host/shards/slurm_run.hpp"
+#include "host/tune/experiment_shards.hpp"
 #include "host/app/verbs.hpp"
 #include "host/core/error.hpp"
 #include "host/tune/experiment.hpp"
@@ -28,7 +31,24 @@ struct RunArgs {
   std::string noise = "0";
   DetectCliOptions detect;
   SceneArgs scene;
+  ShardCliOptions shards;  // --shard K/N, --slurm
 };
+
+// The table, times and report of a finished experiment; for a shard whose batch is not
+// finished, what is left to do.
+std::string outcome(const ExperimentResult& r, const ExperimentOptions& o) {
+  if (r.scenes_missing > 0)
+    return fmt::format(
+        "shard {} done; {} scenes of other shards still to detect: the shard that finishes last "
+        "writes the report (or the same command without --shard)\n",
+        o.shard.name(), r.scenes_missing);
+  for (const auto& w : r.report.warnings) std::cerr << "binpick: warning: " << w << "\n";
+  return fmt::format(
+      "\n{}\ntime: synth {:.1f} s, train {:.1f} s{}, detect {:.1f} s, eval {:.1f} s\n"
+      "report: {}\n",
+      results_table(r.evaluations), r.synth_s, r.train_s, r.model_reused ? " (reused)" : "",
+      r.detect_s, r.eval_s, r.report.html.string());
+}
 
 void run_run(RunArgs& a) {
   ExperimentOptions o = a.experiment;
@@ -40,18 +60,24 @@ void run_run(RunArgs& a) {
   o.train = train_params_of(a.train);
   o.detect = resolve(a.detect);
   apply_scene_args(a.scene, o.scene);
+  o.shard = shard_of(a.shards);
   check(o);  // before the slow stages: bad options fail fast
-  std::vector<Model> distractors;
-  for (const DistractorSpec& d : o.scene.distractors)
-    distractors.push_back(load_part_finding_symmetries({d.model, {}}));
-  const auto r = run_experiment(load_part_finding_symmetries(o.part), o, std::cout, distractors);
-  std::cout << "\n" << results_table(r.evaluations);
-  for (const auto& w : r.report.warnings) std::cerr << "binpick: warning: " << w << "\n";
-  std::cout << fmt::format(
-      "\ntime: synth {:.1f} s, train {:.1f} s{}, detect {:.1f} s, eval {:.1f} s\n"
-      "report: {}\n",
-      r.synth_s, r.train_s, r.model_reused ? " (reused)" : "", r.detect_s, r.eval_s,
-      r.report.html.string());
+  const auto experiment = [&o] {
+    std::vector<Model> distractors;
+    for (const DistractorSpec& d : o.scene.distractors)
+      distractors.push_back(load_part_finding_symmetries({d.model, {}}));
+    return run_experiment(load_part_finding_symmetries(o.part), o, std::cout, distractors);
+  };
+  if (a.shards.slurm.enabled) {
+    // The merge is the experiment in this process: every bin is there, so it only evaluates.
+    const ShardedBatch batch{experiment_state_dir(o),
+                             experiment_shard_record(o, a.shards.slurm.tasks),
+                             [&o](int bin) { return experiment_bin_done(o, bin); },
+                             [&] { return outcome(experiment(), o); }};
+    return run_on_slurm(batch, a.shards.slurm, task_command(own_command_line()), std::cout);
+  }
+  if (o.shard.sharded()) claim_experiment_shards(o);
+  std::cout << outcome(experiment(), o);
 }
 
 }  // namespace
@@ -78,6 +104,7 @@ void add_run_verb(CLI::App& app) {
   verb->add_option("--pictures", o.pictures, "images pictured per noise level in the report")
       ->capture_default_str();
   add_detect_cli_options(verb, a->detect, "detection");
+  add_shard_options(verb, a->shards, "bins (each shard makes and detects its bins at every noise level)");
   verb->callback([a] { run_run(*a); });
 }
 

@@ -11,6 +11,9 @@
 #include "host/app/model_options.hpp"
 #include "host/app/verbs.hpp"
 #include "host/app/scene_options.hpp"
+#include "host/app/shard_options.hpp"
+#include "host/shards/slurm_run.hpp"
+#include "synth/synth_shards.hpp"
 #include "host/train/symmetry_describe.hpp"
 #include "synth/part_mix.hpp"
 #include "synth/synthesize.hpp"
@@ -28,7 +31,17 @@ struct SynthArgs {
   SceneArgs scene;
   std::string bin_mesh;
   std::vector<double> intrinsics;
+  ShardCliOptions shards;  // --shard K/N, --slurm
 };
+
+// --slurm: the bins as a job array of shards; the merge checks that every bin is there.
+void synth_on_slurm(const SynthOptions& o, const SlurmOptions& slurm) {
+  const ShardRecord record = synth_shard_record(o.out, o.bins, slurm.tasks);
+  const ShardedBatch batch{synth_state_dir(o.out), record,
+                           [&](int bin) { return bin_done(o.out, bin); },
+                           [&] { return check_synth_shards(record); }};
+  run_on_slurm(batch, slurm, task_command(own_command_line()), std::cout);
+}
 
 void run_synth(const SynthArgs& args) {
   SynthOptions o = args.options;
@@ -49,6 +62,8 @@ void run_synth(const SynthArgs& args) {
     o.intrinsics = std::array<double, 4>{args.intrinsics[0], args.intrinsics[1], args.intrinsics[2],
                                          args.intrinsics[3]};
   validate_synth_options(o);  // before loading: bad options fail fast
+  o.shard = shard_of(args.shards);
+  if (args.shards.slurm.enabled) return synth_on_slurm(o, args.shards.slurm);
   const auto load = [](const PartSpec& spec) {
     bool found = false;
     Model model = load_part_finding_symmetries(spec, &found);
@@ -66,6 +81,12 @@ void run_synth(const SynthArgs& args) {
       "rendering {:.2f} s, writing {:.2f} s\n",
       o.out.string(), s.bins_made, s.bins_skipped, s.seconds_decompose, s.seconds_physics,
       s.seconds_render, s.seconds_write);
+  if (s.bins_missing > 0)
+    std::cout << fmt::format("shard {} done; {} bins of other shards still to make (`binpick "
+                             "merge {}` checks the whole dataset)\n",
+                             o.shard.name(), s.bins_missing, o.out.string());
+  else if (o.shard.sharded())
+    std::cout << check_synth_shards(synth_shard_record(o.out, o.bins, o.shard.count)) << "\n";
 }
 
 }  // namespace
@@ -133,6 +154,7 @@ void add_synth_verb(CLI::App& app) {
   verb->add_flag("!--no-cloud", o.write_cloud, "do not write cloud/000000.ply");
   verb->add_option("--cache-dir", args->cache_dir,
                    "convex decomposition cache (default $BINPICK_CACHE_DIR or ~/.cache/binpick)");
+  add_shard_options(verb, args->shards, "bins");
   verb->callback([args] { run_synth(*args); });
 }
 

@@ -17,5 +17,6 @@ void add_eval_verb(CLI::App& app);
 void add_tune_verb(CLI::App& app);
 void add_run_verb(CLI::App& app);
 void add_bench_verb(CLI::App& app);
+void add_merge_verb(CLI::App& app);
 
 }  // namespace binpick::cli

@@ -13,6 +13,8 @@
 #include "host/core/error.hpp"
 #include "host/core/progress.hpp"
 #include "host/detect/detect_params_file.hpp"
+#include "host/detect/detect_parts.hpp"
+#include "host/shards/shard_record.hpp"
 #include "host/core/atomic_file.hpp"
 #include "host/core/read_file.hpp"
 #include "host/core/timing.hpp"
@@ -26,38 +28,10 @@ bool parse_int(std::string_view s, int& value) {
   return !s.empty() && ec == std::errc() && end == s.data() + s.size() && value >= 0;
 }
 
-fs::path parts_dir(const fs::path& out) { return fs::path(out.string() + ".parts"); }
-
-fs::path part_file(const fs::path& out, int scene) {
-  return parts_dir(out) / fmt::format("scene_{:06d}.csv", scene);
-}
-
-fs::path details_part_file(const fs::path& out, int scene) {
-  return parts_dir(out) / fmt::format("scene_{:06d}.details.csv", scene);
-}
-
 std::string csv_quoted(const std::string& text) {
   std::string q = "\"";
   for (char c : text) q += c == '"' ? std::string("\"\"") : std::string(1, c);
   return q + "\"";
-}
-
-// Makes OUT.parts hold this run's fingerprint; a different one empties it first.
-void prepare_parts(const fs::path& out, const std::string& fingerprint) {
-  const fs::path dir = parts_dir(out);
-  const fs::path stamp = dir / "fingerprint.json";
-  std::error_code ec;
-  if (fs::is_directory(dir) && fs::is_regular_file(stamp) && read_file_bytes(stamp) == fingerprint)
-    return;
-  if (fs::exists(dir)) {
-    for (const auto& entry : fs::directory_iterator(dir)) {
-      const std::string name = entry.path().filename().string();
-      if (name.starts_with("scene_") && name.ends_with(".csv")) fs::remove(entry.path(), ec);
-    }
-  }
-  fs::create_directories(dir, ec);
-  if (!fs::is_directory(dir)) throw InputError("cannot create " + dir.string());
-  write_file_atomically(stamp, [&](std::ostream& s) { s << fingerprint; });
 }
 
 }  // namespace
@@ -148,29 +122,55 @@ std::string detection_line(std::size_t rank, const Detection& d) {
   return line;
 }
 
-BatchSummary detect_dataset(Detector& detector, const BatchOptions& opt, std::ostream* log) {
+std::vector<int> batch_scenes(const BatchOptions& opt) {
   bop::check_sensor_name(opt.sensor);
-  const std::vector<int> available = list_scenes(opt.dataset, opt.split);
-  std::vector<int> scenes = opt.scenes.empty() ? available : opt.scenes;
-  for (int id : scenes)
-    if (!std::binary_search(available.begin(), available.end(), id))
-      throw InputError(fmt::format("scene {} is not in {}", id, (opt.dataset / opt.split).string()));
-  const std::string fingerprint = fmt::format(
+  if (opt.scenes.empty()) return list_scenes(opt.dataset, opt.split);
+  // Only this shard's scenes must be there: other shards (of `run`) may still be making theirs.
+  std::vector<int> available;
+  for (std::size_t p = 0; p < opt.scenes.size(); ++p) {
+    if (!opt.shard.owns(p)) continue;
+    if (available.empty()) available = list_scenes(opt.dataset, opt.split);
+    if (!std::binary_search(available.begin(), available.end(), opt.scenes[p]))
+      throw InputError(fmt::format("scene {} is not in {}", opt.scenes[p],
+                                   (opt.dataset / opt.split).string()));
+  }
+  return opt.scenes;
+}
+
+std::string batch_fingerprint(const BatchOptions& opt, const DetectParams& params) {
+  return fmt::format(
       "{{\"model\": \"{}\", \"obj_id\": {}, \"split\": \"{}\", \"sensor\": \"{}\", "
       "\"dataset\": \"{}\", \"params\": {}}}\n",
       opt.model_checksum, opt.obj_id, opt.split, opt.sensor, fs::absolute(opt.dataset).string(),
-      params_json(detector.params()));
-  prepare_parts(opt.out, fingerprint);
+      params_json(params));
+}
+
+ShardRecord batch_shard_record(const BatchOptions& opt, const std::vector<int>& scenes) {
+  return {"detect", fs::absolute(opt.out), scenes, opt.shard.count};
+}
+
+BatchSummary detect_dataset(Detector& detector, const BatchOptions& opt, std::ostream* log) {
+  const std::vector<int> scenes = batch_scenes(opt);
+  prepare_parts(opt.out, batch_fingerprint(opt, detector.params()));
+  // Shards of one batch share OUT.parts; the record tells the merge which scenes make it whole.
+  const ShardRecord record = batch_shard_record(opt, scenes);
+  const auto done = [&](int scene) { return scene_done(opt.out, scene); };
+  if (opt.shard.sharded()) claim_shard_record(shard_record_file(opt.out), record, done);
 
   BatchSummary summary;
   summary.program_build_s = detector.program_build_seconds();
-  Progress progress("detect", scenes.size());
+  std::size_t own = 0;
+  for (std::size_t s = 0; s < scenes.size(); ++s) own += opt.shard.owns(s);
+  Progress progress(opt.shard.sharded() ? "detect shard " + opt.shard.name() : "detect", own);
+  std::size_t step = 0;
   for (std::size_t s = 0; s < scenes.size(); ++s) {
+    if (!opt.shard.owns(s)) continue;
     const int scene = scenes[s];
     ++summary.scenes;
-    if (fs::is_regular_file(part_file(opt.out, scene))) {
+    ++step;
+    if (done(scene)) {
       ++summary.skipped;
-      progress.update(s + 1, fmt::format("scene {} done before", scene));
+      progress.update(step, fmt::format("scene {} done before", scene));
       continue;
     }
     const fs::path dir = opt.dataset / opt.split / fmt::format("{:06d}", scene);
@@ -211,19 +211,12 @@ BatchSummary detect_dataset(Detector& detector, const BatchOptions& opt, std::os
     // The results part last: its presence marks the scene done.
     write_file_atomically(details_part_file(opt.out, scene), [&](std::ostream& o) { o << details; });
     bop::write_results_csv(part_file(opt.out, scene), rows);
-    progress.update(s + 1, fmt::format("scene {}", scene));
+    progress.update(step, fmt::format("scene {}", scene));
   }
 
-  std::vector<bop::ResultRow> all;
-  for (int scene : scenes) {
-    const auto rows = bop::read_results_csv(part_file(opt.out, scene));
-    all.insert(all.end(), rows.begin(), rows.end());
-  }
-  summary.rows = all.size();
-  std::string details = kDetailsHeader;
-  for (int scene : scenes) details += read_file_bytes(details_part_file(opt.out, scene));
-  write_file_atomically(details_path(opt.out), [&](std::ostream& o) { o << details; });
-  bop::write_results_csv(opt.out, all);
+  // The shard that finds every scene done merges (two finishing at once write the same bytes).
+  summary.missing = missing_work(record, done).items.size();
+  if (summary.missing == 0) summary.rows = merge_detect_parts(opt.out, scenes);
   progress.finish(summary_line(summary));
   return summary;
 }

@@ -15,6 +15,8 @@
 #include "host/formats/bop/results_csv.hpp"
 #include "host/detect/detector.hpp"
 #include "host/detect/depth_to_points.hpp"
+#include "host/shards/shard.hpp"
+#include "host/shards/shard_record.hpp"
 
 namespace binpick {
 
@@ -22,15 +24,17 @@ struct BatchOptions {
   std::filesystem::path dataset;
   std::string split = "test";
   std::string sensor;       // BOP sensor suffix ("": none): scene_camera_SENSOR.json, depth_SENSOR/
-  std::vector<int> scenes;  // empty: every scene of the split
+  std::vector<int> scenes;  // ascending, unique; empty: every scene of the split
   int obj_id = 1;
   std::filesystem::path out;
   std::string model_checksum;  // part of the fingerprint
   bool verbose = false;        // per-image stage timings to the log
+  Shard shard;                 // --shard K/N: only the scenes at positions K-1, K-1+N, ...
 };
 
 struct BatchSummary {
   std::size_t scenes = 0, skipped = 0, images = 0, rows = 0;
+  std::size_t missing = 0;  // scenes of the batch not done yet (other shards'): OUT not merged
   DetectTimes times;  // of the scenes run now (not the skipped ones)
   double program_build_s = 0;  // the detector's OpenCL program builds, outside every image's time
 };
@@ -65,7 +69,19 @@ std::string skipped_rows(const std::vector<Detection>& skipped, int scene_id, in
 // a 0 score or a refinement cut short.
 std::string detection_line(std::size_t rank, const Detection& d);
 
-// Runs the batch; progress on stderr, the log (verbose lines) to `log` if given.
+// The batch's scenes: opt.scenes, or every scene of the split; InputError for a scene of
+// opt.shard's that is not in the dataset.
+std::vector<int> batch_scenes(const BatchOptions& opt);
+
+// What the parts of a batch are made with (model checksum, object id, split, sensor, dataset,
+// parameters): parts with another fingerprint are not reused.
+std::string batch_fingerprint(const BatchOptions& opt, const DetectParams& params);
+
+// The batch as a sharded one (detect_parts.hpp's shards.json).
+ShardRecord batch_shard_record(const BatchOptions& opt, const std::vector<int>& scenes);
+
+// Runs the batch (with opt.shard: its share) and, once every scene of the batch is done,
+// merges the parts into OUT; progress on stderr, the log (verbose lines) to `log` if given.
 BatchSummary detect_dataset(Detector& detector, const BatchOptions& opt, std::ostream* log);
 
 // "N scenes (K skipped), H hypotheses; ms per hypothesis: preparation P, voting V,

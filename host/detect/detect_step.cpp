@@ -5,7 +5,8 @@
 namespace binpick {
 
 BatchSummary detect_to_csv(Detector& detector, const TrainedModel& model,
-                           const std::filesystem::path& dataset, const std::filesystem::path& csv) {
+                           const std::filesystem::path& dataset, const std::filesystem::path& csv,
+                           const Shard& shard, const std::vector<int>& scenes) {
   if (&detector.model() != &model.model)
     throw std::logic_error("detect_to_csv: the detector was not made from this model");
   std::error_code ec;
@@ -15,6 +16,8 @@ BatchSummary detect_to_csv(Detector& detector, const TrainedModel& model,
   opt.dataset = dataset;
   opt.out = csv;
   opt.model_checksum = model.checksum;
+  opt.shard = shard;
+  opt.scenes = scenes;
   return detect_dataset(detector, opt, nullptr);
 }
 

@@ -10,9 +10,11 @@
 
 namespace binpick {
 
-// Every scene of DATASET/test with `detector`, whose model is `model`, into csv (its directory
-// is created). Progress on stderr.
+// Every scene of DATASET/test (or `scenes`, ascending) with `detector`, whose model is `model`,
+// into csv (its directory is created). Progress on stderr. With a shard: its share of the
+// scenes, csv merged only once every shard's scenes are done (BatchSummary::missing).
 BatchSummary detect_to_csv(Detector& detector, const TrainedModel& model,
-                           const std::filesystem::path& dataset, const std::filesystem::path& csv);
+                           const std::filesystem::path& dataset, const std::filesystem::path& csv,
+                           const Shard& shard = {}, const std::vector<int>& scenes = {});
 
 }  // namespace binpick

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <numeric>
 #include <cmath>
 #include <ostream>
 #include <set>
@@ -19,7 +20,7 @@ namespace {
 
 fs::path dataset_dir(const ExperimentOptions& o, double noise) { return o.out / noise_dir_name(noise); }
 fs::path results_csv(const ExperimentOptions& o, double noise) {
-  return o.out / "results" / (noise_dir_name(noise) + ".csv");
+  return experiment_results_csv(o, noise);
 }
 
 // The toolkit-ready copy of a level's results, and OUT/bop/NAME -> ../noise_S so that the
@@ -55,10 +56,15 @@ SynthOptions synth_options(const ExperimentOptions& o, double noise) {
   s.height = o.height;
   s.drop.objects = o.objects;
   s.drop.max_wall_seconds = o.max_wall_seconds;
+  s.shard = o.shard;
   return s;
 }
 
 }  // namespace
+
+fs::path experiment_results_csv(const ExperimentOptions& o, double noise) {
+  return o.out / "results" / (noise_dir_name(noise) + ".csv");
+}
 
 std::vector<double> parse_number_list(const std::string& text, const std::string& option,
                                       const std::string& example) {
@@ -153,13 +159,20 @@ ExperimentResult run_experiment(const Model& part, const ExperimentOptions& o, s
   start = std::chrono::steady_clock::now();
   Detector detector(model.model, o.detect);
   std::vector<eval::EvalInput> inputs;
+  // Bins 0 .. bins-1 by number: a shard's batch is whole before the other shards' bins exist.
+  std::vector<int> bins(std::size_t(o.bins));
+  std::iota(bins.begin(), bins.end(), 0);
   for (double noise : o.noise) {
-    const BatchSummary b = detect_to_csv(detector, model, dataset_dir(o, noise), results_csv(o, noise));
+    const BatchSummary b =
+        detect_to_csv(detector, model, dataset_dir(o, noise), results_csv(o, noise), o.shard, bins);
     log << fmt::format("detect {}: {}\n", results_csv(o, noise).string(), summary_line(b)) << std::flush;
+    r.scenes_missing += b.missing;
+    if (b.missing > 0) continue;  // another shard merges this level
     export_for_bop_toolkit(o, noise, log);
     inputs.push_back({dataset_dir(o, noise), results_csv(o, noise), {}});
   }
   r.detect_s = seconds_since(start);
+  if (r.scenes_missing > 0) return r;  // the last shard evaluates
 
   start = std::chrono::steady_clock::now();
   eval::ReportOptions report;

@@ -44,6 +44,9 @@ struct ExperimentOptions {
   // What the bins look like beyond the paper's (the bin rendered, distractors, camera tilt,
   // sensor model): each dataset's synth options start from these.
   SynthOptions scene;
+  // --shard K/N: bins K-1, K-1+N, ... of every level are made and detected here; the report is
+  // written by the shard that finds every level's scenes done.
+  Shard shard;
 };
 
 // Throws InputError (naming the option) for an empty or out-of-range noise list, two noise
@@ -78,7 +81,11 @@ struct ExperimentResult {
   int bins_made = 0, bins_reused = 0;
   bool model_reused = false;
   double synth_s = 0, train_s = 0, detect_s = 0, eval_s = 0;
+  std::size_t scenes_missing = 0;  // of other shards, over every level: no report yet
 };
+
+// OUT/results/noise_S.csv: a level's detection results.
+std::filesystem::path experiment_results_csv(const ExperimentOptions& o, double noise);
 
 // Runs every stage on `part` (loaded from options.part), writing one line per stage and dataset
 // to `log` (the stages' progress bars go to stderr). `distractors`: the models of

@@ -60,20 +60,6 @@ void make_dataset(const fs::path& dir, int scenes, bool zero_depth = false) {
   }
 }
 
-// The CSV without its time column (the only part that may change between runs).
-std::string without_time(const std::string& csv) {
-  std::string out;
-  std::size_t start = 0;
-  while (start < csv.size()) {
-    std::size_t end = csv.find('\n', start);
-    if (end == std::string::npos) end = csv.size();
-    const std::string line = csv.substr(start, end - start);
-    out += line.substr(0, line.rfind(',')) + "\n";
-    start = end + 1;
-  }
-  return out;
-}
-
 class DetectCli : public ::testing::Test {
  protected:
   static void SetUpTestSuite() {
@@ -157,7 +143,7 @@ TEST_F(DetectCli, WritesResultsBestFirstResumesAndIsDeterministic) {
   r = test::run_binpick(cmd);
   ASSERT_EQ(r.status, 0) << r.err;
   EXPECT_NE(r.out.find("3 scenes (2 done before)"), std::string::npos) << r.out;
-  EXPECT_EQ(without_time(test::slurp(out)), without_time(first));
+  EXPECT_EQ(test::without_time(test::slurp(out)), test::without_time(first));
   r = test::run_binpick(cmd + " --cluster-angle 19.5");
   ASSERT_EQ(r.status, 0) << r.err;
   EXPECT_NE(r.out.find("3 scenes (0 done before)"), std::string::npos) << r.out;

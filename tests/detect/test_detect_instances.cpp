@@ -28,20 +28,6 @@ Detection pose(double x, double score, std::uint64_t votes, std::uint32_t index)
   return d;
 }
 
-// The CSV without its time column (the only part that may change between runs).
-std::string without_time(const std::string& csv) {
-  std::string out;
-  std::size_t start = 0;
-  while (start < csv.size()) {
-    std::size_t end = csv.find('\n', start);
-    if (end == std::string::npos) end = csv.size();
-    const std::string line = csv.substr(start, end - start);
-    out += line.substr(0, line.rfind(',')) + "\n";
-    start = end + 1;
-  }
-  return out;
-}
-
 }  // namespace
 
 TEST(InstanceSelect, BestFirstDistinctPartsWithinBudget) {
@@ -94,7 +80,7 @@ TEST(DetectInstances, BudgetOnABinOf35Parts) {
   const fs::path paper = detect("paper.csv", "");
   const fs::path zero = detect("zero.csv", "--instances 0");
   const fs::path ten = detect("ten.csv", "--instances 10");
-  EXPECT_EQ(without_time(test::slurp(zero)), without_time(test::slurp(paper)));
+  EXPECT_EQ(test::without_time(test::slurp(zero)), test::without_time(test::slurp(paper)));
 
   const PpfModel model = read_ppf_model(ppfm);
   const Eigen::Vector3d c = model_centroid(model.cloud);

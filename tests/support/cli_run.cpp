@@ -19,6 +19,19 @@ std::string slurp(const fs::path& path) {
   return s.str();
 }
 
+std::string without_time(const std::string& csv) {
+  std::string out;
+  std::size_t start = 0;
+  while (start < csv.size()) {
+    std::size_t end = csv.find('\n', start);
+    if (end == std::string::npos) end = csv.size();
+    const std::string line = csv.substr(start, end - start);
+    out += line.substr(0, line.rfind(',')) + "\n";
+    start = end + 1;
+  }
+  return out;
+}
+
 fs::path fresh_temp_dir(const std::string& name) {
   static std::atomic<int> counter{0};
   const fs::path dir = fs::temp_directory_path() / ("binpick_test_" + name + "_" +

@@ -20,4 +20,7 @@ std::filesystem::path fresh_temp_dir(const std::string& name);
 
 std::string slurp(const std::filesystem::path& path);
 
+// A results CSV without its last column, `time` (the only part that may change between runs).
+std::string without_time(const std::string& csv);
+
 }  // namespace binpick::test

@@ -11,16 +11,12 @@
 
 #include <fmt/format.h>
 
+#include "host/core/shell_quote.hpp"
+
 namespace binpick::eval {
 namespace {
 
 namespace fs = std::filesystem;
-
-std::string shell_quoted(const std::string& s) {
-  std::string out = "'";
-  for (char c : s) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
-  return out + "'";
-}
 
 }  // namespace
 
