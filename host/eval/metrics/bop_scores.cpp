@@ -1,0 +1,106 @@
+#include "host/eval/metrics/bop_scores.hpp"
+
+#include <algorithm>
+#include <map>
+#include <set>
+
+#include "host/eval/metrics/bop_pose_error.hpp"
+#include "host/eval/metrics/bop_targets.hpp"
+#include "host/eval/metrics/eval_vertices.hpp"
+#include "host/formats/bop/bop_files.hpp"
+
+namespace binpick::eval {
+namespace {
+
+namespace fs = std::filesystem;
+
+// BOP's MSPD thresholds are for 640 px wide images; the toolkit takes the width from the
+// dataset's camera (camera.json, or camera_SENSOR.json for a sensor).
+void read_image_width(const Dataset& dataset, BopScores& scores) {
+  const std::string sensor =
+      dataset.images.empty() ? std::string() : dataset.images.begin()->second.files.sensor;
+  const fs::path path =
+      dataset.root / (sensor.empty() ? "camera.json" : "camera_" + sensor + ".json");
+  if (!fs::exists(path)) return;
+  const bop::Camera camera = bop::read_camera(path);
+  if (camera.width == 0) return;
+  scores.image_width = camera.width;
+  scores.image_width_known = true;
+}
+
+// The rows of each (image, obj_id), in file order.
+using RowGroups = std::map<std::pair<ImageKey, int>, std::vector<const bop::ResultRow*>>;
+
+RowGroups group_rows(const std::vector<bop::ResultRow>& rows) {
+  RowGroups groups;
+  for (const auto& r : rows) groups[{{r.scene_id, r.im_id}, r.obj_id}].push_back(&r);
+  return groups;
+}
+
+}  // namespace
+
+std::vector<double> bop_mssd_thresholds() { return arange(0.05, 0.51, 0.05); }
+std::vector<double> bop_mspd_thresholds() { return arange(5, 51, 5); }
+
+BopScores bop_scores(const Dataset& dataset, const std::vector<bop::ResultRow>& rows) {
+  BopScores scores;
+  const TargetSet targets = bop_targets(dataset);
+  scores.targets_source = targets.source;
+  read_image_width(dataset, scores);
+  std::set<int> obj_ids;
+  for (const auto& [key, objects] : targets.targets)
+    for (const auto& [obj_id, count] : objects) obj_ids.insert(obj_id);
+  const EvalVertices vertices = load_eval_vertices(dataset.root, obj_ids);
+  scores.vertices = vertices.directory;
+
+  std::map<int, std::vector<SymmetryTransform>> symmetries;
+  for (int id : obj_ids) symmetries[id] = bop_symmetry_transforms(dataset.models.at(id).symmetries);
+
+  const RowGroups rows_by_group = group_rows(rows);
+  std::vector<TargetGroup> mssd_groups, mspd_groups;
+  const double mspd_scale = 640.0 / scores.image_width;
+  for (const auto& [key, objects] : targets.targets) {
+    const EvalImage& image = dataset.images.at(key);
+    const std::vector<bool> is_target = target_instances(image, objects);
+    for (const auto& [obj_id, inst_count] : objects) {
+      TargetGroup mssd_group{obj_id, 0, {}}, mspd_group{obj_id, 0, {}};
+      for (std::size_t i = 0; i < image.gt.size(); ++i)
+        if (is_target[i] && image.gt[i].obj_id == obj_id) ++mssd_group.targets;
+      mspd_group.targets = mssd_group.targets;
+      scores.targets += mssd_group.targets;
+
+      std::vector<const bop::ResultRow*> chosen;
+      if (const auto it = rows_by_group.find({key, obj_id}); it != rows_by_group.end())
+        chosen = it->second;
+      std::stable_sort(chosen.begin(), chosen.end(),
+                       [](const auto* a, const auto* b) { return a->score > b->score; });
+      if (chosen.size() > static_cast<std::size_t>(inst_count)) chosen.resize(inst_count);
+      scores.estimates += static_cast<int>(chosen.size());
+
+      const double diameter = dataset.models.at(obj_id).diameter;
+      const auto& pts = vertices.by_object.at(obj_id);
+      const auto& syms = symmetries.at(obj_id);
+      for (const auto* row : chosen) {
+        EstimateErrors e_mssd, e_mspd;
+        const RigidPose est{row->R, row->t};
+        for (std::size_t i = 0; i < image.gt.size(); ++i) {
+          if (!is_target[i] || image.gt[i].obj_id != obj_id) continue;
+          const RigidPose gt{image.gt[i].model_to_camera.R, image.gt[i].model_to_camera.t};
+          const int index = static_cast<int>(i);
+          e_mssd.errors.emplace_back(index, mssd(est, gt, pts, syms) / diameter);
+          e_mspd.errors.emplace_back(index, mspd_scale * mspd(est, gt, image.camera.K, pts, syms));
+        }
+        mssd_group.estimates.push_back(std::move(e_mssd));
+        mspd_group.estimates.push_back(std::move(e_mspd));
+      }
+      mssd_groups.push_back(std::move(mssd_group));
+      mspd_groups.push_back(std::move(mspd_group));
+    }
+  }
+  scores.mssd = recall_over_thresholds(mssd_groups, bop_mssd_thresholds());
+  scores.mspd = recall_over_thresholds(mspd_groups, bop_mspd_thresholds());
+  scores.average_recall = (scores.mssd.overall.average + scores.mspd.overall.average) / 2.0;
+  return scores;
+}
+
+}  // namespace binpick::eval
