@@ -134,6 +134,18 @@ TEST(BopPoseError, TransformsAreTheToolkitsSet) {
   EXPECT_EQ(bop_symmetry_transforms(continuous_z(), 0.05).size(), 63u);
 }
 
+TEST(BopPoseError, ErrorsBelowTheBoundAreExactAndOthersAtLeastIt) {
+  const RigidPose gt{about({1, 2, 3}, 0.7), {10, 20, 600}};
+  const RigidPose est{gt.R, gt.t + Eigen::Vector3d(3, 4, 0)};
+  EXPECT_NEAR(mssd(est, gt, cube(), kIdentityOnly, 5.001), 5.0, 1e-12);
+  EXPECT_GE(mssd(est, gt, cube(), kIdentityOnly, 4.0), 4.0);
+  Eigen::Matrix3d K;
+  K << 500, 0, 320, 0, 500, 240, 0, 0, 1;
+  const double exact = mspd(est, gt, K, cube(), kIdentityOnly);
+  EXPECT_EQ(mspd(est, gt, K, cube(), kIdentityOnly, exact * 1.001), exact);
+  EXPECT_GE(mspd(est, gt, K, cube(), kIdentityOnly, exact * 0.5), exact * 0.5);
+}
+
 TEST(BopPoseError, EmptyInputIsAnInputError) {
   const RigidPose p;
   EXPECT_THROW(mssd(p, p, {}, kIdentityOnly), InputError);

@@ -20,16 +20,18 @@ void check_inputs(const std::vector<Eigen::Vector3d>& vertices,
 
 // min over the symmetries of max over the vertices of distance(est(v), copy(v)), where both are
 // computed by `place` (3D or projected). The max over a copy's vertices stops as soon as it
-// reaches the best copy so far: that copy can no longer win, and the minimum is unchanged.
+// reaches the best copy so far (or the bound): that copy can no longer win, and the minimum is
+// unchanged.
 template <typename Place>
 double min_max_distance(const RigidPose& estimate, const RigidPose& truth,
                         const std::vector<Eigen::Vector3d>& vertices,
-                        const std::vector<SymmetryTransform>& symmetries, Place place) {
+                        const std::vector<SymmetryTransform>& symmetries, double bound,
+                        Place place) {
   check_inputs(vertices, symmetries);
   std::vector<decltype(place(estimate, vertices[0]))> placed_estimate;
   placed_estimate.reserve(vertices.size());
   for (const auto& v : vertices) placed_estimate.push_back(place(estimate, v));
-  double best = std::numeric_limits<double>::infinity();
+  double best = bound;
   for (const auto& s : symmetries) {
     const RigidPose copy{truth.R * s.R, truth.R * s.t + truth.t};
     double worst = 0;
@@ -69,8 +71,8 @@ std::vector<SymmetryTransform> bop_symmetry_transforms(const PartSymmetries& sym
 
 double mssd(const RigidPose& estimate, const RigidPose& truth,
             const std::vector<Eigen::Vector3d>& vertices,
-            const std::vector<SymmetryTransform>& symmetries) {
-  return min_max_distance(estimate, truth, vertices, symmetries,
+            const std::vector<SymmetryTransform>& symmetries, double bound) {
+  return min_max_distance(estimate, truth, vertices, symmetries, bound,
                           [](const RigidPose& p, const Eigen::Vector3d& v) -> Eigen::Vector3d {
                             return p.R * v + p.t;
                           });
@@ -78,8 +80,8 @@ double mssd(const RigidPose& estimate, const RigidPose& truth,
 
 double mspd(const RigidPose& estimate, const RigidPose& truth, const Eigen::Matrix3d& K,
             const std::vector<Eigen::Vector3d>& vertices,
-            const std::vector<SymmetryTransform>& symmetries) {
-  return min_max_distance(estimate, truth, vertices, symmetries,
+            const std::vector<SymmetryTransform>& symmetries, double bound) {
+  return min_max_distance(estimate, truth, vertices, symmetries, bound,
                           [&K](const RigidPose& p, const Eigen::Vector3d& v) -> Eigen::Vector2d {
                             const Eigen::Vector3d x = K * (p.R * v + p.t);
                             return x.head<2>() / x.z();

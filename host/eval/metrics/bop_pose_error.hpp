@@ -5,6 +5,7 @@
 // MSPD). Continuous symmetries are discretised as the toolkit does, so the numbers match its.
 #pragma once
 
+#include <limits>
 #include <vector>
 
 #include <Eigen/Core>
@@ -37,14 +38,19 @@ struct RigidPose {
 
 // Maximum Symmetry-aware Surface Distance, mm: min over S of max over vertices v of
 // |R_e v + t_e - (R_g (R_S v + t_S) + t_g)|. Needs at least one vertex and one transform.
+// An error of `bound` or more is returned as some value >= bound without measuring it exactly
+// (matching needs only errors below its largest threshold; far-off instances then cost about
+// one vertex per transform).
 double mssd(const RigidPose& estimate, const RigidPose& truth,
             const std::vector<Eigen::Vector3d>& vertices,
-            const std::vector<SymmetryTransform>& symmetries);
+            const std::vector<SymmetryTransform>& symmetries,
+            double bound = std::numeric_limits<double>::infinity());
 
 // Maximum Symmetry-aware Projection Distance, pixels: as mssd with the points projected by K
-// (x = K p / p_z, as misc.project_pts: no check that p_z > 0).
+// (x = K p / p_z, as misc.project_pts: no check that p_z > 0); `bound` as for mssd.
 double mspd(const RigidPose& estimate, const RigidPose& truth, const Eigen::Matrix3d& K,
             const std::vector<Eigen::Vector3d>& vertices,
-            const std::vector<SymmetryTransform>& symmetries);
+            const std::vector<SymmetryTransform>& symmetries,
+            double bound = std::numeric_limits<double>::infinity());
 
 }  // namespace binpick::eval

@@ -59,6 +59,11 @@ BopScores bop_scores(const Dataset& dataset, const std::vector<bop::ResultRow>& 
   const RowGroups rows_by_group = group_rows(rows);
   std::vector<TargetGroup> mssd_groups, mspd_groups;
   const double mspd_scale = 640.0 / scores.image_width;
+  // Errors at or above the largest threshold match nothing: they need not be measured exactly
+  // (the margin keeps an error just below a threshold, in either arithmetic, measured).
+  const double margin = 1 + 1e-9;
+  const double mssd_bound = bop_mssd_thresholds().back() * margin;  // times the diameter
+  const double mspd_bound = bop_mspd_thresholds().back() / mspd_scale * margin;
   for (const auto& [key, objects] : targets.targets) {
     const EvalImage& image = dataset.images.at(key);
     const std::vector<bool> is_target = target_instances(image, objects);
@@ -87,8 +92,10 @@ BopScores bop_scores(const Dataset& dataset, const std::vector<bop::ResultRow>& 
           if (!is_target[i] || image.gt[i].obj_id != obj_id) continue;
           const RigidPose gt{image.gt[i].model_to_camera.R, image.gt[i].model_to_camera.t};
           const int index = static_cast<int>(i);
-          e_mssd.errors.emplace_back(index, mssd(est, gt, pts, syms) / diameter);
-          e_mspd.errors.emplace_back(index, mspd_scale * mspd(est, gt, image.camera.K, pts, syms));
+          e_mssd.errors.emplace_back(
+              index, mssd(est, gt, pts, syms, mssd_bound * diameter) / diameter);
+          e_mspd.errors.emplace_back(
+              index, mspd_scale * mspd(est, gt, image.camera.K, pts, syms, mspd_bound));
         }
         mssd_group.estimates.push_back(std::move(e_mssd));
         mspd_group.estimates.push_back(std::move(e_mspd));
