@@ -172,6 +172,15 @@ ExperimentResult run_experiment(const Model& part, const ExperimentOptions& o, s
   return r;
 }
 
+namespace {
+
+// "-" when the dataset could not be scored the BOP way (no model file).
+std::string ar_cell(const eval::BopScores& bop, const eval::MetricRecall& metric) {
+  return bop.unavailable.empty() ? fmt::format("{:.3f}", metric.overall.average) : "-";
+}
+
+}  // namespace
+
 std::string results_table(const std::vector<eval::DatasetEvaluation>& evaluations,
                           const eval::EvalOptions& at) {
   const auto point = [](const char* which, const eval::OperatingPoint& p) {
@@ -199,12 +208,12 @@ std::string results_table(const std::vector<eval::DatasetEvaluation>& evaluation
                                        ? fmt::format("{:.1f}%", 100 * s.score_loose.wrong_fraction)
                                        : std::string("-");
     t += fmt::format("{:>7} {:>5} {:>6}  {:>7.1f}% {:>7.1f}% {:>10}  {:>7.1f}% {:>7.1f}%  "
-                     "{:>7.1f}% {:>7.1f}%  {:>8.1f}  {:>6.3f} {:>6.3f}\n",
+                     "{:>7.1f}% {:>7.1f}%  {:>8.1f}  {:>6} {:>6}\n",
                      noise, s.images, s.hypotheses, 100 * s.loose.top, 100 * s.loose.all,
                      wrong_cell, 100 * s.strict.top, 100 * s.strict.all,
                      100 * (s.top_on_nothing + s.top_on_distractor),
                      100 * (s.all_on_nothing + s.all_on_distractor), s.ms_per_hypothesis,
-                     e.bop.mssd.overall.average, e.bop.mspd.overall.average);
+                     ar_cell(e.bop, e.bop.mssd), ar_cell(e.bop, e.bop.mspd));
   }
   return t;
 }

@@ -179,5 +179,16 @@ TEST(BopScores, ReadsTheTargetsFileAndModelsEval) {
   EXPECT_THROW(bop_scores(dataset, {}), InputError);
 }
 
+TEST(BopScores, WithoutTheModelFileTheyAreUnavailableNotAnError) {
+  TinyDataset d;
+  fs::remove(d.root / "models/obj_000001.ply");
+  const BopScores s = bop_scores(load_dataset(d.root), {d.at(1, 0.9)});
+  EXPECT_NE(s.unavailable.find("obj_000001.ply"), std::string::npos) << s.unavailable;
+  {
+    std::ofstream(d.root / "models/obj_000001.ply") << "not a ply";
+  }
+  EXPECT_THROW(bop_scores(load_dataset(d.root), {d.at(1, 0.9)}), InputError);
+}
+
 }  // namespace
 }  // namespace binpick::eval

@@ -50,6 +50,11 @@ BopScores bop_scores(const Dataset& dataset, const std::vector<bop::ResultRow>& 
   std::set<int> obj_ids;
   for (const auto& [key, objects] : targets.targets)
     for (const auto& [obj_id, count] : objects) obj_ids.insert(obj_id);
+  scores.vertices = eval_vertices_directory(dataset.root, obj_ids);
+  if (const auto missing = first_missing_model(scores.vertices, obj_ids); !missing.empty()) {
+    scores.unavailable = "no " + missing.string();
+    return scores;
+  }
   const EvalVertices vertices = load_eval_vertices(dataset.root, obj_ids);
   scores.vertices = vertices.directory;
 

@@ -17,6 +17,8 @@
 namespace binpick::eval {
 
 struct BopScores {
+  // Why there are no scores (the dataset has no model file to measure on); empty if there are.
+  std::string unavailable;
   std::string targets_source;            // bop_targets()
   std::filesystem::path vertices;        // models_eval/ or models/
   double image_width = 640;              // px; MSPD errors are scaled by 640 / image_width
@@ -32,8 +34,10 @@ struct BopScores {
 std::vector<double> bop_mssd_thresholds();
 std::vector<double> bop_mspd_thresholds();
 
-// Rows of images or obj_ids without targets are ignored (BOP evaluates targets only). Throws
-// InputError for a missing or unreadable model or targets file.
+// Rows of images or obj_ids without targets are ignored (BOP evaluates targets only). Without a
+// model file of a target's obj_id the scores are `unavailable` (eval still gives the paper's
+// figures, which need models_info.json only). Throws InputError for a model or targets file that
+// cannot be read.
 BopScores bop_scores(const Dataset& dataset, const std::vector<bop::ResultRow>& rows);
 
 }  // namespace binpick::eval

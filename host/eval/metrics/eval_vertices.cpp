@@ -32,12 +32,21 @@ std::vector<Eigen::Vector3d> read_vertices(const fs::path& path) {
 
 }  // namespace
 
+fs::path eval_vertices_directory(const fs::path& root, const std::set<int>& obj_ids) {
+  const fs::path eval_dir = root / "models_eval";
+  const bool use_eval = !obj_ids.empty() && fs::exists(model_path(eval_dir, *obj_ids.begin()));
+  return use_eval ? eval_dir : root / "models";
+}
+
+fs::path first_missing_model(const fs::path& directory, const std::set<int>& obj_ids) {
+  for (int id : obj_ids)
+    if (!fs::exists(model_path(directory, id))) return model_path(directory, id);
+  return {};
+}
+
 EvalVertices load_eval_vertices(const fs::path& root, const std::set<int>& obj_ids) {
   EvalVertices out;
-  const fs::path eval_dir = root / "models_eval";
-  const bool use_eval =
-      !obj_ids.empty() && fs::exists(model_path(eval_dir, *obj_ids.begin()));
-  out.directory = use_eval ? eval_dir : root / "models";
+  out.directory = eval_vertices_directory(root, obj_ids);
   for (int id : obj_ids) out.by_object[id] = read_vertices(model_path(out.directory, id));
   return out;
 }

@@ -24,6 +24,7 @@ std::string ar_cells(double mssd, double mspd) {
 }  // namespace
 
 json bop_json(const BopScores& s) {
+  if (!s.unavailable.empty()) return {{"unavailable", s.unavailable}};
   json objects = json::array();
   for (std::size_t i = 0; i < s.mssd.objects.size(); ++i)
     objects.push_back({{"obj_id", s.mssd.objects[i].obj_id},
@@ -62,6 +63,11 @@ std::string bop_html_section(const std::vector<DatasetEvaluation>& evaluations) 
       "<th>AR (MSSD, MSPD)</th></tr>\n";
   for (const auto& e : evaluations) {
     const BopScores& b = e.bop;
+    if (!b.unavailable.empty()) {
+      s += fmt::format("<tr><td>{}</td><td colspan=\"5\">not scored: {}</td></tr>\n",
+                       html_escaped(e.dataset.label), html_escaped(b.unavailable));
+      continue;
+    }
     s += fmt::format("<tr><td>{}</td><td>all</td><td>{}</td>{}</tr>\n",
                      html_escaped(e.dataset.label), b.targets,
                      ar_cells(b.mssd.overall.average, b.mspd.overall.average));
@@ -78,6 +84,10 @@ std::string bop_summary_lines(const std::vector<DatasetEvaluation>& evaluations)
   std::string s;
   for (const auto& e : evaluations) {
     const BopScores& b = e.bop;
+    if (!b.unavailable.empty()) {
+      s += fmt::format("{:<24} BOP: not scored ({})\n", e.dataset.label, b.unavailable);
+      continue;
+    }
     s += fmt::format("{:<24} BOP: AR_MSSD {:.3f}  AR_MSPD {:.3f}  AR(MSSD,MSPD) {:.3f}  "
                      "({} targets, {} estimates; no VSD)\n",
                      e.dataset.label, b.mssd.overall.average, b.mspd.overall.average,

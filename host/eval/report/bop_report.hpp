@@ -14,7 +14,7 @@ namespace binpick::eval {
 // {"ar", "ar_mssd", "ar_mspd", "ar_vsd": null, "targets", "estimates", "targets_source",
 //  "vertices", "image_width", "image_width_known", "mssd": {"thresholds", "recall"},
 //  "mspd": {...}, "objects": [{"obj_id", "targets", "ar_mssd", "ar_mspd", "mssd_recall",
-//  "mspd_recall"}]}
+//  "mspd_recall"}]}, or {"unavailable": "no .../obj_000001.ply"} without the model.
 nlohmann::json bop_json(const BopScores& scores);
 
 // <h2> section with a table of AR per dataset and per obj_id.
