@@ -177,6 +177,11 @@ TEST(BopScores, ReadsTheTargetsFileAndModelsEval) {
         << R"([{"scene_id": 0, "im_id": 9, "obj_id": 1, "inst_count": 1}])";
   }
   EXPECT_THROW(bop_scores(dataset, {}), InputError);
+  {
+    std::ofstream(d.root / "test_targets_bop19.json")
+        << R"([{"scene_id": 0, "im_id": 0, "obj_id": 7, "inst_count": 1}])";
+  }
+  EXPECT_THROW(bop_scores(dataset, {}), InputError);
 }
 
 TEST(BopScores, WithoutTheModelFileTheyAreUnavailableNotAnError) {

@@ -60,10 +60,15 @@ TargetSet bop_targets(const Dataset& dataset) {
   const auto path = dataset.root / kTargetsFile;
   if (std::filesystem::exists(path)) {
     TargetSet set{parse_bop_targets(read_file_bytes(path), path.string()), path.string()};
-    for (const auto& [key, objects] : set.targets)
+    for (const auto& [key, objects] : set.targets) {
       if (!dataset.images.count(key))
         throw InputError(fmt::format("{}: scene {} image {} is not in the dataset's ground truth",
                                      path.string(), key.scene_id, key.im_id));
+      for (const auto& [obj_id, count] : objects)
+        if (!dataset.models.count(obj_id))
+          throw InputError(fmt::format("{}: obj_id {}, which models_info.json lacks",
+                                       path.string(), obj_id));
+    }
     return set;
   }
   TargetSet set{{}, fmt::format("instances with visib_fract >= {}", kBopTargetVisibility)};

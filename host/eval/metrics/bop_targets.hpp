@@ -30,7 +30,7 @@ struct TargetSet {
 BopTargets parse_bop_targets(const std::string& text, const std::string& name);
 
 // The dataset's root/test_targets_bop19.json if it has one (InputError if it names an image the
-// dataset lacks); else, per image, the instances of each obj_id with visib_fract >= 0.1 (every
+// dataset lacks or an obj_id models_info.json lacks); else, per image, the instances of each obj_id with visib_fract >= 0.1 (every
 // instance if the scene has no scene_gt_info.json).
 TargetSet bop_targets(const Dataset& dataset);
 
