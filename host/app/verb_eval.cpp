@@ -14,6 +14,7 @@
 #include "host/app/verbs.hpp"
 #include "host/core/error.hpp"
 #include "host/eval/eval_run.hpp"
+#include "host/eval/report/bop_report.hpp"
 #include "host/eval/report/report_tables.hpp"
 
 namespace binpick::cli {
@@ -63,6 +64,7 @@ void print_summary(const std::vector<eval::DatasetEvaluation>& evaluations,
         100 * s.strict.top, 100 * s.strict.all, s.median_translation_pct_all,
         s.median_rotation_deg_all, s.ms_per_hypothesis);
   }
+  std::cout << eval::bop_summary_lines(evaluations);
   for (const auto& e : evaluations)
     std::cout << fmt::format("{:<24} {}\n", e.dataset.label,
                              eval::calibration_line(e.summary.score_loose, o.loose));
@@ -108,7 +110,8 @@ void add_eval_verb(CLI::App& app) {
   auto* verb = app.add_subcommand(
       "eval",
       "Evaluate detection results against a dataset's ground truth: translation and rotation "
-      "errors, precision curves (all hypotheses and top-ranked per image), precision against "
+      "errors, precision curves (all hypotheses and top-ranked per image), BOP's average recalls "
+      "(MSSD, MSPD; symmetry-aware; no VSD), precision against "
       "score threshold (is the score calibrated?), pictures; writes report.html, report.json, "
       "curves.csv, score_curves.csv, hypotheses.csv and PNGs into --out");
   verb->add_option("--dataset", args->datasets,

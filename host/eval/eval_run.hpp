@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "host/eval/metrics/bop_scores.hpp"
 #include "host/eval/metrics/evaluate.hpp"
 #include "host/eval/metrics/precision_curves.hpp"
 
@@ -24,6 +25,7 @@ struct DatasetEvaluation {
   EvalSummary summary;
   std::array<PrecisionCurve, 4> curves;  // figure7_curves(summary.results)
   ScoreCurve score_curve;                 // score_curve(summary.results, options.loose)
+  BopScores bop;                          // BOP's MSSD / MSPD recalls, next to the paper's
 };
 
 // Loads and evaluates each pair; InputError names the failing pair. With every dataset's noise

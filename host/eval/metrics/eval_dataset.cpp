@@ -76,6 +76,8 @@ Dataset load_dataset(const fs::path& root, const DatasetLayout& layout) {
     if (!fs::exists(files.scene_gt())) continue;
     const bop::SceneGroundTruth gt = bop::read_scene_gt(files.scene_gt());
     const bop::SceneCameras cameras = bop::read_scene_cameras(files.scene_camera());
+    bop::SceneGroundTruthInfo info;
+    if (fs::exists(files.scene_gt_info())) info = bop::read_scene_gt_info(files.scene_gt_info());
     for (const auto& [im_id, instances] : gt) {
       const auto cam = cameras.find(im_id);
       if (cam == cameras.end())
@@ -85,7 +87,15 @@ Dataset load_dataset(const fs::path& root, const DatasetLayout& layout) {
         if (!d.models.count(g.obj_id))
           throw InputError(fmt::format("{}: image {} has obj_id {}, which models_info.json lacks",
                                        files.scene_gt().string(), im_id, g.obj_id));
-      d.images[{scene_id, im_id}] = {instances, cam->second, files};
+      EvalImage& image = d.images[{scene_id, im_id}];
+      image = {instances, cam->second, files, {}};
+      if (const auto i = info.find(im_id); i != info.end()) {
+        if (i->second.size() != instances.size())
+          throw InputError(fmt::format("{}: image {} has {} entries, scene_gt.json has {}",
+                                       files.scene_gt_info().string(), im_id, i->second.size(),
+                                       instances.size()));
+        for (const auto& g : i->second) image.visib_fract.push_back(g.visib_fract);
+      }
     }
   }
   if (d.images.empty())

@@ -23,6 +23,8 @@ struct EvalImage {
   std::vector<bop::GroundTruth> gt;
   bop::SceneCamera camera;
   bop::SceneFiles files;  // SPLIT/NNNNNN and the sensor suffix
+  // visib_fract of each gt instance from scene_gt_info.json; empty if the scene has none.
+  std::vector<double> visib_fract;
 };
 
 struct Dataset {
@@ -41,7 +43,8 @@ struct DatasetLayout {
 };
 
 // Reads models/models_info.json and every SPLIT/NNNNNN/scene_gt.json and scene_camera.json of
-// root (with the sensor's suffix), and synth.json if present. Throws InputError naming the file
+// root (with the sensor's suffix), scene_gt_info.json where present (its visib_fract), and
+// synth.json if present. Throws InputError naming the file
 // for a missing or malformed file, and if root has no scene or an image of scene_gt.json has no
 // camera.
 Dataset load_dataset(const std::filesystem::path& root, const DatasetLayout& layout = {});

@@ -4,6 +4,7 @@
 
 #include <fmt/format.h>
 
+#include "host/eval/report/bop_report.hpp"
 #include "host/eval/report/colormap.hpp"
 #include "host/core/atomic_file.hpp"
 
@@ -216,6 +217,7 @@ std::string report_html(const std::vector<DatasetEvaluation>& evaluations,
                 "threshold (c, d), over all hypotheses (a, c) and over the top-ranked one per "
                 "image (b, d); one curve per dataset (the paper's Figure 7).");
   s += score_section(evaluations, o, files);
+  s += bop_html_section(evaluations);
   s += fmt::format("<p>Data: <a href=\"{0}\">{0}</a> (the curves), <a href=\"{1}\">{1}</a> "
                    "(the score curves), <a href=\"{2}\">{2}</a> (every hypothesis), "
                    "<a href=\"{3}\">{3}</a> (the numbers above).</p>\n",

@@ -5,6 +5,7 @@
 #include <fmt/format.h>
 
 #include "host/core/atomic_file.hpp"
+#include "host/eval/report/bop_report.hpp"
 
 namespace binpick::eval {
 namespace {
@@ -56,7 +57,8 @@ json summary_json(const DatasetEvaluation& e) {
             {"scores_outside_unit", s.score_loose.outside_unit},
             {"max_score", number(s.score_loose.max_score)},
             {"loose", calibration(s.score_loose)},
-            {"strict", calibration(s.score_strict)}}}};
+            {"strict", calibration(s.score_strict)}}},
+          {"bop", bop_json(e.bop)}};
 }
 
 const char* landing_name(Landing l) {

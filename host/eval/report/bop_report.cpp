@@ -1,0 +1,104 @@
+#include "host/eval/report/bop_report.hpp"
+
+#include <fmt/format.h>
+
+#include "host/eval/report/report_html.hpp"
+
+namespace binpick::eval {
+namespace {
+
+using nlohmann::json;
+
+json curve_json(const RecallCurve& c) {
+  return {{"thresholds", c.thresholds}, {"recall", c.recall}};
+}
+
+// The obj_id's curve of a metric (both metrics list the same objects in the same order).
+const RecallCurve& object_curve(const MetricRecall& m, std::size_t i) { return m.objects[i].curve; }
+
+std::string ar_cells(double mssd, double mspd) {
+  return fmt::format("<td>{:.3f}</td><td>{:.3f}</td><td>{:.3f}</td>", mssd, mspd,
+                     (mssd + mspd) / 2.0);
+}
+
+}  // namespace
+
+json bop_json(const BopScores& s) {
+  if (!s.unavailable.empty()) return {{"unavailable", s.unavailable}};
+  json objects = json::array();
+  for (std::size_t i = 0; i < s.mssd.objects.size(); ++i)
+    objects.push_back({{"obj_id", s.mssd.objects[i].obj_id},
+                       {"targets", s.mssd.objects[i].targets},
+                       {"ar_mssd", object_curve(s.mssd, i).average},
+                       {"ar_mspd", object_curve(s.mspd, i).average},
+                       {"mssd_recall", object_curve(s.mssd, i).recall},
+                       {"mspd_recall", object_curve(s.mspd, i).recall}});
+  return {{"ar", s.average_recall},
+          {"ar_mssd", s.mssd.overall.average},
+          {"ar_mspd", s.mspd.overall.average},
+          {"ar_vsd", nullptr},
+          {"targets", s.targets},
+          {"estimates", s.estimates},
+          {"targets_source", s.targets_source},
+          {"vertices", s.vertices.string()},
+          {"image_width", s.image_width},
+          {"image_width_known", s.image_width_known},
+          {"mssd", curve_json(s.mssd.overall)},
+          {"mspd", curve_json(s.mspd.overall)},
+          {"objects", objects}};
+}
+
+std::string bop_html_section(const std::vector<DatasetEvaluation>& evaluations) {
+  std::string s =
+      "<h2>BOP average recall</h2>\n<p>BOP Challenge 2019 scores (bop_toolkit): MSSD, the "
+      "largest distance of a model vertex between the estimate and the nearest symmetric copy "
+      "of the ground truth, is right below 0.05, 0.10, ... 0.50 of the diameter; MSPD, the same "
+      "in the image, below 5, 10, ... 50 px (for a 640 px wide image). Each estimate, by score, "
+      "takes the unmatched target with the smallest error below the threshold; recall = matched "
+      "targets / targets (instances with visib_fract &ge; 0.1, or test_targets_bop19.json), "
+      "counting at most inst_count estimates per image and object; AR = mean recall over the "
+      "thresholds. VSD (it needs rendering) is not computed: AR here is the mean of AR<sub>MSSD"
+      "</sub> and AR<sub>MSPD</sub>, not of the three.</p>\n<table>\n<tr><th>dataset</th>"
+      "<th>obj_id</th><th>targets</th><th>AR<sub>MSSD</sub></th><th>AR<sub>MSPD</sub></th>"
+      "<th>AR (MSSD, MSPD)</th></tr>\n";
+  for (const auto& e : evaluations) {
+    const BopScores& b = e.bop;
+    if (!b.unavailable.empty()) {
+      s += fmt::format("<tr><td>{}</td><td colspan=\"5\">not scored: {}</td></tr>\n",
+                       html_escaped(e.dataset.label), html_escaped(b.unavailable));
+      continue;
+    }
+    s += fmt::format("<tr><td>{}</td><td>all</td><td>{}</td>{}</tr>\n",
+                     html_escaped(e.dataset.label), b.targets,
+                     ar_cells(b.mssd.overall.average, b.mspd.overall.average));
+    if (b.mssd.objects.size() > 1)
+      for (std::size_t i = 0; i < b.mssd.objects.size(); ++i)
+        s += fmt::format("<tr><td></td><td>{}</td><td>{}</td>{}</tr>\n", b.mssd.objects[i].obj_id,
+                         b.mssd.objects[i].targets,
+                         ar_cells(object_curve(b.mssd, i).average, object_curve(b.mspd, i).average));
+  }
+  return s + "</table>\n";
+}
+
+std::string bop_summary_lines(const std::vector<DatasetEvaluation>& evaluations) {
+  std::string s;
+  for (const auto& e : evaluations) {
+    const BopScores& b = e.bop;
+    if (!b.unavailable.empty()) {
+      s += fmt::format("{:<24} BOP: not scored ({})\n", e.dataset.label, b.unavailable);
+      continue;
+    }
+    s += fmt::format("{:<24} BOP: AR_MSSD {:.3f}  AR_MSPD {:.3f}  AR(MSSD,MSPD) {:.3f}  "
+                     "({} targets, {} estimates; no VSD)\n",
+                     e.dataset.label, b.mssd.overall.average, b.mspd.overall.average,
+                     b.average_recall, b.targets, b.estimates);
+    if (b.mssd.objects.size() > 1)
+      for (std::size_t i = 0; i < b.mssd.objects.size(); ++i)
+        s += fmt::format("{:<24}   obj_id {}: AR_MSSD {:.3f}  AR_MSPD {:.3f}  ({} targets)\n", "",
+                         b.mssd.objects[i].obj_id, object_curve(b.mssd, i).average,
+                         object_curve(b.mspd, i).average, b.mssd.objects[i].targets);
+  }
+  return s;
+}
+
+}  // namespace binpick::eval
