@@ -148,6 +148,7 @@ SynthSummary synthesize(const Model& model, const std::string& model_description
     RenderOptions render_options;
     render_options.noise_sigma_mm = structured_light ? 0.0 : o.noise * diameter;
     render_options.seed = mix_seed(o.seed, 2 * std::uint64_t(b) + 1);
+    render_options.silhouettes = true;  // scene_gt_info.json by BOP's rule (bin_writer.cpp)
     const bool show_bin = o.bin_render == BinRender::full;
     if (!renderer)
       renderer = std::make_unique<BinRenderer>(meshes, show_bin ? drop_options.bin.get() : nullptr,
