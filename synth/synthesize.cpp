@@ -14,6 +14,7 @@
 #include "host/formats/mesh/load_model.hpp"
 #include "synth/bin_writer.hpp"
 #include "synth/camera_rig.hpp"
+#include "host/formats/bop/test_targets.hpp"
 #include "synth/render/bin_renderer.hpp"
 #include "synth/sensor/sensor_apply.hpp"
 #include "synth/sensor/sensor_stage.hpp"
@@ -185,6 +186,8 @@ SynthSummary synthesize(const Model& model, const std::string& model_description
     summary.seconds_write += write;
     ++summary.bins_made;
   }
+  // Over every scene of the dataset, also those of an earlier run that were kept.
+  bop::write_test_targets(o.out);
   return summary;
 }
 
