@@ -44,11 +44,8 @@ BopVisibility visibility_of(const BinRecord& bin, const GrayImage<std::uint16_t>
                         kBopVisibDelta, keep_pixels);
 }
 
-// calc_gt_info.py's entry for one part.
-bop::GroundTruthInfo info_of(const BinRecord& bin, const GrayImage<std::uint16_t>& depth,
-                             std::size_t part) {
-  const RenderedBin& r = bin.render;
-  const BopVisibility v = visibility_of(bin, depth, part, false);
+// calc_gt_info.py's entry for one part, from its visibility v.
+bop::GroundTruthInfo info_of(const RenderedBin& r, const BopVisibility& v, std::size_t part) {
   bop::GroundTruthInfo g;
   g.px_count_all = r.px_all[part];
   g.px_count_valid = v.px_count_valid;
@@ -88,9 +85,11 @@ void write_bop_scene(const fs::path& dir, const BinRecord& bin) {
     throw InputError("bin writer: the render needs every part's silhouette (RenderOptions::silhouettes)");
   std::vector<bop::GroundTruth> gt;
   std::vector<bop::GroundTruthInfo> info;
+  std::vector<BopVisibility> visibility;  // per part; with the visible pixels for the masks
   for (std::size_t i = 0; i < bin.part_to_camera.size(); ++i) {
     gt.push_back({bin.obj_ids[i], bop::Pose::from(bin.part_to_camera[i])});
-    info.push_back(info_of(bin, depth, i));
+    visibility.push_back(visibility_of(bin, depth, i, bin.write_masks));
+    info.push_back(info_of(r, visibility.back(), i));
   }
   bop::write_scene_gt(dir / "scene_gt.json", {{0, gt}});
   bop::write_scene_gt_info(dir / "scene_gt_info.json", {{0, info}});
@@ -102,7 +101,7 @@ void write_bop_scene(const fs::path& dir, const BinRecord& bin) {
     for (std::size_t part = 0; part < bin.part_to_camera.size(); ++part) {
       const std::string name = fmt::format("000000_{:06d}.png", part);
       write_png(dir / "mask" / name, mask_of(r, r.silhouettes[part].pixels));
-      write_png(dir / "mask_visib" / name, mask_of(r, visibility_of(bin, depth, part, true).visible));
+      write_png(dir / "mask_visib" / name, mask_of(r, visibility[part].visible));
     }
   }
 }

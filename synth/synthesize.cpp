@@ -99,8 +99,11 @@ SynthSummary synthesize(const Model& model, const std::string& model_description
                     {camera.fx, camera.fy, camera.cx, camera.cy, camera.width, camera.height,
                      o.depth_scale});
   write_bop_models(o.out, model.mesh, 1, model.symmetries);
-  for (std::size_t k = 0; k < distractors.size(); ++k)
+  write_bop_eval_model(o.out, model.mesh, 1, model.symmetries);
+  for (std::size_t k = 0; k < distractors.size(); ++k) {
     write_bop_models(o.out, distractors[k].mesh, int(k) + 2, distractors[k].symmetries);
+    write_bop_eval_model(o.out, distractors[k].mesh, int(k) + 2, distractors[k].symmetries);
+  }
 
   SynthSummary summary;
   auto t0 = Clock::now();

@@ -105,3 +105,20 @@ TEST(SynthGtInfo, TestTargetsCountTheInstancesAtLeastATenthVisible) {
 }
 
 }  // namespace binpick
+
+namespace binpick {
+
+TEST(SynthGtInfo, ModelsEvalIsTheModelWithShortEdges) {
+  const Mesh model = load_model((dataset() / "models" / "obj_000001.ply").string(), {});
+  const Mesh eval = load_model((dataset() / "models_eval" / "obj_000001.ply").string(), {});
+  const auto info = nlohmann::json::parse(read_file_bytes(dataset() / "models" / "models_info.json"));
+  const auto eval_info = nlohmann::json::parse(read_file_bytes(dataset() / "models_eval" / "models_info.json"));
+  const double diameter = info["1"]["diameter"].get<double>();
+  EXPECT_NEAR(eval_info["1"]["diameter"].get<double>(), diameter, 1e-6 * diameter);
+  EXPECT_GT(eval.positions.size(), model.positions.size());
+  for (const auto& t : eval.triangles)
+    for (int k = 0; k < 3; ++k)
+      ASSERT_LE((eval.positions[t[k]] - eval.positions[t[(k + 1) % 3]]).norm(), 0.025 * diameter + 1e-4);
+}
+
+}  // namespace binpick
