@@ -1,9 +1,9 @@
 #include "synth/bin_writer.hpp"
-#include "synth/sensor/sensor_apply.hpp"
 
 #include <cmath>
 #include <fmt/format.h>
 
+#include "synth/bop_visibility.hpp"
 #include "host/formats/bop/bop_files.hpp"
 #include "host/formats/bop/png_image.hpp"
 #include "host/core/error.hpp"
@@ -34,18 +34,33 @@ PointCloud visible_cloud(const RenderedBin& r) {
   return cloud;
 }
 
-bop::GroundTruthInfo info_of(const RenderedBin& r, const std::vector<std::uint32_t>& valid,
-                             std::size_t part) {
+// BOP's visibility of one part against the depth image as written (bop_visibility.hpp).
+BopVisibility visibility_of(const BinRecord& bin, const GrayImage<std::uint16_t>& depth,
+                            std::size_t part, bool keep_pixels) {
+  Eigen::Matrix3d K;
+  K << bin.camera.fx, 0, bin.camera.cx, 0, bin.camera.fy, bin.camera.cy, 0, 0, 1;
+  return bop_visibility(bin.render.silhouettes[part],
+                        {depth.width, depth.height, &depth.pixels, bin.depth_scale}, K,
+                        kBopVisibDelta, keep_pixels);
+}
+
+// calc_gt_info.py's entry for one part, from its visibility v.
+bop::GroundTruthInfo info_of(const RenderedBin& r, const BopVisibility& v, std::size_t part) {
   bop::GroundTruthInfo g;
-  g.bbox_obj = r.bbox_all[part];
-  g.bbox_visib = r.bbox_visible[part];
   g.px_count_all = r.px_all[part];
-  g.px_count_visib = r.px_visible[part];
-  // Visible pixels the sensor gave depth (BOP counts those of the whole silhouette, occlusion
-  // ignored: not yet, docs/formats.md).
-  g.px_count_valid = valid[part];
-  g.visib_fract = r.px_all[part] ? double(r.px_visible[part]) / double(r.px_all[part]) : 0.0;
+  g.px_count_valid = v.px_count_valid;
+  g.px_count_visib = v.px_count_visib;
+  g.visib_fract = g.px_count_all ? double(g.px_count_visib) / double(g.px_count_all) : 0.0;
+  // The toolkit fills bbox_obj only for a part with a visible pixel.
+  g.bbox_obj = v.px_count_visib > 0 ? r.bbox_all[part] : std::array<int, 4>{-1, -1, -1, -1};
+  g.bbox_visib = v.bbox_visib;
   return g;
+}
+
+GrayImage<std::uint8_t> mask_of(const RenderedBin& r, const std::vector<std::uint32_t>& pixels) {
+  GrayImage<std::uint8_t> mask{r.width, r.height, std::vector<std::uint8_t>(r.depth_mm.size(), 0)};
+  for (std::uint32_t p : pixels) mask.pixels[p] = 255;
+  return mask;
 }
 
 }  // namespace
@@ -53,7 +68,8 @@ bop::GroundTruthInfo info_of(const RenderedBin& r, const std::vector<std::uint32
 void write_bop_scene(const fs::path& dir, const BinRecord& bin) {
   const RenderedBin& r = bin.render;
   for (const char* sub : {"depth", "gray", "cloud"}) fs::create_directories(dir / sub);
-  write_png(dir / "depth" / "000000.png", depth_png(r, bin.depth_scale));
+  const GrayImage<std::uint16_t> depth = depth_png(r, bin.depth_scale);
+  write_png(dir / "depth" / "000000.png", depth);
   write_png(dir / "gray" / "000000.png", GrayImage<std::uint8_t>{r.width, r.height, r.gray});
   if (bin.write_cloud) write_point_cloud_ply(dir / "cloud" / "000000.ply", visible_cloud(r));
 
@@ -65,23 +81,27 @@ void write_bop_scene(const fs::path& dir, const BinRecord& bin) {
 
   if (bin.obj_ids.size() != bin.part_to_camera.size())
     throw InputError("bin writer: an obj_id is needed for every part");
+  if (r.silhouettes.size() != bin.part_to_camera.size() || r.px_all.size() != bin.part_to_camera.size())
+    throw InputError("bin writer: the render needs every part's silhouette (RenderOptions::silhouettes)");
   std::vector<bop::GroundTruth> gt;
   std::vector<bop::GroundTruthInfo> info;
-  const std::vector<std::uint32_t> valid = valid_pixels_per_part(r);
+  std::vector<BopVisibility> visibility;  // per part; with the visible pixels for the masks
   for (std::size_t i = 0; i < bin.part_to_camera.size(); ++i) {
     gt.push_back({bin.obj_ids[i], bop::Pose::from(bin.part_to_camera[i])});
-    info.push_back(info_of(r, valid, i));
+    visibility.push_back(visibility_of(bin, depth, i, bin.write_masks));
+    info.push_back(info_of(r, visibility.back(), i));
   }
   bop::write_scene_gt(dir / "scene_gt.json", {{0, gt}});
   bop::write_scene_gt_info(dir / "scene_gt_info.json", {{0, info}});
 
+  // calc_masks.py: mask/ the part alone, mask_visib/ its pixels visible by the rule above.
   if (bin.write_masks) {
+    fs::create_directories(dir / "mask");
     fs::create_directories(dir / "mask_visib");
     for (std::size_t part = 0; part < bin.part_to_camera.size(); ++part) {
-      GrayImage<std::uint8_t> mask{r.width, r.height, std::vector<std::uint8_t>(r.instance.size(), 0)};
-      for (std::size_t i = 0; i < r.instance.size(); ++i)
-        if (r.instance[i] == int(part)) mask.pixels[i] = 255;
-      write_png(dir / "mask_visib" / fmt::format("000000_{:06d}.png", part), mask);
+      const std::string name = fmt::format("000000_{:06d}.png", part);
+      write_png(dir / "mask" / name, mask_of(r, r.silhouettes[part].pixels));
+      write_png(dir / "mask_visib" / name, mask_of(r, visibility[part].visible));
     }
   }
 }

@@ -14,6 +14,7 @@
 #include "host/formats/mesh/load_model.hpp"
 #include "synth/bin_writer.hpp"
 #include "synth/camera_rig.hpp"
+#include "host/formats/bop/test_targets.hpp"
 #include "synth/render/bin_renderer.hpp"
 #include "synth/sensor/sensor_apply.hpp"
 #include "synth/sensor/sensor_stage.hpp"
@@ -105,8 +106,11 @@ SynthSummary synthesize(const Model& model, const std::string& model_description
                     {camera.fx, camera.fy, camera.cx, camera.cy, camera.width, camera.height,
                      o.depth_scale});
   write_bop_models(o.out, model.mesh, 1, model.symmetries);
-  for (std::size_t k = 0; k < distractors.size(); ++k)
+  write_bop_eval_model(o.out, model.mesh, 1, model.symmetries);
+  for (std::size_t k = 0; k < distractors.size(); ++k) {
     write_bop_models(o.out, distractors[k].mesh, int(k) + 2, distractors[k].symmetries);
+    write_bop_eval_model(o.out, distractors[k].mesh, int(k) + 2, distractors[k].symmetries);
+  }
 
   SynthSummary summary;
   auto t0 = Clock::now();
@@ -156,6 +160,7 @@ SynthSummary synthesize(const Model& model, const std::string& model_description
     RenderOptions render_options;
     render_options.noise_sigma_mm = structured_light ? 0.0 : o.noise * diameter;
     render_options.seed = mix_seed(o.seed, 2 * std::uint64_t(b) + 1);
+    render_options.silhouettes = true;  // scene_gt_info.json by BOP's rule (bin_writer.cpp)
     const bool show_bin = o.bin_render == BinRender::full;
     if (!renderer)
       renderer = std::make_unique<BinRenderer>(meshes, show_bin ? drop_options.bin.get() : nullptr,
@@ -193,6 +198,9 @@ SynthSummary synthesize(const Model& model, const std::string& model_description
     ++summary.bins_made;
   }
   summary.bins_missing = int(missing_work(record, done).items.size());
+  // Over every scene of the dataset, also those of an earlier run that were kept; only once the
+  // whole batch is there (with shards, the last one writes it: the same bytes as unsharded).
+  if (summary.bins_missing == 0) bop::write_test_targets(o.out);
   return summary;
 }
 

@@ -56,12 +56,13 @@ std::vector<Eigen::Isometry3d> random_bin(int parts, std::uint32_t seed) {
 void BM_RenderBin(benchmark::State& state) {
   const bool tiny = smoke();
   const int parts = int(state.range(0));
-  const bool count_all = state.range(1) != 0;
+  const bool count_all = state.range(1) != 0, silhouettes = state.range(1) == 2;
   const Mesh torus = make_torus(18, 8, 48, 24);  // 2304 triangles, 52 mm across
   const RenderCamera camera = tiny ? camera_for_bin(600, 400, 300, 1000, 160, 90) : camera_for_bin();
   BinRenderer renderer(torus, camera);
   const auto poses = random_bin(parts, 1);
-  const RenderOptions options{.noise_sigma_mm = 1.0, .seed = 3, .count_unoccluded = count_all};
+  const RenderOptions options{.noise_sigma_mm = 1.0, .seed = 3, .count_unoccluded = count_all,
+                               .silhouettes = silhouettes};
   RenderTimings sum;
   std::size_t seen = 0;
   const double cpu_start = process_cpu_ms();
@@ -71,6 +72,7 @@ void BM_RenderBin(benchmark::State& state) {
     const RenderTimings& t = renderer.last_timings();
     sum.raster_ms += t.raster_ms, sum.compute_ms += t.compute_ms;
     sum.readback_ms += t.readback_ms, sum.coverage_ms += t.coverage_ms;
+    sum.silhouettes_ms += t.silhouettes_ms;
     seen = 0;
     for (auto v : r.px_visible) seen += v;
   }
@@ -80,15 +82,17 @@ void BM_RenderBin(benchmark::State& state) {
   state.counters["compute_ms"] = C(sum.compute_ms, C::kAvgIterations);
   state.counters["readback_ms"] = C(sum.readback_ms, C::kAvgIterations);
   state.counters["px_all_ms"] = C(sum.coverage_ms, C::kAvgIterations);
+  state.counters["silhouettes_ms"] = C(sum.silhouettes_ms, C::kAvgIterations);
   state.counters["surface_px"] = double(seen);
   state.counters["triangles"] = double(torus.triangles.size() * parts);
 }
 
 }  // namespace
 
-// Arguments: parts, count px_all (0/1). Medians over 5 repetitions (1 in the smoke run).
+// Arguments: parts, count px_all (0 no, 1 yes, 2 also each part's silhouette and depth, as
+// synth asks for scene_gt_info.json). Medians over 5 repetitions (1 in the smoke run).
 BENCHMARK(BM_RenderBin)
-    ->ArgsProduct({{smoke() ? 5 : 350}, {0, 1}})
+    ->ArgsProduct({{smoke() ? 5 : 350}, {0, 1, 2}})
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime()
     ->Repetitions(smoke() ? 1 : 5)

@@ -150,7 +150,8 @@ void add_synth_verb(CLI::App& app) {
                  "few parts of a finished bin would still shift by some mm if it were "
                  "released. This option removes most of those shifts at 2.2 to 2.4 times the "
                  "physics time");
-  verb->add_flag("--masks", o.write_masks, "also write mask_visib/ (one PNG per part)");
+  verb->add_flag("--masks", o.write_masks,
+                 "also write mask/ (each part alone) and mask_visib/ (its visible pixels), one PNG per part");
   verb->add_flag("!--no-cloud", o.write_cloud, "do not write cloud/000000.ply");
   verb->add_option("--cache-dir", args->cache_dir,
                    "convex decomposition cache (default $BINPICK_CACHE_DIR or ~/.cache/binpick)");

@@ -91,7 +91,7 @@ BinRaster::BinRaster(vkrt::Context& ctx, Packed packed, const RenderCamera& c, b
       indices_(filled(ctx, packed.indices.data(), packed.indices.size() * 4,
                       vk::BufferUsageFlagBits::eIndexBuffer)),
       scene_(ctx, mesh_spec("bin_mesh.frag", {kIdFormat, kNormalFormat}, kDepthFormat, cull_back_faces)),
-      coverage_(ctx, mesh_spec("bin_part_id.frag", {kIdFormat}, vk::Format::eUndefined, cull_back_faces)),
+      coverage_(ctx, mesh_spec("bin_part_id.frag", {kIdFormat}, kDepthFormat, cull_back_faces)),
       id_image_(ctx, c.width, c.height, kIdFormat, kColorTarget, vk::ImageAspectFlagBits::eColor),
       normal_image_(ctx, c.width, c.height, kNormalFormat, kColorTarget, vk::ImageAspectFlagBits::eColor),
       depth_image_(ctx, c.width, c.height, kDepthFormat,
@@ -99,12 +99,16 @@ BinRaster::BinRaster(vkrt::Context& ctx, Packed packed, const RenderCamera& c, b
                    vk::ImageAspectFlagBits::eDepth),
       atlas_(ctx, std::max(kAtlasWidth, c.width), std::max(kAtlasHeight, c.height), kIdFormat,
              kColorTarget, vk::ImageAspectFlagBits::eColor),
+      atlas_depth_(ctx, atlas_.width(), atlas_.height(), kDepthFormat,
+                   vk::ImageUsageFlagBits::eDepthStencilAttachment | vk::ImageUsageFlagBits::eTransferSrc,
+                   vk::ImageAspectFlagBits::eDepth),
       zbuffer_(ctx, std::size_t(c.width) * c.height * 4, kReadback),
       ids_(ctx, std::size_t(c.width) * c.height * 4, kReadback),
       raster_normals_(ctx, std::size_t(c.width) * c.height * 16, kReadback),
-      atlas_ids_(ctx, std::size_t(atlas_.width()) * atlas_.height() * 4, kReadback) {
+      atlas_ids_(ctx, std::size_t(atlas_.width()) * atlas_.height() * 4, kReadback),
+      atlas_zbuffer_(ctx, std::size_t(atlas_.width()) * atlas_.height() * 4, kReadback) {
   scene_fb_ = scene_.framebuffer({&id_image_, &normal_image_, &depth_image_});
-  atlas_fb_ = coverage_.framebuffer({&atlas_});
+  atlas_fb_ = coverage_.framebuffer({&atlas_, &atlas_depth_});
 }
 
 RasterInstances BinRaster::instances(const std::vector<Eigen::Isometry3d>& part_to_camera,
@@ -179,7 +183,7 @@ void BinRaster::draw_scene(const RasterInstances& in) {
       "rendering the bin");
 }
 
-void BinRaster::draw_atlas(const RasterInstances& in, const AtlasBatch& batch) {
+void BinRaster::draw_atlas(const RasterInstances& in, const AtlasBatch& batch, bool with_depth) {
   if (batch.tiles.empty()) return;
   const std::uint32_t w = std::uint32_t(batch.width), h = std::uint32_t(batch.height);
   ctx_.submit_and_wait(
@@ -201,6 +205,7 @@ void BinRaster::draw_atlas(const RasterInstances& in, const AtlasBatch& batch) {
         }
         coverage_.end(cmd);
         atlas_.record_copy_to(cmd, atlas_ids_.get(), 0, 0, w, h);
+        if (with_depth) atlas_depth_.record_copy_to(cmd, atlas_zbuffer_.get(), 0, 0, w, h);
         copies_done(cmd);
       },
       "rendering the parts alone");

@@ -1,6 +1,6 @@
 // The raster half of the bin renderer: the meshes (each kind of part, and the bin) in one
 // vertex and one index buffer, the two raster pipelines (scene: id + normal + depth; coverage:
-// id only, each part alone in an atlas tile), their attachments, and host-visible copies of what
+// id + depth, each part alone in an atlas tile), their attachments, and host-visible copies of what
 // they drew for the compute passes.
 #pragma once
 
@@ -57,10 +57,12 @@ class BinRaster {
   const vkrt::Buffer& ids() const { return ids_; }
   const vkrt::Buffer& raster_normals() const { return raster_normals_; }
 
-  // Draws each tile's part alone into its atlas tile and copies the batch's region
-  // (batch.width x batch.height, row-major) into atlas_ids().
-  void draw_atlas(const RasterInstances& instances, const AtlasBatch& batch);
+  // Draws each tile's part alone into its atlas tile (with a depth test: the part's nearest
+  // surface) and copies the batch's region (batch.width x batch.height, row-major) into
+  // atlas_ids() and, with_depth, its z-buffer values into atlas_zbuffer().
+  void draw_atlas(const RasterInstances& instances, const AtlasBatch& batch, bool with_depth = false);
   const vkrt::Buffer& atlas_ids() const { return atlas_ids_; }
+  const vkrt::Buffer& atlas_zbuffer() const { return atlas_zbuffer_; }
   int atlas_width() const { return int(atlas_.width()); }
   int atlas_height() const { return int(atlas_.height()); }
 
@@ -81,9 +83,9 @@ class BinRaster {
   std::optional<MeshRange> bin_;
   vkrt::Buffer vertices_, indices_;
   vkrt::RasterProgram scene_, coverage_;
-  vkrt::Image id_image_, normal_image_, depth_image_, atlas_;
+  vkrt::Image id_image_, normal_image_, depth_image_, atlas_, atlas_depth_;
   vk::raii::Framebuffer scene_fb_{nullptr}, atlas_fb_{nullptr};
-  vkrt::Buffer zbuffer_, ids_, raster_normals_, atlas_ids_;
+  vkrt::Buffer zbuffer_, ids_, raster_normals_, atlas_ids_, atlas_zbuffer_;
 };
 
 }  // namespace binpick

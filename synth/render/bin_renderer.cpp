@@ -132,15 +132,26 @@ RenderedBin BinRenderer::render_scene(const RenderScene& scene, const RenderOpti
                   .bbox_all = {}};
   timings_.readback_ms = ms_since(start);
 
-  if (!options.count_unoccluded) return out;
+  if (!options.count_unoccluded) {
+    if (options.silhouettes) throw InputError("render: silhouettes need count_unoccluded");
+    return out;
+  }
   start = Clock::now();
   std::vector<PixelRect> rects(parts);
   for (std::uint32_t i = 0; i < parts; ++i)
     rects[i] = projected_rect(parts_[std::size_t(kinds[i])], part_to_camera[i], camera_);
   PartPixelBuffers alone(d.ctx, parts);
   std::vector<std::array<int, 2>> shifts(parts, {0, 0});
+  if (options.silhouettes) out.silhouettes.assign(parts, {});
   for (const AtlasBatch& batch : pack_atlas(rects, d.raster.atlas_width(), d.raster.atlas_height())) {
-    d.raster.draw_atlas(instances, batch);
+    d.raster.draw_atlas(instances, batch, options.silhouettes);
+    if (options.silhouettes) {
+      const auto silhouettes = Clock::now();
+      silhouettes_from_atlas(static_cast<const std::uint32_t*>(d.raster.atlas_ids().mapped()),
+                             static_cast<const float*>(d.raster.atlas_zbuffer().mapped()), batch,
+                             camera_, out.silhouettes);
+      timings_.silhouettes_ms += ms_since(silhouettes);
+    }
     for (const AtlasTile& t : batch.tiles) shifts[t.part] = {t.image.x - t.atlas_x, t.image.y - t.atlas_y};
     const auto shift_buffer = vkrt::Buffer::from(d.ctx, std::span<const std::array<int, 2>>(shifts));
     d.coverage.run(d.raster.atlas_ids(), shift_buffer, alone,

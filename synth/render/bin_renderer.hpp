@@ -2,7 +2,7 @@
 // instanced draw per kind of part) and the bin itself in one Vulkan raster pass into a
 // z-buffer, a part-id and a normal attachment, then a compute pass to depth (equation 1),
 // points, normals, intensity and per-part visible pixels; optionally each part alone (tiles of
-// an atlas, one more pass) for its unoccluded pixels. The bin's pixels are surfaces like any
+// an atlas, one more pass) for its unoccluded pixels and, if asked, its depth there. The bin's pixels are surfaces like any
 // other (depth, intensity) but belong to no part: instance -1, counted for none. Without a bin
 // mesh only the parts are drawn (as in the paper's figure 2).
 #pragma once
@@ -18,6 +18,7 @@
 #include "host/core/mesh.hpp"
 #include "synth/bin/bin_model.hpp"
 #include "synth/render/bin_camera.hpp"
+#include "synth/render/part_silhouette.hpp"
 
 namespace binpick {
 
@@ -29,6 +30,9 @@ struct RenderOptions {
   double noise_sigma_mm = 0;   // Gaussian noise along each viewing ray; 0: none (exactly)
   std::uint64_t seed = 0;      // same seed, same noise
   bool count_unoccluded = true;  // fill px_all and bbox_all (one more raster + compute pass)
+  // Also fill silhouettes (each part alone: its pixels and depth, from the same pass; needs
+  // count_unoccluded).
+  bool silhouettes = false;
 };
 
 struct RenderedBin {
@@ -43,6 +47,9 @@ struct RenderedBin {
   // BOP [x, y, w, h] as bop_toolkit computes them (w = max x - min x); [-1, -1, -1, -1] for a
   // part with no pixel. bbox_all is empty when not counted.
   std::vector<std::array<int, 4>> bbox_visible, bbox_all;
+  // Per part drawn alone, when asked (RenderOptions::silhouettes): the image pixels it covers
+  // and its depth there; empty otherwise.
+  std::vector<PartSilhouette> silhouettes;
 };
 
 // Milliseconds of the stages of the last render (wall clock, each waits for the device).
@@ -51,6 +58,7 @@ struct RenderTimings {
   double compute_ms = 0;   // bin_gbuffer.comp
   double readback_ms = 0;  // device buffers into RenderedBin
   double coverage_ms = 0;  // atlas packing, passes and bin_coverage.comp (px_all)
+  double silhouettes_ms = 0;  // of coverage_ms: reading the silhouettes out of the atlas
 };
 
 // What one render shows: the parts (poses and kinds) and where the bin is.

@@ -1,7 +1,8 @@
 // The sensor model applied to a rendered bin: its depth, points, normals and gray image become
 // what a structured-light sensor delivers. Part indices and visible pixel counts stay as
 // rendered (the ground truth of what the camera sees); valid_pixels_per_part counts the
-// pixels of each part that kept their depth (BOP's px_count_valid).
+// pixels where each part is seen that kept their depth (scene_gt_info.json's px_count_valid
+// counts the part's whole silhouette instead: synth/bop_visibility.hpp).
 #pragma once
 
 #include <cstdint>

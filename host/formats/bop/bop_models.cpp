@@ -8,6 +8,7 @@
 #include "host/core/atomic_file.hpp"
 #include "host/formats/mesh/mesh_writers.hpp"
 #include "host/core/diameter.hpp"
+#include "host/core/mesh_refine.hpp"
 #include "host/core/mesh_geometry.hpp"
 
 namespace binpick {
@@ -62,9 +63,9 @@ nlohmann::json bop_model_info(const Mesh& mesh, const PartSymmetries& symmetries
 }
 
 void write_bop_models(const std::filesystem::path& dataset, const Mesh& mesh, int obj_id,
-                      const PartSymmetries& symmetries) {
+                      const PartSymmetries& symmetries, const std::string& folder) {
   if (obj_id < 1 || obj_id > 999999) throw InputError("BOP object ids run from 1 to 999999");
-  const auto models = dataset / "models";
+  const auto models = dataset / folder;
   std::error_code ec;
   std::filesystem::create_directories(models, ec);
   if (ec) throw InputError("cannot create " + models.string() + ": " + ec.message());
@@ -76,6 +77,13 @@ void write_bop_models(const std::filesystem::path& dataset, const Mesh& mesh, in
   nlohmann::json info = existing_info(info_path);
   info[std::to_string(obj_id)] = bop_model_info(mesh, symmetries);
   write_file_atomically(info_path, [&](std::ostream& out) { out << info.dump(2) << '\n'; });
+}
+
+void write_bop_eval_model(const std::filesystem::path& dataset, const Mesh& mesh, int obj_id,
+                          const PartSymmetries& symmetries) {
+  const double diameter = exact_diameter(mesh.positions);
+  write_bop_models(dataset, split_long_edges(mesh, kEvalModelEdgeShare * diameter), obj_id,
+                   symmetries, "models_eval");
 }
 
 }  // namespace binpick
