@@ -59,7 +59,9 @@ BopTargets parse_bop_targets(const std::string& text, const std::string& name) {
 TargetSet bop_targets(const Dataset& dataset) {
   const auto path = dataset.root / kTargetsFile;
   if (std::filesystem::exists(path)) {
-    TargetSet set{parse_bop_targets(read_file_bytes(path), path.string()), path.string()};
+    // The source relative to the dataset: report.json then reads the same wherever it lies.
+    TargetSet set{parse_bop_targets(read_file_bytes(path), path.string()),
+                  path.filename().string()};
     for (const auto& [key, objects] : set.targets) {
       if (!dataset.images.count(key))
         throw InputError(fmt::format("{}: scene {} image {} is not in the dataset's ground truth",

@@ -21,7 +21,7 @@ inline constexpr double kBopTargetVisibility = 0.1;
 
 struct TargetSet {
   BopTargets targets;
-  std::string source;  // the file read, or how they were derived
+  std::string source;  // the file read (its name, in the dataset root), or how they were derived
 };
 
 // Parses test_targets_bop19.json text ([{"scene_id", "im_id", "obj_id", "inst_count"}, ...]).

@@ -40,7 +40,7 @@ json bop_json(const BopScores& s) {
           {"targets", s.targets},
           {"estimates", s.estimates},
           {"targets_source", s.targets_source},
-          {"vertices", s.vertices.string()},
+          {"vertices", s.vertices.filename().string()},  // models_eval or models
           {"image_width", s.image_width},
           {"image_width_known", s.image_width_known},
           {"mssd", curve_json(s.mssd.overall)},
