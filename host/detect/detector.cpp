@@ -172,6 +172,26 @@ std::vector<PoseCluster> Detector::vote_and_cluster(const PointCloud& subsampled
   return clusters;
 }
 
+namespace {
+
+// A detection becomes the refined pose of one of its candidates (or a look-alike, twin > 0).
+void take_pose(Detection& d, const RefinedPose& r, std::uint64_t votes, std::uint32_t candidate,
+               std::uint32_t twin) {
+  d.R = r.R;
+  d.t = r.t;
+  d.score = r.score;
+  d.votes = votes;
+  d.candidate = candidate;
+  d.twin = twin;
+  d.visible = r.visible;
+  d.inliers = r.inliers;
+  d.outline_continue = r.outline_continue;
+  d.outline_step = r.outline_step;
+  d.reason = r.reason;
+}
+
+}  // namespace
+
 std::vector<Detection> Detector::refine_and_rank(
     std::vector<Detection> detections, const std::vector<std::vector<PoseCluster>>& candidates,
     const ocl::Buffer<float>& points, const bp_camera& cam, DetectTimes& t, const BinFit* bin) {
@@ -225,18 +245,7 @@ std::vector<Detection> Detector::refine_and_rank(
     for (std::size_t i = 0; i < refined.size(); ++i) {
       const auto [k, c, twin] = owner[i];
       Detection d = detections[k];
-      const RefinedPose& r = refined[i];
-      d.R = r.R;
-      d.t = r.t;
-      d.score = r.score;
-      d.votes = candidates[k][c].votes;
-      d.candidate = c;
-      d.twin = twin;
-      d.visible = r.visible;
-      d.inliers = r.inliers;
-      d.outline_continue = r.outline_continue;
-      d.outline_step = r.outline_step;
-      d.reason = r.reason;
+      take_pose(d, refined[i], candidates[k][c].votes, c, twin);
       poses.push_back(std::move(d));
     }
     const double ms = clock.lap();
@@ -253,17 +262,7 @@ std::vector<Detection> Detector::refine_and_rank(
     // The best score; ties go to the more voted cluster, which comes first.
     if (taken[k] && r.score <= d.score) continue;
     taken[k] = true;
-    d.R = r.R;
-    d.t = r.t;
-    d.score = r.score;
-    d.votes = candidates[k][c].votes;
-    d.candidate = c;
-    d.twin = twin;
-    d.visible = r.visible;
-    d.inliers = r.inliers;
-    d.outline_continue = r.outline_continue;
-    d.outline_step = r.outline_step;
-    d.reason = r.reason;
+    take_pose(d, r, candidates[k][c].votes, c, twin);
   }
   const double ms = clock.lap();
   t.refine_ms += ms;
