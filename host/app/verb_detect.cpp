@@ -13,6 +13,7 @@
 #include "host/app/output_file.hpp"
 #include "host/app/verbs.hpp"
 #include "host/core/error.hpp"
+#include "host/core/output_lock.hpp"
 #include "host/detect/detect_batch.hpp"
 #include "host/detect/detector.hpp"
 #include "host/formats/mesh/point_cloud_ply.hpp"
@@ -40,6 +41,7 @@ void run_detect(DetectArgs& a) {
     throw InputError("give exactly one of --dataset DIR and --cloud FILE.ply");
   const DetectParams params = resolve(a.detection);
   check_output_file(a.out);
+  const OutputLock lock = OutputLock::file(a.out);
   const std::string model_bytes = read_file_bytes(a.model);
   const PpfModel model = parse_ppf_model(model_bytes, a.model);
   Detector detector(model, params);

@@ -15,6 +15,7 @@
 #include "host/app/scene_options.hpp"
 #include "host/app/verbs.hpp"
 #include "host/core/error.hpp"
+#include "host/core/output_lock.hpp"
 #include "host/tune/experiment.hpp"
 
 namespace binpick::cli {
@@ -44,7 +45,9 @@ void run_run(RunArgs& a) {
   std::vector<Model> distractors;
   for (const DistractorSpec& d : o.scene.distractors)
     distractors.push_back(load_part_finding_symmetries({d.model, {}}));
-  const auto r = run_experiment(load_part_finding_symmetries(o.part), o, std::cout, distractors);
+  const Model part = load_part_finding_symmetries(o.part);
+  const OutputLock lock = OutputLock::directory(o.out);  // after the inputs load: a typo writes nothing
+  const auto r = run_experiment(part, o, std::cout, distractors);
   std::cout << "\n" << results_table(r.evaluations);
   for (const auto& w : r.report.warnings) std::cerr << "binpick: warning: " << w << "\n";
   std::cout << fmt::format(

@@ -11,6 +11,7 @@
 #include "host/app/model_options.hpp"
 #include "host/app/verbs.hpp"
 #include "host/app/scene_options.hpp"
+#include "host/core/output_lock.hpp"
 #include "host/train/symmetry_describe.hpp"
 #include "synth/part_mix.hpp"
 #include "synth/synthesize.hpp"
@@ -60,6 +61,7 @@ void run_synth(const SynthArgs& args) {
   const Model model = load(part_spec_of(args.model));
   std::vector<Model> distractors;
   for (const DistractorSpec& d : o.distractors) distractors.push_back(load({d.model, {}}));
+  const OutputLock lock = OutputLock::directory(o.out);  // after the inputs load: a typo writes nothing
   const SynthSummary s = synthesize(model, args.model.model, o, distractors);
   std::cout << fmt::format(
       "{}: {} bins made, {} already there; decomposition {:.1f} s, physics {:.1f} s, "

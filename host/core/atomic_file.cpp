@@ -24,6 +24,12 @@ std::filesystem::path temporary_path_for(const std::filesystem::path& path) {
   return path.parent_path() / name;
 }
 
+// Why a write failed: the stream keeps no reason, the failing write(2) left it in errno
+// (ENOSPC on a full disk, EDQUOT, EIO).
+std::string write_error() {
+  return errno ? std::strerror(errno) : "write failed (disk full?)";
+}
+
 // Removes the temporary file unless the rename succeeded.
 class TemporaryFile {
  public:
@@ -63,11 +69,12 @@ void write_file_atomically(const std::filesystem::path& path,
     if (!stream) {
       throw InputError("cannot write " + path.string() + ": " + std::strerror(errno));
     }
+    errno = 0;
     write(stream);
     stream.flush();
-    if (!stream) throw InputError("cannot write " + path.string() + ": write failed (disk full?)");
+    if (!stream) throw InputError("cannot write " + path.string() + ": " + write_error());
     stream.close();
-    if (!stream) throw InputError("cannot write " + path.string() + ": closing the file failed");
+    if (!stream) throw InputError("cannot write " + path.string() + ": " + write_error());
   }
   temporary.commit_as(path);
 }

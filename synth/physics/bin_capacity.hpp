@@ -1,0 +1,43 @@
+// How many parts a bin can hold, estimated before any physics from the parts' volumes, so that
+// `synth --objects 100000` into the default bin is refused at once instead of dropping wave
+// after wave above a full bin.
+//
+// The estimate: the bin's interior volume (W * D * H, filled to the top of the walls) times the
+// packing fraction of a random pile, over the mean volume of the parts released (each kind's
+// closed-mesh volume, weighted by its count). The packing fraction of a random pile of rigid
+// non-convex parts is well below that of spheres (random close packing 0.64, random loose
+// 0.55): interlocking arms, heads and flanges hold each other apart. Measured on the built-in
+// parts dropped into a small bin until it overflows (docs/synthesis.md): kRandomPilePacking.
+#pragma once
+
+#include <Eigen/Core>
+#include <string>
+#include <vector>
+
+#include "host/core/mesh.hpp"
+
+namespace binpick {
+
+// The upper end of what the built-in parts reached (the densest, the shaft, about 0.45; the
+// bracket and tee about 0.25 to 0.35): a bin is refused only when even a dense pile could not
+// hold the parts, so the estimate never refuses a bin that would fill.
+inline constexpr double kRandomPilePacking = 0.5;
+
+struct BinCapacity {
+  double bin_volume_mm3 = 0;   // interior, up to the top of the walls
+  double part_volume_mm3 = 0;  // mean over the parts released
+  double packing_fraction = kRandomPilePacking;
+  int parts = 0;               // floor(bin * packing / part)
+};
+
+// `meshes[k]` closed, mm; `counts[k]` parts of it. Throws InputError if a mesh encloses no
+// volume.
+BinCapacity estimate_bin_capacity(const Eigen::Vector3d& bin_size_mm,
+                                  const std::vector<const Mesh*>& meshes,
+                                  const std::vector<int>& counts);
+
+// Throws InputError when `objects` exceeds capacity.parts, saying the estimate, how it was made
+// and how to get a bigger bin.
+void check_bin_capacity(int objects, const BinCapacity& capacity);
+
+}  // namespace binpick
