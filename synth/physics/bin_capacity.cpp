@@ -31,13 +31,29 @@ BinCapacity estimate_bin_capacity(const Eigen::Vector3d& bin_size_mm,
   return c;
 }
 
+void check_part_size(const std::string& what, double diameter_mm, const Eigen::Vector3d& bin_size_mm) {
+  if (diameter_mm < kMinPartDiameterMm)
+    throw InputError(fmt::format(
+        "{}: the part's diameter is {:.3g} mm; the physics needs parts of at least {:g} mm (its "
+        "collision margin is 0.4 mm): give the model's units with --unit-scale or its size "
+        "with --diameter",
+        what, diameter_mm, kMinPartDiameterMm));
+  const double widest = std::min(bin_size_mm.x(), bin_size_mm.y());
+  if (diameter_mm > widest)
+    throw InputError(fmt::format(
+        "{}: the part's diameter is {:.4g} mm, more than the bin's interior is wide ({:g} x "
+        "{:g} mm): give the model's units with --unit-scale or its size with --diameter, or a "
+        "larger --bin-size W,D,H",
+        what, diameter_mm, bin_size_mm.x(), bin_size_mm.y()));
+}
+
 void check_bin_capacity(int objects, const BinCapacity& c) {
   if (objects <= c.parts) return;
   const double fraction_needed = objects * c.part_volume_mm3 / c.bin_volume_mm3;
   throw InputError(fmt::format(
-      "--objects {} do not fit into the bin: it holds about {} (interior {:.3g} l at a packing "
-      "fraction of {:g}, parts of {:.3g} cm^3 each; {} would fill {:.0f} % of the interior "
-      "with solid material): use fewer --objects or a larger --bin-size W,D,H",
+      "--objects {}: the bin holds about {} (interior {:.3g} l at a packing fraction of {:g}, "
+      "parts of {:.3g} cm^3 each; {} would fill {:.0f} % of the interior with solid "
+      "material): use fewer --objects or a larger --bin-size W,D,H",
       objects, c.parts, c.bin_volume_mm3 * 1e-6, c.packing_fraction, c.part_volume_mm3 * 1e-3,
       objects, 100.0 * fraction_needed));
 }

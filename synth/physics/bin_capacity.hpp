@@ -36,6 +36,16 @@ BinCapacity estimate_bin_capacity(const Eigen::Vector3d& bin_size_mm,
                                   const std::vector<const Mesh*>& meshes,
                                   const std::vector<int>& counts);
 
+// Bullet inflates every convex hull by a collision margin of 0.04 of its units (0.4 mm,
+// synth/physics/part_shape.cpp): a part under this diameter would be mostly margin, and pile
+// like pebbles rather than like itself.
+inline constexpr double kMinPartDiameterMm = 5.0;
+
+// Throws InputError, naming `what` (e.g. "--model builtin:bolt"), for a part under
+// kMinPartDiameterMm or one whose diameter exceeds the bin interior's width or depth (no drop
+// position would hold it), saying how to rescale it or enlarge the bin.
+void check_part_size(const std::string& what, double diameter_mm, const Eigen::Vector3d& bin_size_mm);
+
 // Throws InputError when `objects` exceeds capacity.parts, saying the estimate, how it was made
 // and how to get a bigger bin.
 void check_bin_capacity(int objects, const BinCapacity& capacity);

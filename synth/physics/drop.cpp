@@ -41,11 +41,16 @@ std::string index_list(const std::vector<int>& indices) {
   return text;
 }
 
-// The highest point of any part in the world (units), the floor if none.
-btScalar pile_top(const BinWorld& world) {
+// The highest point of any part in the world (units), the floor if none; with `interior`, of
+// the parts whose centre lies over the bin's interior (not on the rim or outside).
+btScalar pile_top(const BinWorld& world, const Eigen::Vector3d* interior_mm = nullptr) {
   btScalar top = 0;
   for (const btRigidBody* body : world.parts()) {
     if (!body->isInWorld()) continue;
+    const btVector3 c = body->getCenterOfMassPosition() * btScalar(kMmPerUnit);
+    if (interior_mm && (std::abs(c.x()) > 0.5 * interior_mm->x() ||
+                        std::abs(c.y()) > 0.5 * interior_mm->y()))
+      continue;
     btVector3 lo, hi;
     body->getAabb(lo, hi);
     top = std::max(top, hi.z());
@@ -168,10 +173,10 @@ DropResult drop_parts(const std::vector<DropKind>& kinds, const std::vector<int>
   BinDrop drop(world, options, progress, stats);
 
   for (int wave = 0; wave < stats.waves && !drop.out_of_wall_time(); ++wave) {
-    // A pile higher than the walls by a part has no room for another wave: its parts would
-    // land on the heap and slide out over the walls, wave after wave, for as long as asked.
-    const double top_mm = pile_top(world) * kMmPerUnit;
-    if (top_mm > options.bin_size_mm.z() + radius_mm) {
+    // A pile up to the top of the walls has no room for another wave: its parts would land
+    // on the heap and slide out over the walls, wave after wave, for as long as asked.
+    const double top_mm = pile_top(world, &options.bin_size_mm) * kMmPerUnit;
+    if (top_mm > options.bin_size_mm.z()) {
       stats.full = true;
       append_message(stats.message,
                      "the bin was full after " + std::to_string(world.parts().size()) + " of " +
