@@ -88,9 +88,12 @@ SynthSummary synthesize(const Model& model, const std::string& model_description
   if (!o.bin_mesh.empty()) inputs.bin_mesh_digest = file_digest(o.bin_mesh);
   const double diameter = inputs.diameter;
   check_part_size("--model " + model_description, diameter, o.drop.bin_size_mm);
-  for (std::size_t k = 0; k < distractors.size(); ++k)
-    check_part_size("--distractors " + o.distractors[k].model, inputs.distractor_diameters[k],
-                    o.drop.bin_size_mm);
+  check_decomposable("--model " + model_description, model.mesh);
+  for (std::size_t k = 0; k < distractors.size(); ++k) {
+    const std::string what = "--distractors " + o.distractors[k].model;
+    check_part_size(what, inputs.distractor_diameters[k], o.drop.bin_size_mm);
+    check_decomposable(what, distractors[k].mesh);
+  }
   const std::vector<int> counts = kind_counts(o.drop.objects, o.distractors);
   std::vector<const Mesh*> mesh_list;
   for (const Mesh& m : meshes) mesh_list.push_back(&m);

@@ -9,6 +9,7 @@
 #include <string>
 #include <system_error>
 
+#include "host/core/atomic_file.hpp"
 #include "host/core/error.hpp"
 
 namespace binpick {
@@ -33,7 +34,10 @@ OutputLock OutputLock::directory(const fs::path& dir) {
     throw InputError(dir.string() + " exists and is not a directory");
   fs::create_directories(dir, ec);
   if (!fs::is_directory(dir)) throw InputError("cannot create " + dir.string() + ": " + ec.message());
-  return OutputLock(dir / ".binpick.lock", dir);
+  OutputLock lock(dir / ".binpick.lock", dir);
+  // Held: no other binpick writes here, so any temporary file is a killed writer's.
+  remove_stale_temporaries(dir, true);
+  return lock;
 }
 
 OutputLock OutputLock::file(const fs::path& file) {
@@ -41,7 +45,14 @@ OutputLock OutputLock::file(const fs::path& file) {
   std::string name = ".";  // appended, not `"." + ...`: GCC 12 warns falsely (-Wrestrict)
   name += file.filename().string();
   name += ".lock";
-  return OutputLock(dir / name, file);
+  OutputLock lock(dir / name, file);
+  // The killed writers' temporaries of this output and of its siblings (detect's
+  // NAME.details.csv beside NAME.csv, its NAME.csv.parts/), not those of other outputs.
+  std::string prefix = ".";
+  prefix += file.stem().string();
+  remove_stale_temporaries(dir, false, prefix);
+  remove_stale_temporaries(fs::path(file.string() + ".parts"), true);
+  return lock;
 }
 
 OutputLock::OutputLock(const fs::path& lock_path, const fs::path& output) : lock_path_(lock_path) {

@@ -84,6 +84,35 @@ TEST(OutputLock, AKilledHolderLeavesNoStaleLock) {
   fs::remove_all(dir);
 }
 
+// What a writer killed mid-write leaves (write_file_atomically's and the plots' temporaries)
+// is removed once the lock is held, and nothing else.
+TEST(OutputLock, TakingTheLockRemovesKilledWritersTemporaries) {
+  const fs::path dir = test::fresh_temp_dir("lock_sweep");
+  fs::create_directories(dir / "out" / "report");
+  fs::create_directories(dir / "out" / "test" / ".000001.partial");
+  fs::create_directories(dir / "r.csv.parts");
+  for (const fs::path& p :
+       {dir / "out" / "report" / ".precision.png.4711.partial", dir / "out" / ".synth.json.tmp12_0",
+        dir / "out" / "keep.csv", dir / "out" / ".tmp12_0", dir / ".r.csv.tmp5_1",
+        dir / ".r.details.csv.tmp5_2", dir / ".other.csv.tmp5_3",
+        dir / "r.csv.parts" / ".scene_000000.csv.tmp9_9"})
+    std::ofstream(p) << "x";
+  {
+    const OutputLock out = OutputLock::directory(dir / "out");
+    EXPECT_FALSE(fs::exists(dir / "out" / "report" / ".precision.png.4711.partial"));
+    EXPECT_FALSE(fs::exists(dir / "out" / ".synth.json.tmp12_0"));
+    EXPECT_TRUE(fs::exists(dir / "out" / "keep.csv"));
+    EXPECT_TRUE(fs::exists(dir / "out" / ".tmp12_0")) << "not a name a writer gives";
+    EXPECT_TRUE(fs::is_directory(dir / "out" / "test" / ".000001.partial")) << "synth's own";
+  }
+  const OutputLock results = OutputLock::file(dir / "r.csv");
+  EXPECT_FALSE(fs::exists(dir / ".r.csv.tmp5_1"));
+  EXPECT_FALSE(fs::exists(dir / ".r.details.csv.tmp5_2"));
+  EXPECT_FALSE(fs::exists(dir / "r.csv.parts" / ".scene_000000.csv.tmp9_9"));
+  EXPECT_TRUE(fs::exists(dir / ".other.csv.tmp5_3")) << "another output's";
+  fs::remove_all(dir);
+}
+
 TEST(OutputLock, AnOutputThatIsAFileIsNotADirectory) {
   const fs::path dir = test::fresh_temp_dir("lock_notdir");
   { std::ofstream(dir / "plain") << "x"; }

@@ -6,6 +6,11 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <fstream>
+#include <vector>
 #include <chrono>
 #include <filesystem>
 #include <string>
@@ -70,6 +75,43 @@ TEST_F(SynthLimitsCli, PartsTooSmallOrWiderThanTheBinAreRefused) {
 
 TEST_F(SynthLimitsCli, HugeImagesAreRefused) {
   expect_refused("--model builtin:bolt --objects 5 --width 100000", "image size");
+}
+
+// A closed UV sphere of `rings` rings and 2 * rings segments, 50 mm across: 4 * rings^2 - 4 *
+// rings triangles, as binary STL.
+void write_sphere_stl(const fs::path& path, int rings) {
+  const int segments = 2 * rings;
+  const auto vertex = [&](int ring, int segment) {
+    const double theta = M_PI * ring / rings, phi = 2 * M_PI * (segment % segments) / segments;
+    return std::array<float, 3>{float(25 * std::sin(theta) * std::cos(phi)),
+                                float(25 * std::sin(theta) * std::sin(phi)),
+                                float(25 * std::cos(theta))};
+  };
+  std::vector<std::array<std::array<float, 3>, 3>> triangles;
+  for (int i = 0; i < rings; ++i)
+    for (int j = 0; j < segments; ++j) {
+      if (i > 0) triangles.push_back({vertex(i, j), vertex(i + 1, j), vertex(i, j + 1)});
+      if (i < rings - 1) triangles.push_back({vertex(i, j + 1), vertex(i + 1, j), vertex(i + 1, j + 1)});
+    }
+  std::ofstream stl(path, std::ios::binary);
+  const std::string header(80, '\0');
+  stl.write(header.data(), 80);
+  const auto count = std::uint32_t(triangles.size());
+  stl.write(reinterpret_cast<const char*>(&count), 4);
+  const float normal[3] = {0, 0, 0};
+  const std::uint16_t attributes = 0;
+  for (const auto& t : triangles) {
+    stl.write(reinterpret_cast<const char*>(normal), sizeof normal);
+    for (const auto& v : t) stl.write(reinterpret_cast<const char*>(v.data()), 12);
+    stl.write(reinterpret_cast<const char*>(&attributes), 2);
+  }
+}
+
+TEST_F(SynthLimitsCli, AModelWithAMillionTrianglesIsRefusedAtOnce) {
+  const fs::path sphere = dir_ / "sphere.stl";
+  write_sphere_stl(sphere, 500);  // 998000 triangles, 50 MB
+  expect_refused(fmt::format("--model '{}' --objects 5", sphere.string()),
+                 "998000 triangles; the convex decomposition for the physics takes at most 5000");
 }
 
 TEST_F(SynthLimitsCli, AFullBinStopsReleasingWavesAndSaysHowManyItPlaced) {
