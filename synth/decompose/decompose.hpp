@@ -42,9 +42,11 @@ struct DecomposeOptions {
   bool use_cache = true;
 };
 
-// HACD's time grows much faster than the triangle count (measured on two cores: the built-in
-// bolt, 480 triangles, 20 to 40 s; a 1848-triangle sphere, MEASURED): a model with more
-// triangles would decompose for hours, so it is refused up front with the advice to simplify it.
+// HACD's time grows much faster than the triangle count (measured on two busy cores: the
+// built-in bolt, 480 triangles, 36 to 42 s; a 1848-triangle sphere had not finished after 300 s):
+// a model of many thousand triangles would decompose for hours, so beyond this it is refused up
+// front with the advice to simplify it. Training and detection take large meshes (a 2-million
+// triangle sphere trains in 20 s, most of it reading the file).
 inline constexpr std::size_t kMaxDecomposeTriangles = 5000;
 
 // Throws InputError, naming `what` (e.g. "--model part.stl"), for a mesh with more than
