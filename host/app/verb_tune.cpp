@@ -40,8 +40,9 @@ void run_tune(TuneArgs& a) {
   o.start.angle_steps = train.angle_steps;
   o.start.detect = resolve(a.start);
   check(o);  // before the slow stages: bad options fail fast
-  const OutputLock lock = OutputLock::directory(o.out);
-  binpick::run_tune(load_part_finding_symmetries(o.part), o, std::cout);
+  const Model part = load_part_finding_symmetries(o.part);
+  const OutputLock lock = OutputLock::directory(o.out);  // after the inputs load: a typo writes nothing
+  binpick::run_tune(part, o, std::cout);
 }
 
 }  // namespace
