@@ -15,6 +15,7 @@
 #include "synth/bin_writer.hpp"
 #include "synth/camera_rig.hpp"
 #include "host/formats/bop/test_targets.hpp"
+#include "synth/physics/bin_capacity.hpp"
 #include "synth/render/bin_renderer.hpp"
 #include "synth/sensor/sensor_apply.hpp"
 #include "synth/sensor/sensor_stage.hpp"
@@ -88,6 +89,17 @@ SynthSummary synthesize(const Model& model, const std::string& model_description
   }
   if (!o.bin_mesh.empty()) inputs.bin_mesh_digest = file_digest(o.bin_mesh);
   const double diameter = inputs.diameter;
+  check_part_size("--model " + model_description, diameter, o.drop.bin_size_mm);
+  check_decomposable("--model " + model_description, model.mesh);
+  for (std::size_t k = 0; k < distractors.size(); ++k) {
+    const std::string what = "--distractors " + o.distractors[k].model;
+    check_part_size(what, inputs.distractor_diameters[k], o.drop.bin_size_mm);
+    check_decomposable(what, distractors[k].mesh);
+  }
+  const std::vector<int> counts = kind_counts(o.drop.objects, o.distractors);
+  std::vector<const Mesh*> mesh_list;
+  for (const Mesh& m : meshes) mesh_list.push_back(&m);
+  check_bin_capacity(o.drop.objects, estimate_bin_capacity(o.drop.bin_size_mm, mesh_list, counts));
   fs::create_directories(o.out / "test");
   check_or_write_manifest(o.out, synth_manifest(o, inputs));
   const ShardRecord record = synth_shard_record(o.out, o.bins, o.shard.count);
@@ -119,7 +131,6 @@ SynthSummary synthesize(const Model& model, const std::string& model_description
   std::vector<DropKind> kinds;
   for (std::size_t k = 0; k < meshes.size(); ++k) kinds.push_back({&hulls[k], &meshes[k]});
   summary.seconds_decompose = seconds_since(t0);
-  const std::vector<int> counts = kind_counts(o.drop.objects, o.distractors);
 
   std::unique_ptr<BinRenderer> renderer;  // made on the first bin that is not already there
   std::unique_ptr<SensorStage> sensor;    // the same, for a structured-light sensor
@@ -178,9 +189,17 @@ SynthSummary synthesize(const Model& model, const std::string& model_description
     t0 = Clock::now();
     std::vector<int> obj_ids;
     for (const int k : dropped.kinds) obj_ids.push_back(k + 1);
-    write_bop_scene(staging, {rendered, camera, w2c, part_to_camera, obj_ids, o.depth_scale,
-                              o.write_cloud, o.write_masks});
-    fs::rename(staging, scene);
+    try {
+      write_bop_scene(staging, {rendered, camera, w2c, part_to_camera, obj_ids, o.depth_scale,
+                                o.write_cloud, o.write_masks});
+      fs::rename(staging, scene);
+    } catch (...) {
+      // A full disk: give the space of the half-written bin back (a kill leaves it to the
+      // next run, which replaces it).
+      std::error_code ignored;
+      fs::remove_all(staging, ignored);
+      throw;
+    }
     const double write = seconds_since(t0);
 
     std::size_t visible = 0;

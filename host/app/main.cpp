@@ -2,6 +2,7 @@
 // becomes a message on stderr and an exit status.
 #include <cstdio>
 #include <exception>
+#include <filesystem>
 #include <iostream>
 
 #include <CLI/CLI.hpp>
@@ -34,6 +35,10 @@ int main(int argc, char** argv) {
     std::cerr << "binpick: error: " << e.what() << " (see binpick VERB --help)\n";
     return 2;
   } catch (const binpick::InputError& e) {
+    std::cerr << "binpick: error: " << e.what() << "\n";
+    return 2;
+  } catch (const std::filesystem::filesystem_error& e) {
+    // A directory that cannot be made or renamed: a full disk, a read-only or missing output.
     std::cerr << "binpick: error: " << e.what() << "\n";
     return 2;
   } catch (const binpick::DeviceError& e) {

@@ -11,6 +11,7 @@
 #include "host/app/model_options.hpp"
 #include "host/app/verbs.hpp"
 #include "host/core/error.hpp"
+#include "host/core/output_lock.hpp"
 #include "host/tune/experiment.hpp"
 
 namespace binpick::cli {
@@ -37,6 +38,7 @@ void run_bench_verb(const BenchArgs& a) {
   o.part = part_spec_of(a.model);
   o.ref_ratios = parse_number_list(a.ref_ratios, "--ref-ratios", "0.2,0.02");
   bench::check(o);  // before the slow stages
+  const OutputLock lock = OutputLock::directory(o.out);
   const auto run = bench::run_bench(load_part_finding_symmetries(o.part), o, std::cout);
   std::cout << "\n" << bench::bench_markdown(run.result) << "\n"
             << fmt::format("report: {}\n        {}\n", run.files.markdown.string(),

@@ -14,6 +14,7 @@
 #include "host/app/model_options.hpp"
 #include "host/app/verbs.hpp"
 #include "host/core/error.hpp"
+#include "host/core/output_lock.hpp"
 #include "host/tune/experiment.hpp"
 #include "host/runtime/vk/vk_context.hpp"
 #include "synth/parts/builtin_parts.hpp"
@@ -56,7 +57,9 @@ void run_demo(const DemoArgs& a) {
                            a.bins, a.objects, o.part.spec, a.noise,
                            a.out.string())
             << std::flush;
-  const auto r = run_experiment(load_part_finding_symmetries(o.part), o, std::cout);
+  const Model part = load_part_finding_symmetries(o.part);
+  const OutputLock lock = OutputLock::directory(o.out);
+  const auto r = run_experiment(part, o, std::cout);
   for (const auto& w : r.report.warnings) std::cerr << "binpick: warning: " << w << "\n";
   std::cout << "\n" << results_table(r.evaluations) << "\n";
   std::cout << fmt::format("report:   {}\n", r.report.html.string());

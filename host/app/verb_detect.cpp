@@ -2,6 +2,7 @@
 // point pair feature voting around the highest points (paper section III-B/C) and writes the
 // BOP results CSV, one row per hypothesis, best first.
 #include <chrono>
+#include <optional>
 #include <filesystem>
 #include <iostream>
 #include <memory>
@@ -13,6 +14,7 @@
 #include "host/app/output_file.hpp"
 #include "host/app/verbs.hpp"
 #include "host/core/error.hpp"
+#include "host/core/output_lock.hpp"
 #include "host/detect/detect_batch.hpp"
 #include "host/detect/detector.hpp"
 #include "host/formats/mesh/point_cloud_ply.hpp"
@@ -68,6 +70,10 @@ void run_detect(DetectArgs& a) {
   const DetectParams params = resolve(a.detection);
   const Shard shard = shard_of(a.shards);
   check_output_file(a.out);
+  // A shard shares the output with the other shards; --slurm's follower only waits for its
+  // tasks (which lock as shards) and merges after them.
+  std::optional<OutputLock> lock;
+  if (!a.shards.slurm.enabled) lock.emplace(OutputLock::file(a.out, shard.index, shard.count));
   const std::string model_bytes = read_file_bytes(a.model);
   const PpfModel model = parse_ppf_model(model_bytes, a.model);
   if (!a.cloud.empty()) {

@@ -13,6 +13,7 @@
 #include "host/app/shard_options.hpp"
 #include "host/app/verbs.hpp"
 #include "host/core/error.hpp"
+#include "host/core/output_lock.hpp"
 #include "host/eval/eval_run.hpp"
 #include "host/eval/report/bop_report.hpp"
 #include "host/eval/report/report_tables.hpp"
@@ -93,6 +94,7 @@ void run_eval(const EvalArgs& args) {
   options.pictures = int(args.pictures);
   // Everything is read and checked here, before the first file of the report is written.
   const auto evaluations = eval::evaluate_inputs(inputs, options.eval);
+  const OutputLock lock = OutputLock::directory(out);
   const eval::ReportFiles files = eval::write_report(evaluations, options);
   for (const auto& w : files.warnings) std::cerr << "binpick: warning: " << w << "\n";
   if (args.json) {

@@ -18,6 +18,7 @@
 #include "host/tune/experiment_shards.hpp"
 #include "host/app/verbs.hpp"
 #include "host/core/error.hpp"
+#include "host/core/output_lock.hpp"
 #include "host/tune/experiment.hpp"
 
 namespace binpick::cli {
@@ -66,7 +67,10 @@ void run_run(RunArgs& a) {
     std::vector<Model> distractors;
     for (const DistractorSpec& d : o.scene.distractors)
       distractors.push_back(load_part_finding_symmetries({d.model, {}}));
-    return run_experiment(load_part_finding_symmetries(o.part), o, std::cout, distractors);
+    const Model part = load_part_finding_symmetries(o.part);
+    // After the inputs load (a typo writes nothing); a shard shares it with the other shards.
+    const OutputLock lock = OutputLock::directory(o.out, o.shard.index, o.shard.count);
+    return run_experiment(part, o, std::cout, distractors);
   };
   if (a.shards.slurm.enabled) {
     // The merge is the experiment in this process: every bin is there, so it only evaluates.

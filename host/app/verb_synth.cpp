@@ -14,6 +14,7 @@
 #include "host/app/shard_options.hpp"
 #include "host/shards/slurm_run.hpp"
 #include "synth/synth_shards.hpp"
+#include "host/core/output_lock.hpp"
 #include "host/train/symmetry_describe.hpp"
 #include "synth/part_mix.hpp"
 #include "synth/synthesize.hpp"
@@ -75,6 +76,8 @@ void run_synth(const SynthArgs& args) {
   const Model model = load(part_spec_of(args.model));
   std::vector<Model> distractors;
   for (const DistractorSpec& d : o.distractors) distractors.push_back(load({d.model, {}}));
+  // After the inputs load (a typo writes nothing); a shard shares it with the other shards.
+  const OutputLock lock = OutputLock::directory(o.out, o.shard.index, o.shard.count);
   const SynthSummary s = synthesize(model, args.model.model, o, distractors);
   std::cout << fmt::format(
       "{}: {} bins made, {} already there; decomposition {:.1f} s, physics {:.1f} s, "

@@ -15,6 +15,7 @@
 #include "host/app/train_options.hpp"
 #include "host/app/output_file.hpp"
 #include "host/app/verbs.hpp"
+#include "host/core/output_lock.hpp"
 #include "host/core/error.hpp"
 #include "host/train/ppf_model.hpp"
 #include "host/train/ppf_model_file.hpp"
@@ -35,6 +36,7 @@ double ms(double s) { return s * 1e3; }
 void run_train(const TrainVerbArgs& args) {
   const PpfTrainParams params = train_params_of(args.train);  // before the (slow) load: fail fast
   check_output_file(args.out);
+  const OutputLock lock = OutputLock::file(args.out);
   const auto start = std::chrono::steady_clock::now();
   const Mesh mesh = load_part(part_spec_of(args.model)).mesh;
   const double load_s =

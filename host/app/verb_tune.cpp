@@ -14,6 +14,7 @@
 #include "host/app/model_options.hpp"
 #include "host/app/train_options.hpp"
 #include "host/app/verbs.hpp"
+#include "host/core/output_lock.hpp"
 #include "host/tune/tune_run.hpp"
 
 namespace binpick::cli {
@@ -39,7 +40,9 @@ void run_tune(TuneArgs& a) {
   o.start.angle_steps = train.angle_steps;
   o.start.detect = resolve(a.start);
   check(o);  // before the slow stages: bad options fail fast
-  binpick::run_tune(load_part_finding_symmetries(o.part), o, std::cout);
+  const Model part = load_part_finding_symmetries(o.part);
+  const OutputLock lock = OutputLock::directory(o.out);  // after the inputs load: a typo writes nothing
+  binpick::run_tune(part, o, std::cout);
 }
 
 }  // namespace

@@ -6,8 +6,10 @@
 #include <cerrno>
 #include <cstring>
 #include <fstream>
+#include <regex>
 #include <string>
 #include <system_error>
+#include <vector>
 
 #include "host/core/error.hpp"
 
@@ -22,6 +24,12 @@ std::filesystem::path temporary_path_for(const std::filesystem::path& path) {
   name += path.filename().string();
   name += ".tmp" + std::to_string(::getpid()) + "_" + std::to_string(counter++);
   return path.parent_path() / name;
+}
+
+// Why a write failed: the stream keeps no reason, the failing write(2) left it in errno
+// (ENOSPC on a full disk, EDQUOT, EIO).
+std::string write_error() {
+  return errno ? std::strerror(errno) : "write failed (disk full?)";
 }
 
 // Removes the temporary file unless the rename succeeded.
@@ -49,7 +57,35 @@ class TemporaryFile {
   bool committed_ = false;
 };
 
+// The names temporary_path_for and the plots' writer (host/eval/report/gnuplot.cpp) give.
+bool is_temporary_name(const std::string& name) {
+  static const std::regex pattern(R"(^\..+\.(tmp[0-9]+_[0-9]+|[0-9]+\.partial)$)");
+  return std::regex_match(name, pattern);
+}
+
 }  // namespace
+
+std::size_t remove_stale_temporaries(const std::filesystem::path& dir, bool recursive,
+                                     const std::string& name_prefix) {
+  namespace fs = std::filesystem;
+  std::vector<fs::path> stale;
+  std::error_code ec;
+  const auto consider = [&](const fs::directory_entry& entry) {
+    const std::string name = entry.path().filename().string();
+    if (name.starts_with(name_prefix) && is_temporary_name(name) && entry.is_regular_file(ec))
+      stale.push_back(entry.path());
+  };
+  if (recursive) {
+    for (fs::recursive_directory_iterator it(dir, ec), end; !ec && it != end; it.increment(ec))
+      consider(*it);
+  } else {
+    for (fs::directory_iterator it(dir, ec), end; !ec && it != end; it.increment(ec))
+      consider(*it);
+  }
+  std::size_t removed = 0;
+  for (const fs::path& path : stale) removed += fs::remove(path, ec) ? 1 : 0;
+  return removed;
+}
 
 void write_file_atomically(const std::filesystem::path& path,
                            const std::function<void(std::ostream&)>& write) {
@@ -63,11 +99,12 @@ void write_file_atomically(const std::filesystem::path& path,
     if (!stream) {
       throw InputError("cannot write " + path.string() + ": " + std::strerror(errno));
     }
+    errno = 0;
     write(stream);
     stream.flush();
-    if (!stream) throw InputError("cannot write " + path.string() + ": write failed (disk full?)");
+    if (!stream) throw InputError("cannot write " + path.string() + ": " + write_error());
     stream.close();
-    if (!stream) throw InputError("cannot write " + path.string() + ": closing the file failed");
+    if (!stream) throw InputError("cannot write " + path.string() + ": " + write_error());
   }
   temporary.commit_as(path);
 }

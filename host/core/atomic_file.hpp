@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <functional>
 #include <ostream>
+#include <string>
 
 namespace binpick {
 
@@ -15,5 +16,12 @@ namespace binpick {
 // path). The directory must exist.
 void write_file_atomically(const std::filesystem::path& path,
                            const std::function<void(std::ostream&)>& write);
+
+// Removes what writers killed mid-write left under `dir` (recursively if asked): the temporary
+// files of write_file_atomically (.NAME.tmpPID_N) and of the plots (.NAME.PID.partial). Only
+// safe while no other process writes there: OutputLock calls it once it holds the lock.
+// `name_prefix`, if not empty, limits it to names that start with it. Returns how many.
+std::size_t remove_stale_temporaries(const std::filesystem::path& dir, bool recursive,
+                                     const std::string& name_prefix = "");
 
 }  // namespace binpick

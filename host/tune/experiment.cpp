@@ -9,7 +9,9 @@
 
 #include <fmt/format.h>
 
+#include "host/core/atomic_file.hpp"
 #include "host/core/error.hpp"
+#include "host/core/read_file.hpp"
 #include "host/detect/detect_step.hpp"
 #include "synth/synthesize.hpp"
 #include "host/core/timing.hpp"
@@ -29,7 +31,9 @@ fs::path results_csv(const ExperimentOptions& o, double noise) {
 // the log.
 void export_for_bop_toolkit(const ExperimentOptions& o, double noise, std::ostream& log) {
   const fs::path copy = o.out / "results" / toolkit_results_name(noise);
-  fs::copy_file(results_csv(o, noise), copy, fs::copy_options::overwrite_existing);
+  // Through a temporary file like every output: a kill or a full disk leaves no half copy.
+  const std::string bytes = read_file_bytes(results_csv(o, noise));
+  write_file_atomically(copy, [&](std::ostream& s) { s << bytes; });
   const fs::path link = o.out / "bop" / bop_dataset_name(noise);
   const fs::path target = fs::path("..") / noise_dir_name(noise);
   fs::create_directories(link.parent_path());

@@ -32,11 +32,25 @@ void append_message(std::string& message, const std::string& text) {
   message += text;
 }
 
-// The highest point of any part in the world (units), the floor if none.
-btScalar pile_top(const BinWorld& world) {
+// "3, 17, 22", the first 20 and a count of the rest: a message stays one line.
+std::string index_list(const std::vector<int>& indices) {
+  std::string text;
+  for (std::size_t i = 0; i < indices.size() && i < 20; ++i)
+    text += (i ? ", " : "") + std::to_string(indices[i]);
+  if (indices.size() > 20) text += " and " + std::to_string(indices.size() - 20) + " more";
+  return text;
+}
+
+// The highest point of any part in the world (units), the floor if none; with `interior`, of
+// the parts whose centre lies over the bin's interior (not on the rim or outside).
+btScalar pile_top(const BinWorld& world, const Eigen::Vector3d* interior_mm = nullptr) {
   btScalar top = 0;
   for (const btRigidBody* body : world.parts()) {
     if (!body->isInWorld()) continue;
+    const btVector3 c = body->getCenterOfMassPosition() * btScalar(kMmPerUnit);
+    if (interior_mm && (std::abs(c.x()) > 0.5 * interior_mm->x() ||
+                        std::abs(c.y()) > 0.5 * interior_mm->y()))
+      continue;
     btVector3 lo, hi;
     body->getAabb(lo, hi);
     top = std::max(top, hi.z());
@@ -159,6 +173,19 @@ DropResult drop_parts(const std::vector<DropKind>& kinds, const std::vector<int>
   BinDrop drop(world, options, progress, stats);
 
   for (int wave = 0; wave < stats.waves && !drop.out_of_wall_time(); ++wave) {
+    // A pile up to the top of the walls has no room for another wave: its parts would land
+    // on the heap and slide out over the walls, wave after wave, for as long as asked.
+    const double top_mm = pile_top(world, &options.bin_size_mm) * kMmPerUnit;
+    if (top_mm > options.bin_size_mm.z()) {
+      stats.full = true;
+      append_message(stats.message,
+                     "the bin was full after " + std::to_string(world.parts().size()) + " of " +
+                         std::to_string(options.objects) + " parts (the pile reached " +
+                         std::to_string(int(top_mm)) + " mm, the walls " +
+                         std::to_string(int(options.bin_size_mm.z())) +
+                         " mm): no further wave released");
+      break;
+    }
     const int count = std::min(per_wave, options.objects - wave * per_wave);
     const double lowest_centre_mm = pile_top(world) * kMmPerUnit + 1.1 * radius_mm;
     for (const auto& at : wave_drop_positions(options, count, radius_mm, lowest_centre_mm)) {
@@ -187,9 +214,13 @@ DropResult drop_parts(const std::vector<DropKind>& kinds, const std::vector<int>
       continue;
     }
     const int kind = world.kind(*body);
+    if (!world.at_rest(*body)) stats.unsettled.push_back(int(result.poses.size()));
     result.poses.push_back(body_pose * shapes[std::size_t(kind)]->body_in_part().inverse());
     result.kinds.push_back(kind);
   }
+  if (!stats.unsettled.empty())
+    append_message(stats.message, "parts not at rest (scene_gt indices): " +
+                                      index_list(stats.unsettled));
   if (stats.parts_left_bin > 0)
     append_message(stats.message, std::to_string(stats.parts_left_bin) +
                                       " parts ended outside the bin and were left out");

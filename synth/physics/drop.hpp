@@ -93,7 +93,9 @@ struct DropStats {
   int parts_left_bin = 0;  // ended outside the interior; not in `poses`
   int parts_frozen = 0;    // times a part was made static (see DropOptions::freeze_resting)
   int parts_thawed = 0;    // times a frozen part was hit and made dynamic again
-  std::string message;     // what went wrong when !settled or parts_left_bin > 0
+  bool full = false;       // the pile reached over the walls: the waves after it were not released
+  std::vector<int> unsettled;  // indices into DropResult::poses of parts moving when a limit stopped it
+  std::string message;     // what went wrong when !settled, full or parts_left_bin > 0
 };
 
 struct DropResult {
