@@ -8,6 +8,8 @@
 #include <random>
 #include <string>
 
+#include <fmt/format.h>
+
 #include "host/core/error.hpp"
 #include "host/core/timing.hpp"
 #include "synth/physics/bin_world.hpp"
@@ -92,14 +94,14 @@ class BinDrop {
         stats_.settled = false;
         append_message(stats_.message,
                        label + " still had " + std::to_string(moving) + " parts moving after " +
-                           std::to_string(options_.max_wave_seconds) + " simulated s");
+                           fmt::format("{:g}", options_.max_wave_seconds) + " simulated s");
         break;
       }
       if (options_.max_wall_seconds > 0.0 && seconds_since(start_) > options_.max_wall_seconds) {
         stats_.settled = false;
         out_of_wall_time_ = true;
         append_message(stats_.message, "stopped in " + label + " after " +
-                                           std::to_string(options_.max_wall_seconds) +
+                                           fmt::format("{:g}", options_.max_wall_seconds) +
                                            " wall s, with parts moving");
         break;
       }
