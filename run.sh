@@ -105,6 +105,7 @@ case "$cmd" in
     cmake --build build-fuzz -j"$(nproc)" --target $targets
     failed=()
     summary=""
+    cpu_total=0
     for target in $targets; do
       name=${target#fuzz_}
       work=build-fuzz/corpus-work/$name   # new inputs go here, not into the repository
@@ -114,11 +115,14 @@ case "$cmd" in
       corpora=("$work" "fuzz/corpus/$name")
       [ -d "fuzz/regressions/$name" ] && corpora+=("fuzz/regressions/$name")
       echo "== $target: ${seconds} s"
-      status=0
       # A leak, a hang (-timeout, seconds per input) or an allocation over 2 GB is a crash too.
-      "build-fuzz/$target" -max_total_time="$seconds" \
+      # The CPU seconds (user + system) are what "an hour of fuzzing" means on a shared machine.
+      TIMEFORMAT='%3U %3S'
+      { time { status=0; "build-fuzz/$target" -max_total_time="$seconds" \
         -timeout=20 -rss_limit_mb=2048 -print_final_stats=1 -artifact_prefix="$crashes/" \
-        "${corpora[@]}" >"$log" 2>&1 || status=$?
+        "${corpora[@]}" >"$log" 2>&1 || status=$?; }; } 2>"$log.cpu"
+      cpu=$(awk '{printf "%.0f", $1 + $2}' "$log.cpu")
+      cpu_total=$((cpu_total + cpu))
       runs=$(sed -n 's/^stat::number_of_executed_units: *//p' "$log" | tail -1)
       cov=$(grep -Eo 'cov: [0-9]+ ft: [0-9]+' "$log" | tail -1)
       if [ "$status" -ne 0 ]; then
@@ -126,10 +130,11 @@ case "$cmd" in
         echo "   CRASH (exit $status); log: $log; input: $(ls "$crashes" | head -1)"
         grep -E '^(==[0-9]+==ERROR|SUMMARY|.*runtime error)' "$log" | head -3 | sed 's/^/   /'
       fi
-      summary+=$(printf '%-15s %12s executions  %s\n' "$name" "${runs:-?}" "${cov:-cov: ?}")$'\n'
+      summary+=$(printf '%-15s %12s executions %6s CPU s  %s\n' "$name" "${runs:-?}" "$cpu" "${cov:-cov: ?}")$'\n'
     done
-    echo "== per target: executions, coverage (libFuzzer cov: edges, ft: features)"
+    echo "== per target: executions, CPU seconds, coverage (libFuzzer cov: edges, ft: features)"
     printf '%s' "$summary"
+    echo "== total: ${cpu_total} CPU s of fuzzing"
     if [ "${#failed[@]}" -gt 0 ]; then
       echo "run.sh fuzz: crashes in: ${failed[*]} (inputs in build-fuzz/crashes/NAME/)" >&2
       exit 1

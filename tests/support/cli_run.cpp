@@ -6,7 +6,9 @@
 #include <atomic>
 #include <cstdlib>
 #include <fstream>
+#include <mutex>
 #include <sstream>
+#include <vector>
 
 namespace binpick::test {
 
@@ -32,6 +34,37 @@ std::string without_time(const std::string& csv) {
   return out;
 }
 
+namespace {
+
+// The test process's temporary directories, removed when it exits (unless
+// BINPICK_KEEP_TEST_DIRS is set, to look at a failing test's files): a suite run must not leave
+// hundreds of datasets in /tmp.
+class TempDirs {
+ public:
+  void add(const fs::path& dir) {
+    const std::lock_guard<std::mutex> lock(mutex_);
+    dirs_.push_back(dir);
+  }
+  ~TempDirs() {
+    if (std::getenv("BINPICK_KEEP_TEST_DIRS") != nullptr) return;
+    for (const auto& dir : dirs_) {
+      std::error_code ignored;  // a destructor never throws
+      fs::remove_all(dir, ignored);
+    }
+  }
+
+ private:
+  std::mutex mutex_;
+  std::vector<fs::path> dirs_;
+};
+
+TempDirs& temp_dirs() {
+  static TempDirs dirs;
+  return dirs;
+}
+
+}  // namespace
+
 fs::path fresh_temp_dir(const std::string& name) {
   static std::atomic<int> counter{0};
   const fs::path dir = fs::temp_directory_path() / ("binpick_test_" + name + "_" +
@@ -39,6 +72,7 @@ fs::path fresh_temp_dir(const std::string& name) {
                                                     std::to_string(counter++));
   fs::remove_all(dir);
   fs::create_directories(dir);
+  temp_dirs().add(dir);
   return dir;
 }
 

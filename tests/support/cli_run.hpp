@@ -15,7 +15,8 @@ struct CliRun {
 // parallel: each call captures into its own temporary files.
 CliRun run_binpick(const std::string& args);
 
-// An empty directory of its own for this process and test, under the system's temp directory.
+// An empty directory of its own for this process and test, under the system's temp directory;
+// removed when the test process exits (kept if BINPICK_KEEP_TEST_DIRS is set).
 std::filesystem::path fresh_temp_dir(const std::string& name);
 
 std::string slurp(const std::filesystem::path& path);
