@@ -8,7 +8,9 @@
  * the empty cells next to filled ones against the measured depth. Each work item writes its
  * own partial sums (sums[pose * BP_FIT_GROUP + item]); the host adds the 64 in double, so the
  * result does not depend on a float reduction order. The grid of a pose is touched only by its
- * own group, so the group's barriers are enough. */
+ * own group, so the group's barriers are enough. With f.residuals, each model point's residual
+ * goes to residuals[pose * n_model + point] (NaN where the point gives no term); residuals may
+ * be a one-element buffer when no fit asks for them. */
 #pragma OPENCL FP_CONTRACT OFF
 #include "binpick_shared.h"
 #include "pose_fit_shared.h"
@@ -16,7 +18,8 @@
 __kernel void pose_fit(__global const float4* points, const bp_camera cam,
                        __global const float4* model_points, __global const float4* model_normals,
                        const uint n_model, __global const bp_pose_fit* fits, const uint n_fits,
-                       __global uint* grids, __global bp_fit_sums* sums) {
+                       __global uint* grids, __global bp_fit_sums* sums,
+                       __global float* residuals) {
   const uint k = get_group_id(0);
   const uint lid = get_local_id(0);
   if (k >= n_fits) return; /* the whole group: the launch is n_fits groups exactly */
@@ -47,7 +50,9 @@ __kernel void pose_fit(__global const float4* points, const bp_camera cam,
   s.outline_step = 0u;
   float a[6];
   float r = 0.0f;
+  __global float* own = residuals + (size_t)k * n_model;
   for (uint j = lid; j < n_model; j += BP_FIT_GROUP) {
+    if (f.residuals != 0u) own[j] = NAN;
     const float4 m = model_points[j], n = model_normals[j];
     if (bp_fit_project(&f, &c, m.x, m.y, m.z, n.x, n.y, n.z, q, nq, &pixel, &cell) != 2) continue;
     const float4 p = points[pixel];
@@ -58,6 +63,7 @@ __kernel void pose_fit(__global const float4* points, const bp_camera cam,
     if (cls == BP_FIT_HIDDEN || cls == BP_FIT_MISSING) continue;
     const float w = bp_fit_term(&f, q, nq, p.x, p.y, p.z, a, &r);
     if (w == 0.0f) continue;
+    if (f.residuals != 0u) own[j] = r;
     ++s.used;
     int e = 0;
     for (int row = 0; row < 6; ++row) {

@@ -19,7 +19,11 @@
  * what it lies on; where the measured surface there continues at the model's depth (within
  * `outline`), the sensor sees surface where the pose says the part ends: a pose on the wrong
  * object, or shifted. Counted per cell: continue, step (farther), nothing (nearer: an occluder,
- * or no depth). */
+ * or no depth).
+ *
+ * Residuals (with `residuals` != 0): the point-to-plane residual of every point that gives an
+ * ICP term, NaN for the others, one per model point (the patch test, host/detect/patch_test.hpp,
+ * looks for model regions whose residuals do not average out). */
 #ifndef BINPICK_POSE_FIT_SHARED_H
 #define BINPICK_POSE_FIT_SHARED_H
 
@@ -50,7 +54,7 @@ typedef struct {
   float cell;       /* z-buffer cell side, pixels */
   bp_u32 dim;       /* cells per side, <= BP_FIT_MAX_DIM; 0: nothing can be visible */
   float outline;    /* mm: the outline test's depth tolerance; 0: no outline test */
-  bp_u32 reserved;
+  bp_u32 residuals; /* != 0: write each model point's residual (NaN where it gives no term) */
 } bp_pose_fit;
 
 /* What one work item (kernel) or one pose (reference) adds up. */

@@ -64,6 +64,9 @@ void add_detect_cli_options(CLI::App* verb, DetectCliOptions& a, const std::stri
           "noise seen in the best-fitting pose (at most 3x), in [0, 100]; 0: fixed");
   add("verify-tolerance", p.verify_tolerance,
       "depth agreement of a verified model point, fraction of the diameter");
+  add("verify-patch", p.verify_patch,
+      "patch test: the score is multiplied by the share of the model's patches (cells of "
+          "this side, fraction of the diameter) whose residuals average out, in [0, 1]; 0: off");
   add("roi", p.roi,
       "only this box may hold hypotheses and crops: camera:x0,y0,z0,x1,y1,z1 (camera frame, "
           "mm) or bin:x0,y0,z0,x1,y1,z1 (the bin's frame: origin at the floor's centre, z up, "

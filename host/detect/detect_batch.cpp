@@ -118,6 +118,8 @@ std::string detection_line(std::size_t rank, const Detection& d) {
   if (d.outline_continue + d.outline_step > 0)
     line += fmt::format("; outline steps down at {} of {} cells", d.outline_step,
                         d.outline_continue + d.outline_step);
+  if (d.patches_tested > 0)
+    line += fmt::format("; {} of {} patches biased", d.patches_biased, d.patches_tested);
   if (!d.reason.empty()) line += "; " + d.reason;
   return line;
 }

@@ -65,6 +65,7 @@ const std::map<std::string, Field>& fields() {
       {"refine-iterations", count(&DetectParams::refine_iterations)},
       {"verify-tolerance", real(&DetectParams::verify_tolerance)},
       {"verify-noise-factor", real(&DetectParams::verify_noise_factor)},
+      {"verify-patch", real(&DetectParams::verify_patch)},
       {"roi", text(&DetectParams::roi)},
       {"bin", text(&DetectParams::bin)},
       {"bin-margin", real(&DetectParams::bin_margin)},

@@ -59,6 +59,7 @@ std::optional<ParamProblem> find_param_problem(const DetectParams& p) {
       {p.refine_iterations <= 100, {"refine-iterations", double(p.refine_iterations), "[0, 100]"}},
       {in(p.verify_tolerance, 0, 1) && p.verify_tolerance > 0, {"verify-tolerance", p.verify_tolerance, "(0, 1]"}},
       {in(p.verify_noise_factor, 0, 100), {"verify-noise-factor", p.verify_noise_factor, "[0, 100]"}},
+      {in(p.verify_patch, 0, 1), {"verify-patch", p.verify_patch, "[0, 1]"}},
       {in(p.bin_margin, 0, 10), {"bin-margin", p.bin_margin, "[0, 10]"}},
       {p.instances <= 1000, {"instances", double(p.instances), "[0, 1000]"}},
   };
@@ -119,8 +120,10 @@ Detector::Detector(const PpfModel& model, const DetectParams& params, ocl::Devic
     program_build_s_ += dev_.prebuild({"scene_mask.cl", "bin_planes.cl"});
   device_model_ = upload_model(dev_, model_);
   // The denser refinement points where the model file has them (version 3 on).
-  fit_model_ = upload_fit_model(
-      dev_, model_.fit_cloud.points.empty() ? model_.cloud : model_.fit_cloud);
+  const PointCloud& fit_cloud = model_.fit_cloud.points.empty() ? model_.cloud : model_.fit_cloud;
+  fit_model_ = upload_fit_model(dev_, fit_cloud);
+  if (params_.verify_patch > 0)
+    fit_geometry_.patches = model_patches(fit_cloud, float(params_.verify_patch * model_.diameter));
   fit_geometry_.diameter = model_.diameter;
   fit_geometry_.voxel_size = model_.voxel_size;
   fit_geometry_.centroid = model_centroid(model_.cloud);
@@ -187,6 +190,8 @@ void take_pose(Detection& d, const RefinedPose& r, std::uint64_t votes, std::uin
   d.inliers = r.inliers;
   d.outline_continue = r.outline_continue;
   d.outline_step = r.outline_step;
+  d.patches_tested = r.patches_tested;
+  d.patches_biased = r.patches_biased;
   d.reason = r.reason;
 }
 

@@ -46,6 +46,7 @@ struct DetectParams {
   std::uint32_t refine_iterations = 10;  // ICP steps per candidate (0: verify the voted pose)
   double verify_tolerance = 0.04;  // depth agreement of a verified model point (fraction)
   double verify_noise_factor = 3.5;  // tolerance widens to this x the noise seen (0: fixed)
+  double verify_patch = 0.2;       // patch test's cell side (fraction; 0: no patch test)
   // Where hypotheses and crops may be (bin_spec.hpp, docs/cli.md): "" (anywhere),
   // "camera:x0,y0,z0,x1,y1,z1" or "bin:..." (mm).
   std::string roi;
@@ -89,6 +90,8 @@ struct Detection {
   // Outline cells where the measured surface runs on past the part's edge, and where it steps
   // down (both 0 without the outline test: pose_fit_shared.h).
   std::uint32_t outline_continue = 0, outline_step = 0;
+  // Model patches tested and found biased by the patch test (patch_test.hpp; 0 without it).
+  std::uint32_t patches_tested = 0, patches_biased = 0;
   std::string reason;               // why the score is 0 or refinement stopped early, or why the
                                     // hypothesis was skipped (Detector::skipped)
   // neighbourhood: points in the crop (from a depth image: pixels with data, whether or not

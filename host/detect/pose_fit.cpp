@@ -100,6 +100,7 @@ bp_pose_fit make_pose_fit(const Eigen::Matrix3d& R, const Eigen::Vector3d& t,
   f.tolerance = th.tolerance;
   f.slack = th.slack;
   f.outline = th.outline;
+  f.residuals = th.residuals ? 1u : 0u;
   f.cell = 1;
   f.dim = 0;  // nothing visible unless the pose lies in front of the camera
   const double near = c.z() - 0.5 * g.diameter;
@@ -126,13 +127,24 @@ std::vector<FitSums> pose_fit_sums(ocl::Device& dev, const ocl::Buffer<float>& p
   ocl::Buffer<bp_pose_fit> fb(dev, std::span<const bp_pose_fit>(fits), CL_MEM_READ_ONLY);
   ocl::Buffer<std::uint32_t> grids(dev, fits.size() * BP_FIT_MAX_DIM * BP_FIT_MAX_DIM);
   ocl::Buffer<bp_fit_sums> sums(dev, fits.size() * BP_FIT_GROUP);
+  // Residuals only when a fit asks for them (the verification pass, not every ICP step).
+  const bool any_residuals =
+      std::any_of(fits.begin(), fits.end(), [](const bp_pose_fit& f) { return f.residuals != 0; });
+  ocl::Buffer<float> residuals(dev, any_residuals ? std::max<std::size_t>(1, fits.size() * model.size) : 1);
   cl::Kernel kernel = dev.kernel("pose_fit.cl", "pose_fit");
   ocl::launch_local(dev, kernel, fits.size() * BP_FIT_GROUP, BP_FIT_GROUP, points, cam,
                     model.points, model.normals, model.size, fb,
-                    static_cast<std::uint32_t>(fits.size()), grids, sums);
+                    static_cast<std::uint32_t>(fits.size()), grids, sums, residuals);
   const std::vector<bp_fit_sums> partial = sums.read(dev);
   for (std::size_t k = 0; k < fits.size(); ++k)
     for (std::size_t i = 0; i < BP_FIT_GROUP; ++i) add_partial(partial[k * BP_FIT_GROUP + i], out[k]);
+  if (any_residuals) {
+    const std::vector<float> all = residuals.read(dev);
+    for (std::size_t k = 0; k < fits.size(); ++k)
+      if (fits[k].residuals != 0)
+        out[k].residuals.assign(all.begin() + std::ptrdiff_t(k * model.size),
+                                all.begin() + std::ptrdiff_t((k + 1) * model.size));
+  }
   return out;
 }
 
@@ -157,6 +169,8 @@ std::vector<FitSums> pose_fit_sums_reference(const PointImage& image, const bp_c
     for (std::size_t j = 0; j < model.points.size(); ++j)
       if (project(j) != 0) grid[cell] = std::min(grid[cell], q[2]);
     FitSums& s = out[k];
+    if (f.residuals != 0)
+      s.residuals.assign(model.points.size(), std::numeric_limits<float>::quiet_NaN());
     for (std::size_t j = 0; j < model.points.size(); ++j) {
       if (project(j) != 2) continue;
       const float* p = &image.xyzw[std::size_t(pixel) * 4];
@@ -167,6 +181,7 @@ std::vector<FitSums> pose_fit_sums_reference(const PointImage& image, const bp_c
       if (cls == BP_FIT_HIDDEN || cls == BP_FIT_MISSING) continue;
       const float w = bp_fit_term(&f, q, nq, p[0], p[1], p[2], a, &r);
       if (w == 0.0f) continue;
+      if (f.residuals != 0) s.residuals[j] = r;
       ++s.used;
       const Eigen::Map<const Eigen::Matrix<float, 6, 1>> av(a);
       const Eigen::Matrix<double, 6, 1> ad = av.cast<double>();

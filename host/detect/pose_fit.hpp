@@ -11,6 +11,7 @@
 
 #include "host/core/mesh.hpp"
 #include "host/detect/depth_to_points.hpp"
+#include "host/detect/patch_test.hpp"
 #include "host/runtime/cl/cl_buffer.hpp"
 #include "kernels/binpick_shared.h"
 #include "kernels/pose_fit_shared.h"
@@ -36,6 +37,8 @@ struct FitSums {
   std::array<std::uint32_t, BP_FIT_CLASSES> count{};  // indexed by BP_FIT_HIDDEN ...
   std::uint32_t used = 0;
   std::uint32_t outline_continue = 0, outline_step = 0;  // outline cells (pose_fit_shared.h)
+  // With bp_pose_fit::residuals: one per model point, NaN where it gives no ICP term.
+  std::vector<float> residuals;
 
   std::uint32_t visible() const;  // all but hidden
 };
@@ -46,10 +49,12 @@ struct FitSums {
 struct FitGeometry {
   float diameter = 0, voxel_size = 0;  // mm
   Eigen::Vector3d centroid = Eigen::Vector3d::Zero();  // model frame
+  ModelPatches patches;  // of the fit model's points; none (count 0): no patch test
 };
 struct FitThresholds {
   float gate = 0, tolerance = 0, slack = 0;  // mm
   float outline = 0;  // mm, the outline test's tolerance; 0: no outline test
+  bool residuals = false;  // read back each model point's residual (the patch test)
 };
 bp_pose_fit make_pose_fit(const Eigen::Matrix3d& R, const Eigen::Vector3d& t,
                           const bp_camera& cam, const FitGeometry& geometry,

@@ -107,9 +107,10 @@ std::vector<RefinedPose> refine_and_verify(const FitSumsFn& sums_of, const bp_ca
     }
   }
 
-  const auto final_sums = [&](float tol, float gate, float outline) {
+  const auto final_sums = [&](float tol, float gate, float outline, bool residuals) {
     FitThresholds th = thresholds(g, tol, gate);
     th.outline = outline;
+    th.residuals = residuals;
     fits.clear();
     for (const PoseToRefine& p : poses) fits.push_back(make_pose_fit(p.R, p.t, cam, g, th));
     return sums_of(fits);
@@ -122,7 +123,7 @@ std::vector<RefinedPose> refine_and_verify(const FitSumsFn& sums_of, const bp_ca
     // Residuals within a wide gate (4 tolerances), Tukey-weighted: their weighted mean square.
     // The weights' sum is the trace of the translation block (unit normals).
     double noise = INFINITY;
-    for (const FitSums& s : final_sums(tolerance, 4 * tolerance, 0.0f)) {
+    for (const FitSums& s : final_sums(tolerance, 4 * tolerance, 0.0f, false)) {
       const double weight = s.jtj(3, 3) + s.jtj(4, 4) + s.jtj(5, 5);
       if (s.used >= opt.min_pairs && weight > 0) noise = std::min(noise, std::sqrt(s.cost / weight));
     }
@@ -134,8 +135,14 @@ std::vector<RefinedPose> refine_and_verify(const FitSumsFn& sums_of, const bp_ca
       final_gate = 2 * tolerance;
     }
   }
+  // The dead band of the patch test: a quarter of the fixed tolerance (0.01 d by default), the
+  // size of a right pose's leftover error; it does not widen with the noise, the significance
+  // test does that.
+  PatchTestOptions patch_opt;
+  patch_opt.dead_band = 0.25f * opt.tolerance_ratio * g.diameter;
+  const bool patch_test_on = g.patches.count > 0;
   const std::vector<FitSums> sums =
-      final_sums(tolerance, final_gate, opt.outline_ratio * g.diameter);
+      final_sums(tolerance, final_gate, opt.outline_ratio * g.diameter, patch_test_on);
   const double min_support = double(opt.min_support_ratio) * model_points;
   for (std::size_t k = 0; k < poses.size(); ++k) {
     RefinedPose& r = out[k];
@@ -163,6 +170,12 @@ std::vector<RefinedPose> refine_and_verify(const FitSumsFn& sums_of, const bp_ca
       r.score = s.agreement / std::max(support, std::max(min_support, 1.0));
       const std::uint32_t outline = s.outline_continue + s.outline_step;
       if (outline > 0) r.score *= double(s.outline_step) / double(outline);
+      if (patch_test_on) {
+        const PatchTest pt = patch_test(s.residuals, g.patches, patch_opt);
+        r.patches_tested = pt.tested;
+        r.patches_biased = pt.biased;
+        r.score *= pt.factor();
+      }
     }
   }
   return out;

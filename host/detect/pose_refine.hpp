@@ -24,6 +24,9 @@
 // With outline_ratio > 0 the score is then multiplied by the share of the pose's outline where
 // the measured surface steps down rather than continuing at the part's depth (a pose laid on the
 // wrong object, whose surface runs on past the model's edge, loses; docs/pipeline.md).
+// With patches in the geometry (patch_test.hpp), the score is also multiplied by the share of
+// the model's patches whose residuals average out: a pose whose surface agrees on average but
+// not in every region (a similar but different object) loses.
 // With noise_factor > 0 the tolerance follows the sensor: the residuals of the best-fitting pose
 // within a wide gate give the noise, and the tolerance becomes noise_factor times it, between
 // the fixed tolerance and three times that (docs/parameters.md has the measurement).
@@ -62,6 +65,7 @@ struct RefinedPose {
   double score = 0;            // in [0, 1]
   std::uint32_t visible = 0, missing = 0, inliers = 0, see_through = 0, occluded = 0;
   std::uint32_t outline_continue = 0, outline_step = 0;  // outline cells (0 without the test)
+  std::uint32_t patches_tested = 0, patches_biased = 0;  // the patch test (0 without it)
   std::uint32_t iterations = 0;  // ICP steps taken
   float tolerance = 0;           // mm, the verification tolerance used (the same for all poses)
   std::string reason;          // why the score is 0 or refinement stopped early; empty if neither

@@ -3,6 +3,7 @@
 // part's model cloud (voxel subsampled) with the geometry the fit needs.
 #pragma once
 
+#include <functional>
 #include <random>
 
 #include <Eigen/Geometry>
@@ -25,8 +26,10 @@ struct FitScene {
 };
 
 // The bracket at a tilted pose 500 mm in front of the camera, a floor 40 mm behind it; noise
-// sigma (mm) on every measured depth.
-inline FitScene make_fit_scene(double noise = 0.0, unsigned seed = 1) {
+// sigma (mm) on every measured depth. raise (optional): how much nearer the camera (mm) the
+// measured surface lies than the model at a model point: a similar but different object.
+inline FitScene make_fit_scene(double noise = 0.0, unsigned seed = 1,
+                               const std::function<double(const Eigen::Vector3f&)>& raise = {}) {
   FitScene s;
   const Mesh mesh = l_bracket();
   const PointCloud dense = sample_surface(mesh, 60000);
@@ -41,7 +44,8 @@ inline FitScene make_fit_scene(double noise = 0.0, unsigned seed = 1) {
   s.image.xyzw.assign(std::size_t(s.cam.width) * s.cam.height * 4, 0.0f);
   std::vector<float> zbuf(std::size_t(s.cam.width) * s.cam.height, 540.0f);  // the floor
   for (const Eigen::Vector3f& m : dense.points) {
-    const Eigen::Vector3d q = s.R * m.cast<double>() + s.t;
+    Eigen::Vector3d q = s.R * m.cast<double>() + s.t;
+    if (raise) q *= (q.z() - raise(m)) / q.z();  // along the ray: the pixel stays
     const long u = std::lround(s.cam.fx * q.x() / q.z() + s.cam.cx);
     const long v = std::lround(s.cam.fy * q.y() / q.z() + s.cam.cy);
     if (u < 0 || v < 0 || u >= long(s.cam.width) || v >= long(s.cam.height)) continue;

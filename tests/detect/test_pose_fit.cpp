@@ -53,7 +53,9 @@ TEST(PoseFit, KernelMatchesReferenceOnRandomPoses) {
                                     4.0 * Eigen::Vector3d(N(rng), N(rng), N(rng)));
     // The outline test on three poses of four, with tolerances from 1 to 5 mm.
     const float outline = k % 4 == 3 ? 0.0f : 1.0f + float(k % 5);
-    fits.push_back(make_pose_fit(p.R, p.t, s.cam, s.geometry, {6.0f + k % 5, 2.0f, 5.4f, outline}));
+    // Residuals read back on every other pose.
+    fits.push_back(make_pose_fit(p.R, p.t, s.cam, s.geometry,
+                                 {6.0f + k % 5, 2.0f, 5.4f, outline, k % 2 == 0}));
   }
   // Degenerate: behind the camera, and far outside the image.
   fits.push_back(make_pose_fit(s.R, s.t - Eigen::Vector3d(0, 0, 1000), s.cam, s.geometry, {6, 2, 5.4f}));
@@ -80,6 +82,19 @@ TEST(PoseFit, KernelMatchesReferenceOnRandomPoses) {
     EXPECT_NEAR(got[k].cost, want[k].cost, 1e-4 * (1.0 + want[k].cost));
     EXPECT_NEAR(got[k].agreement, want[k].agreement, 1e-5 * (1.0 + want[k].agreement));
     EXPECT_LE(got[k].agreement, got[k].count[BP_FIT_INLIER] + 1e-3);
+    // Residuals: where they are exactly (the classes match exactly), their values to float
+    // rounding of a few-mm quantity.
+    ASSERT_EQ(got[k].residuals.size(), want[k].residuals.size()) << "pose " << k;
+    ASSERT_EQ(got[k].residuals.size(), fits[k].residuals ? s.model.points.size() : 0u);
+    std::size_t finite = 0;
+    for (std::size_t j = 0; j < got[k].residuals.size(); ++j) {
+      const float g = got[k].residuals[j], w = want[k].residuals[j];
+      ASSERT_EQ(std::isfinite(g), std::isfinite(w)) << "pose " << k << " point " << j;
+      if (!std::isfinite(w)) continue;
+      EXPECT_NEAR(g, w, 1e-4f * (1.0f + std::fabs(w))) << "pose " << k << " point " << j;
+      ++finite;
+    }
+    EXPECT_EQ(finite, fits[k].residuals ? want[k].used : 0u) << "pose " << k;
     for (unsigned c = 0; c < BP_FIT_CLASSES; ++c) seen[c] += got[k].count[c];
   }
   for (unsigned c = 0; c < BP_FIT_CLASSES; ++c) EXPECT_GT(seen[c], 0u) << "class " << c;
