@@ -16,6 +16,7 @@
 #include "host/detect/bin_region.hpp"
 #include "host/detect/bin_spec.hpp"
 #include "host/detect/cloud_image.hpp"
+#include "host/detect/image_memory.hpp"
 #include "host/detect/ppf_pose.hpp"
 #include "host/detect/pose_refine.hpp"
 #include "host/detect/scene_cloud.hpp"
@@ -297,6 +298,7 @@ std::vector<Detection> Detector::detect(const DepthImage& depth, const bp_camera
   DetectTimes t;
   Stopwatch clock;
   require(depth.width > 0 && depth.height > 0, "the depth image is empty");
+  check_image_fits_in_memory(depth.width, depth.height);
   require(std::any_of(depth.raw.begin(), depth.raw.end(), [](std::uint16_t v) { return v > 0; }),
           "the depth image has no valid pixel (all zero)");
   ScenePrepOptions prep;
