@@ -1,4 +1,5 @@
 #include "synth/synthesize.hpp"
+#include "synth/pile_cache.hpp"
 
 #include <chrono>
 #include <cmath>
@@ -74,8 +75,17 @@ void validate_synth_options(const SynthOptions& o) {
   check(o.sensor);
 }
 
+std::string physics_key(const nlohmann::json& manifest) {
+  nlohmann::json physics = manifest;
+  for (const char* picture_only :
+       {"noise", "sensor", "camera_height_mm", "camera", "image", "depth_scale"})
+    physics.erase(picture_only);
+  return physics.dump();
+}
+
 SynthSummary synthesize(const Model& model, const std::string& model_description,
-                        const SynthOptions& o, const std::vector<Model>& distractors) {
+                        const SynthOptions& o, const std::vector<Model>& distractors,
+                        PileCache* piles) {
   validate_synth_options(o);
   if (distractors.size() != o.distractors.size())
     throw InputError(fmt::format("synthesize: {} distractor models for {} distractors",
@@ -101,7 +111,9 @@ SynthSummary synthesize(const Model& model, const std::string& model_description
   for (const Mesh& m : meshes) mesh_list.push_back(&m);
   check_bin_capacity(o.drop.objects, estimate_bin_capacity(o.drop.bin_size_mm, mesh_list, counts));
   fs::create_directories(o.out / "test");
-  check_or_write_manifest(o.out, synth_manifest(o, inputs));
+  const nlohmann::json manifest = synth_manifest(o, inputs);
+  check_or_write_manifest(o.out, manifest);
+  const std::string pile_key = physics_key(manifest);
   const ShardRecord record = synth_shard_record(o.out, o.bins, o.shard.count);
   const auto done = [&](int b) { return bin_done(o.out, b); };
   if (o.shard.sharded()) {
@@ -158,11 +170,16 @@ SynthSummary synthesize(const Model& model, const std::string& model_description
     // orientations are those of a bin of one kind.
     const std::vector<int> sequence = mixed_sequence(counts, mix_seed(drop.seed, 0));
     t0 = Clock::now();
-    const DropResult dropped = drop_parts(kinds, sequence, drop, [&](const DropProgress& p) {
-      progress.update(std::size_t(p.wave), fmt::format("wave {}/{}: {} moving, {:.1f} s simulated",
-                                                       p.wave + 1, p.waves, p.parts_moving,
-                                                       p.simulated_seconds));
-    });
+    const DropResult* cached = piles ? piles->find(pile_key, b) : nullptr;
+    const DropResult dropped =
+        cached ? *cached
+               : drop_parts(kinds, sequence, drop, [&](const DropProgress& p) {
+                   progress.update(std::size_t(p.wave),
+                                   fmt::format("wave {}/{}: {} moving, {:.1f} s simulated",
+                                               p.wave + 1, p.waves, p.parts_moving,
+                                               p.simulated_seconds));
+                 });
+    if (piles && !cached) piles->store(pile_key, b, dropped);
     const double physics = seconds_since(t0);
     progress.update(std::size_t(waves), "rendering");
 
@@ -205,11 +222,14 @@ SynthSummary synthesize(const Model& model, const std::string& model_description
     std::size_t visible = 0;
     for (auto px : rendered.px_visible) visible += px > 0;
     progress.finish(fmt::format(
-        "{}: {} parts ({} visible), {}{:.1f} s simulated; physics {:.1f} s, render {:.2f} s, "
+        "{}: {} parts ({} visible), {}{:.1f} s simulated; physics {}, render {:.2f} s, "
         "write {:.2f} s{}",
         scene.filename().string(), dropped.poses.size(), visible,
         dropped.stats.settled ? "at rest after " : "NOT at rest (time limit) after ",
-        dropped.stats.simulated_seconds, physics, render, write,
+        dropped.stats.simulated_seconds,
+        cached ? std::string("reused (the pile of an earlier noise level)")
+               : fmt::format("{:.1f} s", physics),
+        render, write,
         dropped.stats.message.empty() ? "" : "; " + dropped.stats.message));
     summary.seconds_physics += physics;
     summary.seconds_render += render;

@@ -5,6 +5,8 @@
 // interrupted run leaves only whole bins, and the same command again resumes where it stopped.
 #pragma once
 
+#include <nlohmann/json.hpp>
+
 #include <cstdint>
 #include <array>
 #include <filesystem>
@@ -57,8 +59,16 @@ struct Model;
 // `model_description` (e.g. the --model argument) is recorded so a resumed run can tell that the
 // existing dataset was made from the same input. `distractors` are the models of
 // options.distractors, loaded, in the same order.
+// `piles` (optional) keeps the simulated piles across calls that differ only in what does not
+// move a part (noise, sensor, camera): `run`'s noise levels (pile_cache.hpp).
+class PileCache;
 SynthSummary synthesize(const Model& model, const std::string& model_description,
-                        const SynthOptions& options, const std::vector<Model>& distractors = {});
+                        const SynthOptions& options, const std::vector<Model>& distractors = {},
+                        PileCache* piles = nullptr);
+
+// What a bin's pile depends on, as a string: the dataset's manifest without what only changes the
+// picture (noise, sensor, camera, image, depth scale).
+std::string physics_key(const nlohmann::json& manifest);
 
 // Throws InputError for options no bin can be made with.
 void validate_synth_options(const SynthOptions& options);

@@ -13,6 +13,7 @@
 #include "host/core/error.hpp"
 #include "host/core/read_file.hpp"
 #include "host/detect/detect_step.hpp"
+#include "synth/pile_cache.hpp"
 #include "synth/synthesize.hpp"
 #include "host/core/timing.hpp"
 
@@ -142,9 +143,10 @@ ExperimentResult run_experiment(const Model& part, const ExperimentOptions& o, s
   const std::string description = describe(o.part);
 
   auto start = std::chrono::steady_clock::now();
+  PileCache piles;  // each bin's pile is simulated once for all noise levels
   for (double noise : o.noise) {
     const SynthOptions s = synth_options(o, noise);
-    const SynthSummary made = synthesize(part, description, s, distractors);
+    const SynthSummary made = synthesize(part, description, s, distractors, &piles);
     r.bins_made += made.bins_made;
     r.bins_reused += made.bins_skipped;
     log << fmt::format("synth  {}: {} bins made, {} already there\n", s.out.string(),

@@ -148,3 +148,27 @@ TEST(RunCli, BadOptionsExit2WithOneMessage) {
   EXPECT_FALSE(fs::exists(out));
   fs::remove_all(dir);
 }
+
+// Each bin's pile is simulated once for all noise levels (synth/pile_cache.hpp): the second
+// level says it reused the pile, and its files are byte for byte those `synth` makes alone.
+TEST(RunCli, SimulatesEachPileOnceForAllNoiseLevels) {
+  const fs::path dir = test::fresh_temp_dir("run_piles");
+  const std::string common =
+      "--model builtin:bolt --bins 2 --objects 15 --width 320 --height 180 --seed 4";
+  auto r = test::run_binpick(
+      fmt::format("run {} --noise 0,0.03 --out {}", common, (dir / "exp").string()));
+  ASSERT_EQ(r.status, 0) << r.out << r.err;
+  const std::string said = r.out + r.err;
+  EXPECT_NE(said.find("physics reused (the pile of an earlier noise level)"), std::string::npos)
+      << said;
+  r = test::run_binpick(
+      fmt::format("synth {} --noise 0.03 --out {}", common, (dir / "alone").string()));
+  ASSERT_EQ(r.status, 0) << r.out << r.err;
+  for (const char* file : {"scene_gt.json", "scene_gt_info.json", "depth/000000.png"})
+    for (const char* scene : {"000000", "000001"}) {
+      const fs::path in_run = dir / "exp" / "noise_0.03" / "test" / scene / file;
+      const fs::path alone = dir / "alone" / "test" / scene / file;
+      EXPECT_EQ(test::slurp(in_run), test::slurp(alone)) << in_run;
+      EXPECT_GT(fs::file_size(alone), 0u) << alone;
+    }
+}
