@@ -187,10 +187,56 @@ TEST(BopVsdRendered, UnknownObjectIsAnInputError) {
   EXPECT_THROW(renderer.render(box.K, box.width, box.height, {{2, box.gt}}), InputError);
 }
 
-// Random images in the layout the toolkit gets them (dense float32 depth, 0 = none), vsd_errors
-// on their silhouettes, and tools/bop_toolkit_check.py --vsd-cases recomputing them with a numpy
-// transcription of pose_error.vsd, visibility.py and misc.depth_im_to_dist_im_fast.
-TEST(BopVsdToolkit, RandomImagesAgreeWithTheTranscription) {
+// One case for tools/bop_toolkit_check.py --vsd-cases: the images as the toolkit holds them
+// (dense float32 depth, 0 = none) and binpick's errors.
+nlohmann::json toolkit_case(const PartSilhouette& est, const PartSilhouette& gt,
+                            const BopDepthImage& test, const Eigen::Matrix3d& K,
+                            const VsdSettings& s) {
+  auto dense = [&](const PartSilhouette& sil) {
+    std::vector<double> d(std::size_t(test.width) * test.height, 0.0);
+    for (std::size_t i = 0; i < sil.pixels.size(); ++i) d[sil.pixels[i]] = sil.depth_mm[i];
+    return d;
+  };
+  return {{"width", test.width}, {"height", test.height},
+          {"K", {K(0, 0), K(0, 2), K(1, 1), K(1, 2)}},
+          {"depth_raw", *test.raw}, {"depth_scale", test.depth_scale},
+          {"depth_est", dense(est)}, {"depth_gt", dense(gt)},
+          {"delta", s.delta_mm}, {"taus", s.taus},
+          {"normalized_by_diameter", s.normalized_by_diameter},
+          {"diameter", s.diameter},
+          {"errors", vsd_errors(est, gt, test, K, s)}};
+}
+
+// The box rendered by Vulkan at the ground truth and at poses near it, against a test image of
+// the ground truth with holes and 1 mm steps: the depth arrays eval compares.
+std::vector<nlohmann::json> rendered_cases(std::mt19937& rng) {
+  RenderedBox box;
+  ModelDepthRenderer renderer({{1, box.mesh}});
+  std::uniform_real_distribution<double> unit(0, 1);
+  std::vector<PosedObject> objects{{1, box.gt}};
+  for (int k = 0; k < 6; ++k) {
+    RigidPose p = box.gt;
+    p.t += Eigen::Vector3d(unit(rng) - 0.5, unit(rng) - 0.5, unit(rng) - 0.5) * 30.0;
+    p.R = Eigen::AngleAxisd(0.3 * unit(rng), Eigen::Vector3d::UnitY()).toRotationMatrix() * p.R;
+    objects.push_back({1, p});
+  }
+  const auto renders = renderer.render(box.K, box.width, box.height, objects);
+  std::vector<std::uint16_t> raw(std::size_t(box.width) * box.height, 0);
+  for (std::size_t i = 0; i < renders[0].pixels.size(); ++i)
+    if (unit(rng) > 0.1) raw[renders[0].pixels[i]] = std::uint16_t(std::lround(renders[0].depth_mm[i]));
+  const BopDepthImage test{box.width, box.height, &raw, 1.0};
+  VsdSettings s;
+  s.diameter = box.diameter();
+  std::vector<nlohmann::json> out;
+  for (std::size_t k = 1; k < renders.size(); ++k)
+    out.push_back(toolkit_case(renders[k], renders[0], test, box.K, s));
+  return out;
+}
+
+// Random images and Vulkan renderings, vsd_errors on them, and tools/bop_toolkit_check.py
+// --vsd-cases recomputing them with a numpy transcription of pose_error.vsd, visibility.py and
+// misc.depth_im_to_dist_im_fast.
+TEST(BopVsdToolkit, RandomAndRenderedImagesAgreeWithTheTranscription) {
   const auto dir = test::fresh_temp_dir("bop_vsd_toolkit");
   std::mt19937 rng(7);
   std::uniform_real_distribution<double> unit(0, 1);
@@ -219,23 +265,15 @@ TEST(BopVsdToolkit, RandomImagesAgreeWithTheTranscription) {
     s.diameter = 20 + 100 * unit(rng);
     s.normalized_by_diameter = c % 3 != 0;
     if (!s.normalized_by_diameter) s.taus = {1, 5, 10, 20, 40};
-    auto dense = [&](const PartSilhouette& sil) {
-      std::vector<double> d(w * h, 0.0);
-      for (std::size_t i = 0; i < sil.pixels.size(); ++i) d[sil.pixels[i]] = sil.depth_mm[i];
-      return d;
-    };
-    const BopDepthImage test{w, h, &raw, scale};
-    cases.push_back({{"width", w}, {"height", h},
-                     {"K", {K(0, 0), K(0, 2), K(1, 1), K(1, 2)}},
-                     {"depth_raw", raw}, {"depth_scale", scale},
-                     {"depth_est", dense(est)}, {"depth_gt", dense(gt)},
-                     {"delta", s.delta_mm}, {"taus", s.taus},
-                     {"normalized_by_diameter", s.normalized_by_diameter},
-                     {"diameter", s.diameter},
-                     {"errors", vsd_errors(est, gt, test, K, s)}});
+    cases.push_back(toolkit_case(est, gt, {w, h, &raw, scale}, K, s));
     for (double e : cases.back()["errors"]) between += e > 0 && e < 1;
   }
   EXPECT_GT(between, 40);
+  for (auto& c : rendered_cases(rng)) {
+    for (double e : c["errors"]) between += e > 0 && e < 1;
+    cases.push_back(std::move(c));
+  }
+  EXPECT_GT(between, 70);
   const auto file = dir / "cases.json";
   std::ofstream(file) << cases.dump();
   const std::string cmd = fmt::format(
@@ -245,7 +283,7 @@ TEST(BopVsdToolkit, RandomImagesAgreeWithTheTranscription) {
   const std::string check = test::slurp(dir / "check.txt");
   if (WIFEXITED(status) && WEXITSTATUS(status) == 77) GTEST_SKIP() << check;
   EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0) << check;
-  EXPECT_NE(check.find("VSD: 40 cases"), std::string::npos) << check;
+  EXPECT_NE(check.find("VSD: 46 cases"), std::string::npos) << check;
   std::filesystem::remove_all(dir);
 }
 

@@ -126,9 +126,11 @@ std::string bop_summary_lines(const std::vector<DatasetEvaluation>& evaluations)
     }
     if (b.has_vsd)
       s += fmt::format("{:<24} BOP: AR_VSD {:.3f}  AR_MSSD {:.3f}  AR_MSPD {:.3f}  AR {:.3f}  "
-                       "({} targets, {} estimates)\n",
+                       "({} targets, {} estimates; VSD rendered {} models in {:.1f} s, compared "
+                       "in {:.1f} s)\n",
                        e.dataset.label, b.vsd.average, b.mssd.overall.average,
-                       b.mspd.overall.average, b.average_recall, b.targets, b.estimates);
+                       b.mspd.overall.average, b.average_recall, b.targets, b.estimates,
+                       b.vsd.renders, b.vsd.render_ms / 1e3, b.vsd.compare_ms / 1e3);
     else
       s += fmt::format("{:<24} BOP: AR_MSSD {:.3f}  AR_MSPD {:.3f}  AR(MSSD,MSPD) {:.3f}  "
                        "({} targets, {} estimates; no VSD{})\n",
