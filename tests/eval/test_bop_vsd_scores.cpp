@@ -3,6 +3,8 @@
 // estimate and each target is rendered once per image.
 #include <gtest/gtest.h>
 
+#include <fstream>
+
 #include <fmt/format.h>
 
 #include "host/eval/metrics/bop_scores.hpp"
@@ -59,6 +61,21 @@ TEST(BopVsdScores, GroundTruthScoresOneAndFarOffScoresAboutZero) {
   EXPECT_FALSE(skipped.has_vsd);
   EXPECT_EQ(skipped.vsd.renders, 0);
   EXPECT_EQ(skipped.average_recall, 1.0);
+
+  // An eval model without triangles (a point cloud) cannot be rendered: no VSD, the rest is.
+  {
+    const fs::path ply = fs::path(data) / "models_eval" / "obj_000001.ply";
+    const fs::path kept = dir / "kept.ply";
+    fs::rename(ply, kept);
+    std::ofstream(ply) << "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\n"
+                          "property float y\nproperty float z\nend_header\n0 0 0\n9 0 0\n0 9 0\n";
+    const BopScores points = bop_scores(dataset, ground_truth_rows(dataset, 0));
+    EXPECT_FALSE(points.has_vsd);
+    EXPECT_NE(points.vsd.unavailable.find("no triangles"), std::string::npos)
+        << points.vsd.unavailable;
+    EXPECT_EQ(points.mssd.overall.average, 1.0);
+    fs::rename(kept, ply);
+  }
 
   // Without the depth images VSD cannot be computed; the other two still are.
   fs::remove_all(fs::path(data) / "test" / "000000" / "depth");

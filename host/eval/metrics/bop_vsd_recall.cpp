@@ -2,14 +2,15 @@
 
 #include <chrono>
 #include <map>
-#include <numeric>
 #include <set>
 
 #include "host/core/error.hpp"
 #include "host/eval/metrics/eval_vertices.hpp"
 #include "host/eval/metrics/vsd_rendering.hpp"
 #include "host/formats/bop/png_image.hpp"
-#include "host/formats/mesh/load_model.hpp"
+#include "host/core/mesh_normals.hpp"
+#include "host/core/read_file.hpp"
+#include "host/formats/mesh/mesh_readers.hpp"
 
 namespace binpick::eval {
 namespace {
@@ -60,11 +61,29 @@ ImagePlan plan_image(const EvalImage& image, const std::vector<const ScoredGroup
   return plan;
 }
 
-ModelDepthRenderer make_renderer(const std::vector<ScoredGroup>& groups, const fs::path& dir) {
+// The meshes as the files hold them (no repair: the toolkit renders them as they are), with
+// normals only because the renderer takes them. Empty with `why` set if a file has no triangles
+// (a point cloud has vertices for MSSD and MSPD but no surface to render).
+std::map<int, Mesh> read_meshes(const std::vector<ScoredGroup>& groups, const fs::path& dir,
+                                std::string& why) {
   std::map<int, Mesh> meshes;
-  for (const auto& g : groups)
-    if (!meshes.count(g.obj_id)) meshes[g.obj_id] = load_model(bop_model_path(dir, g.obj_id).string(), {});
-  return ModelDepthRenderer(std::move(meshes));
+  for (const auto& g : groups) {
+    if (meshes.count(g.obj_id)) continue;
+    const fs::path path = bop_model_path(dir, g.obj_id);
+    Mesh mesh;
+    try {
+      mesh = read_ply(read_file_bytes(path));
+    } catch (const InputError& e) {
+      throw InputError(path.string() + ": " + e.what());
+    }
+    if (mesh.triangles.empty()) {
+      why = path.string() + " has no triangles to render";
+      return {};
+    }
+    if (mesh.normals.size() != mesh.positions.size()) compute_crease_normals(mesh);
+    meshes[g.obj_id] = std::move(mesh);
+  }
+  return meshes;
 }
 
 }  // namespace
@@ -85,9 +104,11 @@ VsdRecall bop_vsd_recall(const Dataset& dataset, const std::vector<ScoredGroup>&
       out.unavailable = "no " + path.string();
       return out;
     }
+  auto meshes = read_meshes(groups, models_dir, out.unavailable);
+  if (!out.unavailable.empty()) return out;
   VsdSettings settings;
   out.taus = settings.taus;
-  ModelDepthRenderer renderer = make_renderer(groups, models_dir);
+  ModelDepthRenderer renderer(std::move(meshes));
 
   std::vector<std::vector<TargetGroup>> tau_groups(settings.taus.size());
   for (const auto& [key, image_groups] : images) {
