@@ -1,11 +1,14 @@
 // BOP's VSD recall on a synthetic bin: the ground truth as results scores 1 at every tau and
 // threshold, the same poses pushed 0.6 diameters away from the camera about 0, and each
-// estimate and each target is rendered once per image.
+// estimate and each target is rendered once per image; without depth, triangles or a Vulkan
+// device there is no VSD but the other scores are given.
 #include <gtest/gtest.h>
 
+#include <cstdlib>
 #include <fstream>
 
 #include <fmt/format.h>
+#include <nlohmann/json.hpp>
 
 #include "host/eval/metrics/bop_scores.hpp"
 #include "tests/support/cli_run.hpp"
@@ -83,6 +86,27 @@ TEST(BopVsdScores, GroundTruthScoresOneAndFarOffScoresAboutZero) {
   EXPECT_FALSE(no_depth.has_vsd);
   EXPECT_NE(no_depth.vsd.unavailable.find("depth"), std::string::npos);
   EXPECT_EQ(no_depth.average_recall, 1.0);
+  fs::remove_all(dir);
+}
+
+TEST(BopVsdScores, WithoutAVulkanDeviceEvalStillGivesTheOtherScores) {
+  const fs::path dir = test::fresh_temp_dir("bop_vsd_no_device");
+  const std::string data = (dir / "data").string(), csv = (dir / "gt.csv").string();
+  auto r = test::run_binpick(fmt::format(
+      "synth --model builtin:shaft --out {} --bins 1 --objects 5 --width 320 --height 180", data));
+  ASSERT_EQ(r.status, 0) << r.err;
+  const Dataset dataset = load_dataset(data);
+  bop::write_results_csv(csv, ground_truth_rows(dataset, 0));
+  ::setenv("BINPICK_VULKAN_DEVICE", "no-such-device", 1);
+  r = test::run_binpick(fmt::format("eval --dataset {} --results {} --out {} --pictures 0 --json",
+                                    data, csv, (dir / "report").string()));
+  ::unsetenv("BINPICK_VULKAN_DEVICE");
+  ASSERT_EQ(r.status, 0) << r.err;
+  const auto bop = nlohmann::json::parse(r.out)["datasets"][0]["bop"];
+  EXPECT_TRUE(bop["ar_vsd"].is_null());
+  EXPECT_NE(bop["vsd"]["unavailable"].get<std::string>().find("BINPICK_VULKAN_DEVICE"),
+            std::string::npos);
+  EXPECT_EQ(bop["ar"].get<double>(), 1.0);
   fs::remove_all(dir);
 }
 

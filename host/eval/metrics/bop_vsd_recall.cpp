@@ -86,17 +86,8 @@ std::map<int, Mesh> read_meshes(const std::vector<ScoredGroup>& groups, const fs
   return meshes;
 }
 
-}  // namespace
-
-double object_vsd_average(const VsdRecall& vsd, std::size_t i) {
-  if (vsd.by_tau.empty()) return 0;
-  double sum = 0;
-  for (const auto& m : vsd.by_tau) sum += m.objects.at(i).curve.average;
-  return sum / double(vsd.by_tau.size());
-}
-
-VsdRecall bop_vsd_recall(const Dataset& dataset, const std::vector<ScoredGroup>& groups,
-                         const fs::path& models_dir) {
+VsdRecall vsd_recall(const Dataset& dataset, const std::vector<ScoredGroup>& groups,
+                     const fs::path& models_dir) {
   VsdRecall out;
   const auto images = by_image(groups);
   for (const auto& [key, image_groups] : images)
@@ -152,6 +143,27 @@ VsdRecall bop_vsd_recall(const Dataset& dataset, const std::vector<ScoredGroup>&
   for (const auto& m : out.by_tau) sum += m.overall.average;
   out.average = out.by_tau.empty() ? 0 : sum / double(out.by_tau.size());
   return out;
+}
+
+}  // namespace
+
+double object_vsd_average(const VsdRecall& vsd, std::size_t i) {
+  if (vsd.by_tau.empty()) return 0;
+  double sum = 0;
+  for (const auto& m : vsd.by_tau) sum += m.objects.at(i).curve.average;
+  return sum / double(vsd.by_tau.size());
+}
+
+VsdRecall bop_vsd_recall(const Dataset& dataset, const std::vector<ScoredGroup>& groups,
+                         const fs::path& models_dir) {
+  try {
+    return vsd_recall(dataset, groups, models_dir);
+  } catch (const DeviceError& e) {
+    // eval's other figures need no device: without Vulkan they are still given.
+    VsdRecall out;
+    out.unavailable = std::string("no Vulkan rendering (") + e.what() + ")";
+    return out;
+  }
 }
 
 }  // namespace binpick::eval

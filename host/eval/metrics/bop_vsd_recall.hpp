@@ -43,7 +43,7 @@ double object_vsd_average(const VsdRecall& vsd, std::size_t i);
 // groups: every scored (image, obj_id) (rows may be empty), images of the dataset. models_dir:
 // where obj_NNNNNN.ply of each obj_id is (models_eval/ or models/: the toolkit renders its eval
 // models). Images' depth comes from their depth PNG (depth_scale of scene_camera.json); without
-// one, or with a model file without triangles, VSD is `unavailable`. InputError for a model or
+// one, with a model file without triangles, or without a Vulkan device, VSD is `unavailable`. InputError for a model or
 // depth file that cannot be read.
 VsdRecall bop_vsd_recall(const Dataset& dataset, const std::vector<ScoredGroup>& groups,
                          const std::filesystem::path& models_dir);
