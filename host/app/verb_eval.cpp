@@ -27,6 +27,7 @@ struct EvalArgs {
   std::int64_t pictures = 3;  // wide, so a negative value reaches our range check
   bool json = false;
   bool no_vsd = false;
+  double vsd_delta_mm = eval::kBopVsdDelta;
   eval::DatasetLayout layout;
   std::string shard;  // refused: see kUnsharded
 };
@@ -94,6 +95,8 @@ void run_eval(const EvalArgs& args) {
   options.out = out;
   options.pictures = int(args.pictures);
   options.eval.vsd = !args.no_vsd;
+  options.eval.vsd_delta_mm = args.vsd_delta_mm;
+  eval::check(options.eval);
   // Everything is read and checked here, before the first file of the report is written.
   const auto evaluations = eval::evaluate_inputs(inputs, options.eval);
   const OutputLock lock = OutputLock::directory(out);
@@ -135,6 +138,10 @@ void add_eval_verb(CLI::App& app) {
   verb->add_flag("--no-vsd", args->no_vsd,
                  "skip BOP's VSD (it renders the model at every estimate and target); AR is then "
                  "the mean of AR_MSSD and AR_MSPD");
+  verb->add_option("--vsd-delta", args->vsd_delta_mm,
+                   "VSD's visibility tolerance, mm (the BOP toolkit's per-dataset vsd_deltas: 15, "
+                   "5 for ITODD)")
+      ->capture_default_str();
   add_unsharded_option(verb, args->shard, kUnsharded);
   verb->callback([args] { run_eval(*args); });
 }

@@ -132,7 +132,7 @@ BopScores bop_scores(const Dataset& dataset, const std::vector<bop::ResultRow>& 
   scores.mspd = recall_over_thresholds(mspd_groups, bop_mspd_thresholds());
   scores.average_recall = (scores.mssd.overall.average + scores.mspd.overall.average) / 2.0;
   if (!options.vsd) return scores;
-  scores.vsd = bop_vsd_recall(dataset, scored, scores.vertices);
+  scores.vsd = bop_vsd_recall(dataset, scored, scores.vertices, options.vsd_delta_mm);
   scores.has_vsd = scores.vsd.unavailable.empty();
   if (scores.has_vsd)
     scores.average_recall =

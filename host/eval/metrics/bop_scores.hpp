@@ -35,6 +35,7 @@ struct BopScores {
 
 struct BopOptions {
   bool vsd = true;  // render and compute VSD (the expensive one of the three)
+  double vsd_delta_mm = kBopVsdDelta;
 };
 
 // Thresholds of eval_bop19_pose.py: MSSD arange(0.05, 0.51, 0.05) (fraction of the diameter),

@@ -87,7 +87,7 @@ std::map<int, Mesh> read_meshes(const std::vector<ScoredGroup>& groups, const fs
 }
 
 VsdRecall vsd_recall(const Dataset& dataset, const std::vector<ScoredGroup>& groups,
-                     const fs::path& models_dir) {
+                     const fs::path& models_dir, double delta_mm) {
   VsdRecall out;
   const auto images = by_image(groups);
   for (const auto& [key, image_groups] : images)
@@ -98,6 +98,7 @@ VsdRecall vsd_recall(const Dataset& dataset, const std::vector<ScoredGroup>& gro
   auto meshes = read_meshes(groups, models_dir, out.unavailable);
   if (!out.unavailable.empty()) return out;
   VsdSettings settings;
+  settings.delta_mm = out.delta_mm = delta_mm;
   out.taus = settings.taus;
   ModelDepthRenderer renderer(std::move(meshes));
 
@@ -155,9 +156,9 @@ double object_vsd_average(const VsdRecall& vsd, std::size_t i) {
 }
 
 VsdRecall bop_vsd_recall(const Dataset& dataset, const std::vector<ScoredGroup>& groups,
-                         const fs::path& models_dir) {
+                         const fs::path& models_dir, double delta_mm) {
   try {
-    return vsd_recall(dataset, groups, models_dir);
+    return vsd_recall(dataset, groups, models_dir, delta_mm);
   } catch (const DeviceError& e) {
     // eval's other figures need no device: without Vulkan they are still given.
     VsdRecall out;

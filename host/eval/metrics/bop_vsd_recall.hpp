@@ -28,6 +28,7 @@ struct ScoredGroup {
 
 struct VsdRecall {
   std::string unavailable;         // why VSD was not computed (no depth image); empty if it was
+  double delta_mm = kBopVsdDelta;  // the visibility tolerance used
   std::vector<double> taus;        // fractions of the diameter
   std::vector<MetricRecall> by_tau;  // recall over bop_vsd_thresholds() at each tau
   double average = 0;              // AR_VSD: mean over taus and thresholds
@@ -46,6 +47,7 @@ double object_vsd_average(const VsdRecall& vsd, std::size_t i);
 // one, with a model file without triangles, or without a Vulkan device, VSD is `unavailable`. InputError for a model or
 // depth file that cannot be read.
 VsdRecall bop_vsd_recall(const Dataset& dataset, const std::vector<ScoredGroup>& groups,
-                         const std::filesystem::path& models_dir);
+                         const std::filesystem::path& models_dir,
+                         double delta_mm = kBopVsdDelta);
 
 }  // namespace binpick::eval

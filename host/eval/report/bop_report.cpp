@@ -42,7 +42,7 @@ json vsd_json(const BopScores& s) {
     return s.vsd.unavailable.empty() ? json(nullptr) : json{{"unavailable", s.vsd.unavailable}};
   json recall = json::array();
   for (const auto& m : s.vsd.by_tau) recall.push_back(m.overall.recall);
-  return {{"delta_mm", kBopVsdDelta},
+  return {{"delta_mm", s.vsd.delta_mm},
           {"taus", s.vsd.taus},
           {"thresholds", bop_vsd_thresholds()},
           {"recall", recall},  // [tau][threshold]
