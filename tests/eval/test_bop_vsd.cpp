@@ -97,6 +97,19 @@ TEST(BopVsd, DistancesNotDepthsAreCompared) {
   EXPECT_EQ(e[1], 0.0);
 }
 
+TEST(BopVsd, ToleranceIsInclusive) {
+  // One pixel on the optical axis (distance = depth): a model exactly delta = 15 mm behind the
+  // test surface is visible (<=), one a float32 step farther is not (then the union is empty).
+  Eigen::Matrix3d K;
+  K << 500, 0, 0, 0, 500, 0, 0, 0, 1;
+  const std::vector<std::uint16_t> raw{1000};
+  const BopDepthImage test{1, 1, &raw, 1.0};
+  const PartSilhouette at{{0}, {1015.0f}};
+  const PartSilhouette beyond{{0}, {std::nextafter(1015.0f, 2000.0f)}};
+  EXPECT_EQ(vsd_errors(at, at, test, K, settings({0.05}))[0], 0.0);
+  EXPECT_EQ(vsd_errors(beyond, beyond, test, K, settings({0.05}))[0], 1.0);
+}
+
 TEST(BopVsd, BadInputIsAnInputError) {
   const TinyCase c{{1000, 1000}};
   const auto K = narrow_camera();
