@@ -34,14 +34,15 @@ std::vector<PartSilhouette> ModelDepthRenderer::render(const Eigen::Matrix3d& K,
   }
   if (objects.empty()) return {};
   const CameraKey key{width, height, K(0, 0), K(1, 1), K(0, 2), K(1, 2)};
-  auto& renderer = renderers_[key];
-  if (!renderer) {
+  if (!renderer_ || key != camera_) {
     const RenderCamera camera{width, height, K(0, 0), K(1, 1), K(0, 2), K(1, 2), kVsdNearMm,
                               kVsdFarMm};
+    renderer_.reset();  // first free the old one's buffers
     // Back faces are drawn: the toolkit's renderers do not cull, which matters for open meshes.
-    renderer = std::make_unique<BinRenderer>(meshes_, nullptr, camera, false);
+    renderer_ = std::make_unique<BinRenderer>(meshes_, nullptr, camera, false);
+    camera_ = key;
   }
-  return renderer->silhouettes(scene);
+  return renderer_->silhouettes(scene);
 }
 
 }  // namespace binpick::eval

@@ -42,8 +42,9 @@ class ModelDepthRenderer {
 
   // Each object drawn alone in a width x height image with intrinsics K (skew ignored): its
   // pixels and depth there (the nearest surface, back faces included, as the toolkit's
-  // renderers draw). One renderer is kept per distinct camera. InputError for an obj_id without
-  // a mesh.
+  // renderers draw). The renderer of the last camera is kept (building one compiles shaders;
+  // each holds image-sized buffers, so datasets with many cameras do not pile them up).
+  // InputError for an obj_id without a mesh.
   std::vector<PartSilhouette> render(const Eigen::Matrix3d& K, std::uint32_t width,
                                      std::uint32_t height, const std::vector<PosedObject>& objects);
 
@@ -51,7 +52,8 @@ class ModelDepthRenderer {
   using CameraKey = std::tuple<std::uint32_t, std::uint32_t, double, double, double, double>;
   std::vector<Mesh> meshes_;
   std::map<int, int> kind_of_;  // obj_id -> index into meshes_
-  std::map<CameraKey, std::unique_ptr<BinRenderer>> renderers_;
+  CameraKey camera_{};
+  std::unique_ptr<BinRenderer> renderer_;
 };
 
 }  // namespace binpick::eval
