@@ -5,11 +5,11 @@
 #include <set>
 
 #include "host/core/error.hpp"
+#include "host/core/mesh_normals.hpp"
+#include "host/core/read_file.hpp"
 #include "host/eval/metrics/eval_vertices.hpp"
 #include "host/eval/metrics/vsd_rendering.hpp"
 #include "host/formats/bop/png_image.hpp"
-#include "host/core/mesh_normals.hpp"
-#include "host/core/read_file.hpp"
 #include "host/formats/mesh/mesh_readers.hpp"
 
 namespace binpick::eval {
