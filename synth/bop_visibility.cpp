@@ -5,19 +5,9 @@
 #include <string>
 
 #include "host/core/error.hpp"
+#include "host/formats/bop/depth_distance.hpp"
 
 namespace binpick {
-namespace {
-
-// misc.depth_im_to_dist_im_fast: the distance of the point at depth z on pixel (u, v)'s ray,
-// in double with its order of operations.
-double distance(double z, std::uint32_t u, std::uint32_t v, const Eigen::Matrix3d& K) {
-  const double x = (double(u) - K(0, 2)) * z * (1.0 / K(0, 0));
-  const double y = (double(v) - K(1, 2)) * z * (1.0 / K(1, 1));
-  return std::sqrt(x * x + y * y + z * z);
-}
-
-}  // namespace
 
 BopVisibility bop_visibility(const PartSilhouette& part, const BopDepthImage& depth,
                              const Eigen::Matrix3d& K, double delta, bool keep_pixels) {
@@ -39,10 +29,9 @@ BopVisibility bop_visibility(const PartSilhouette& part, const BopDepthImage& de
     const std::uint16_t raw = (*depth.raw)[p];
     out.px_count_valid += raw > 0;
     // As the toolkit: both distances as float32, their difference against delta.
-    const float model = float(distance(model_z, u, v, K));
-    // The toolkit's depth image is float32: raw as float32 times the scale.
-    const double image_z = double(float(raw) * float(depth.depth_scale));
-    const float image = raw > 0 ? float(distance(image_z, u, v, K)) : 0.0f;
+    const float model = float(bop::distance_of_depth(model_z, u, v, K));
+    const double image_z = bop::depth_mm_of_raw(raw, depth.depth_scale);
+    const float image = raw > 0 ? float(bop::distance_of_depth(image_z, u, v, K)) : 0.0f;
     if (!(raw == 0 || model - image <= float(delta))) continue;
     if (keep_pixels) out.visible.push_back(p);
     if (out.px_count_visib++ == 0) x0 = x1 = int(u), y0 = y1 = int(v);

@@ -14,6 +14,16 @@ score.calc_localization_scores, with the settings of scripts/eval_bop19_pose.py
 
 Prints both sets of numbers and exits 1 if an AR differs by more than --tolerance (0.01), 77 if
 numpy or the toolkit is missing (a skip for ctest).
+
+VSD renders the model, which the toolkit does with OpenGL; what binpick must match exactly is
+the comparison of the rendered depth images, so that is checked on its own:
+
+  tools/bop_toolkit_check.py --vsd-cases cases.json
+
+recomputes the VSD errors of each case (depth images as binpick hands them to its vsd_errors, and
+its errors; tests/eval/test_bop_vsd.cpp writes them) with a transcription of the toolkit's
+pose_error.vsd, visibility.estimate_visib_mask_gt / _est ("bop19") and
+misc.depth_im_to_dist_im_fast, and exits 1 if any differs by more than 1e-6.
 """
 import argparse
 import json
@@ -107,12 +117,71 @@ def targets_of(dataset, split, scene_gts, scene_infos):
     return targets
 
 
+# Transcription of bop_toolkit_lib/misc.py depth_im_to_dist_im_fast (without its cache).
+def depth_im_to_dist_im_fast(depth_im, K, np):
+    xs, ys = np.meshgrid(np.arange(depth_im.shape[1]), np.arange(depth_im.shape[0]))
+    pre_Xs = (xs - K[0, 2]) / np.float64(K[0, 0])
+    pre_Ys = (ys - K[1, 2]) / np.float64(K[1, 1])
+    return np.sqrt(np.multiply(pre_Xs, depth_im) ** 2 + np.multiply(pre_Ys, depth_im) ** 2
+                   + depth_im.astype(np.float64) ** 2)
+
+
+# Transcription of bop_toolkit_lib/visibility.py _estimate_visib_mask, visib_mode "bop19".
+def estimate_visib_mask(d_test, d_model, delta, np):
+    d_diff = d_model.astype(np.float32) - d_test.astype(np.float32)
+    return np.logical_and(np.logical_or(d_diff <= delta, d_test == 0), d_model > 0)
+
+
+# Transcription of bop_toolkit_lib/pose_error.py vsd, cost "step", from the rendered depths.
+def vsd(depth_est, depth_gt, depth_test, K, delta, taus, normalized_by_diameter, diameter, np):
+    dist_test = depth_im_to_dist_im_fast(depth_test, K, np)
+    dist_gt = depth_im_to_dist_im_fast(depth_gt, K, np)
+    dist_est = depth_im_to_dist_im_fast(depth_est, K, np)
+    visib_gt = estimate_visib_mask(dist_test, dist_gt, delta, np)
+    visib_est = estimate_visib_mask(dist_test, dist_est, delta, np)
+    visib_est = np.logical_or(visib_est, np.logical_and(visib_gt, dist_est > 0))
+    visib_inter = np.logical_and(visib_gt, visib_est)
+    visib_union = np.logical_or(visib_gt, visib_est)
+    visib_union_count = visib_union.sum()
+    visib_comp_count = visib_union_count - visib_inter.sum()
+    dists = np.abs(dist_gt[visib_inter] - dist_est[visib_inter])
+    if normalized_by_diameter:
+        dists /= diameter
+    if visib_union_count == 0:
+        return [1.0] * len(taus)
+    return [(np.sum(dists >= tau) + visib_comp_count) / float(visib_union_count) for tau in taus]
+
+
+def check_vsd_cases(path, np):
+    worst, count = 0.0, 0
+    for i, c in enumerate(load_json(path)):
+        w, h = c["width"], c["height"]
+        fx, cx, fy, cy = c["K"]
+        K = np.array([[fx, 0, cx], [0, fy, cy], [0, 0, 1]], dtype=np.float64)
+        depth_test = np.array(c["depth_raw"], dtype=np.float32).reshape(h, w)  # inout.load_depth
+        depth_test *= c["depth_scale"]
+        depth_est = np.array(c["depth_est"], dtype=np.float32).reshape(h, w)
+        depth_gt = np.array(c["depth_gt"], dtype=np.float32).reshape(h, w)
+        ours = c["errors"]
+        theirs = vsd(depth_est, depth_gt, depth_test, K, float(c["delta"]),
+                     [float(t) for t in c["taus"]], c["normalized_by_diameter"],
+                     float(c["diameter"]), np)
+        for a, b in zip(ours, theirs):
+            worst = max(worst, abs(a - b))
+        count += 1
+        if len(ours) != len(theirs) or any(abs(a - b) > 1e-6 for a, b in zip(ours, theirs)):
+            print(f"case {i}: binpick {ours}\n        toolkit {theirs}")
+    print(f"VSD: {count} cases, largest difference {worst:.3g}")
+    return 0 if worst <= 1e-6 else 1
+
+
 def main():
     ap = argparse.ArgumentParser()
-    ap.add_argument("--toolkit", required=True)
-    ap.add_argument("--dataset", required=True)
-    ap.add_argument("--results", required=True)
-    ap.add_argument("--report", required=True)
+    ap.add_argument("--vsd-cases", help="check binpick's VSD errors of these cases, then exit")
+    ap.add_argument("--toolkit")
+    ap.add_argument("--dataset")
+    ap.add_argument("--results")
+    ap.add_argument("--report")
     ap.add_argument("--split", default="test")
     ap.add_argument("--tolerance", type=float, default=0.01)
     a = ap.parse_args()
@@ -121,6 +190,11 @@ def main():
     except ImportError:
         print("skipped: numpy is missing")
         return SKIP
+    if a.vsd_cases:
+        return check_vsd_cases(a.vsd_cases, np)
+    for name in ("toolkit", "dataset", "results", "report"):
+        if getattr(a, name) is None:
+            ap.error(f"--{name} is required (or --vsd-cases)")
     misc, pose_error, pose_matching, score = load_toolkit(a.toolkit)
 
     models_info = {int(k): v for k, v in

@@ -26,6 +26,8 @@ struct EvalArgs {
   std::string out;
   std::int64_t pictures = 3;  // wide, so a negative value reaches our range check
   bool json = false;
+  bool no_vsd = false;
+  double vsd_delta_mm = eval::kBopVsdDelta;
   eval::DatasetLayout layout;
   std::string shard;  // refused: see kUnsharded
 };
@@ -92,6 +94,9 @@ void run_eval(const EvalArgs& args) {
   eval::ReportOptions options;
   options.out = out;
   options.pictures = int(args.pictures);
+  options.eval.vsd = !args.no_vsd;
+  options.eval.vsd_delta_mm = args.vsd_delta_mm;
+  eval::check(options.eval);
   // Everything is read and checked here, before the first file of the report is written.
   const auto evaluations = eval::evaluate_inputs(inputs, options.eval);
   const OutputLock lock = OutputLock::directory(out);
@@ -113,7 +118,7 @@ void add_eval_verb(CLI::App& app) {
       "eval",
       "Evaluate detection results against a dataset's ground truth: translation and rotation "
       "errors, precision curves (all hypotheses and top-ranked per image), BOP's average recalls "
-      "(MSSD, MSPD; symmetry-aware; no VSD), precision against "
+      "(VSD rendered with Vulkan, MSSD and MSPD symmetry-aware), precision against "
       "score threshold (is the score calibrated?), pictures; writes report.html, report.json, "
       "curves.csv, score_curves.csv, hypotheses.csv and PNGs into --out");
   verb->add_option("--dataset", args->datasets,
@@ -130,6 +135,13 @@ void add_eval_verb(CLI::App& app) {
       ->capture_default_str();
   verb->add_flag("--json", args->json,
                  "print the summary as JSON (the content of report.json) instead of a table");
+  verb->add_flag("--no-vsd", args->no_vsd,
+                 "skip BOP's VSD (it renders the model at every estimate and target); AR is then "
+                 "the mean of AR_MSSD and AR_MSPD");
+  verb->add_option("--vsd-delta", args->vsd_delta_mm,
+                   "VSD's visibility tolerance, mm (the BOP toolkit's per-dataset vsd_deltas: 15, "
+                   "5 for ITODD)")
+      ->capture_default_str();
   add_unsharded_option(verb, args->shard, kUnsharded);
   verb->callback([args] { run_eval(*args); });
 }

@@ -137,9 +137,7 @@ RenderedBin BinRenderer::render_scene(const RenderScene& scene, const RenderOpti
     return out;
   }
   start = Clock::now();
-  std::vector<PixelRect> rects(parts);
-  for (std::uint32_t i = 0; i < parts; ++i)
-    rects[i] = projected_rect(parts_[std::size_t(kinds[i])], part_to_camera[i], camera_);
+  const std::vector<PixelRect> rects = part_rects(scene, kinds);
   PartPixelBuffers alone(d.ctx, parts);
   std::vector<std::array<int, 2>> shifts(parts, {0, 0});
   if (options.silhouettes) out.silhouettes.assign(parts, {});
@@ -161,6 +159,35 @@ RenderedBin BinRenderer::render_scene(const RenderScene& scene, const RenderOpti
   out.px_all = all.count;
   out.bbox_all = bop_bboxes(all);
   timings_.coverage_ms = ms_since(start);
+  return out;
+}
+
+std::vector<PixelRect> BinRenderer::part_rects(const RenderScene& scene,
+                                               const std::vector<int>& kinds) const {
+  std::vector<PixelRect> rects(scene.part_to_camera.size());
+  for (std::size_t i = 0; i < rects.size(); ++i)
+    rects[i] = projected_rect(parts_[std::size_t(kinds[i])], scene.part_to_camera[i], camera_);
+  return rects;
+}
+
+std::vector<PartSilhouette> BinRenderer::silhouettes(const RenderScene& scene) {
+  check_poses(scene.part_to_camera);
+  if (scene.part_to_camera.empty()) return {};
+  const std::vector<int> kinds =
+      scene.kinds.empty() ? std::vector<int>(scene.part_to_camera.size(), 0) : scene.kinds;
+  Device& d = *device_;
+  timings_ = {};
+  const auto start = Clock::now();
+  const RasterInstances instances = d.raster.instances(scene.part_to_camera, kinds, std::nullopt);
+  std::vector<PartSilhouette> out(scene.part_to_camera.size());
+  for (const AtlasBatch& batch :
+       pack_atlas(part_rects(scene, kinds), d.raster.atlas_width(), d.raster.atlas_height())) {
+    d.raster.draw_atlas(instances, batch, true);
+    silhouettes_from_atlas(static_cast<const std::uint32_t*>(d.raster.atlas_ids().mapped()),
+                           static_cast<const float*>(d.raster.atlas_zbuffer().mapped()), batch,
+                           camera_, out);
+  }
+  timings_.coverage_ms = timings_.silhouettes_ms = ms_since(start);
   return out;
 }
 

@@ -93,11 +93,17 @@ class BinRenderer {
   RenderedBin render(const std::vector<Eigen::Isometry3d>& part_to_camera,
                      const RenderOptions& options = {});
   RenderedBin render_scene(const RenderScene& scene, const RenderOptions& options = {});
+  // Only each part drawn alone (RenderOptions::silhouettes without the scene pass, which costs
+  // as much again): what BOP's pose errors render, the model at one pose at a time. The bin of
+  // the scene, if any, is not drawn.
+  std::vector<PartSilhouette> silhouettes(const RenderScene& scene);
   const RenderTimings& last_timings() const { return timings_; }
   const RenderCamera& camera() const { return camera_; }
 
  private:
   struct Device;  // the Vulkan objects (bin_renderer.cpp)
+  // The image rectangle each part can cover (bin_atlas.hpp).
+  std::vector<PixelRect> part_rects(const RenderScene& scene, const std::vector<int>& kinds) const;
   RenderCamera camera_;
   std::vector<Mesh> parts_;
   std::unique_ptr<Device> device_;

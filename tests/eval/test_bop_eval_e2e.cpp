@@ -45,11 +45,15 @@ TEST(BopEvalE2e, AverageRecallsAreFractionsConsistentWithThePapersFigures) {
   EXPECT_GT(targets, 10);  // most of the 20 parts are at least 10 % visible
   EXPECT_GT(bop["estimates"].get<int>(), 0);
   EXPECT_LE(bop["estimates"].get<int>(), 10);
-  for (const char* key : {"ar", "ar_mssd", "ar_mspd"}) {
+  for (const char* key : {"ar", "ar_vsd", "ar_mssd", "ar_mspd"}) {
     EXPECT_GE(bop[key].get<double>(), 0.0) << key;
     EXPECT_LE(bop[key].get<double>(), 1.0) << key;
   }
-  EXPECT_TRUE(bop["ar_vsd"].is_null());
+  EXPECT_NEAR(bop["ar"].get<double>(),
+              (bop["ar_vsd"].get<double>() + bop["ar_mssd"].get<double>() +
+               bop["ar_mspd"].get<double>()) / 3.0, 1e-12);
+  ASSERT_EQ(bop["vsd"]["recall"].size(), 10u);  // one curve per tau
+  EXPECT_GT(bop["vsd"]["renders"].get<int>(), 0);
   const auto mssd = bop["mssd"]["recall"].get<std::vector<double>>();
   ASSERT_EQ(mssd.size(), 10u);
   for (std::size_t k = 1; k < mssd.size(); ++k) EXPECT_GE(mssd[k], mssd[k - 1]);
@@ -65,9 +69,19 @@ TEST(BopEvalE2e, AverageRecallsAreFractionsConsistentWithThePapersFigures) {
   r = test::run_binpick(
       fmt::format("eval --dataset {} --results {} --out {} --pictures 0", data, csv, out));
   ASSERT_EQ(r.status, 0) << r.err;
-  EXPECT_NE(r.out.find("BOP: AR_MSSD "), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("BOP: AR_VSD "), std::string::npos) << r.out;
   EXPECT_NE(test::slurp(fs::path(out) / "report.html").find("BOP average recall"),
             std::string::npos);
+
+  // Without VSD: no rendering, AR of the two others.
+  r = test::run_binpick(fmt::format(
+      "eval --dataset {} --results {} --out {} --pictures 0 --json --no-vsd", data, csv, out));
+  ASSERT_EQ(r.status, 0) << r.err;
+  const auto no_vsd = nlohmann::json::parse(r.out)["datasets"][0]["bop"];
+  EXPECT_TRUE(no_vsd["ar_vsd"].is_null());
+  EXPECT_TRUE(no_vsd["vsd"].is_null());
+  EXPECT_NEAR(no_vsd["ar"].get<double>(),
+              (bop["ar_mssd"].get<double>() + bop["ar_mspd"].get<double>()) / 2.0, 1e-12);
 
   if (const char* toolkit = std::getenv("BOP_TOOLKIT")) {
     const std::string cmd = fmt::format(

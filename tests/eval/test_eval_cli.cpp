@@ -126,6 +126,8 @@ TEST(EvalCli, BadInputIsExitStatusTwoWithoutAReport) {
                          f.results.string() + "' --out '" + f.out.string() + "'",
                   "nowhere");
   expect_rejected(f, f.args(f.results, "-1"), "--pictures");
+  expect_rejected(f, f.args(f.results) + " --vsd-delta 0", "VSD delta 0 mm");
+  expect_rejected(f, f.args(f.results) + " --vsd-delta inf", "VSD delta inf mm");
 }
 
 }  // namespace

@@ -86,7 +86,8 @@ void measure_row(const bop::ResultRow& row, int obj_id, const Measure& m, Target
 std::vector<double> bop_mssd_thresholds() { return arange(0.05, 0.51, 0.05); }
 std::vector<double> bop_mspd_thresholds() { return arange(5, 51, 5); }
 
-BopScores bop_scores(const Dataset& dataset, const std::vector<bop::ResultRow>& rows) {
+BopScores bop_scores(const Dataset& dataset, const std::vector<bop::ResultRow>& rows,
+                     const BopOptions& options) {
   BopScores scores;
   const TargetSet targets = bop_targets(dataset);
   scores.targets_source = targets.source;
@@ -105,6 +106,7 @@ BopScores bop_scores(const Dataset& dataset, const std::vector<bop::ResultRow>& 
 
   const RowGroups rows_by_group = group_rows(rows);
   std::vector<TargetGroup> mssd_groups, mspd_groups;
+  std::vector<ScoredGroup> scored;  // what VSD renders and compares
   for (const auto& [key, objects] : targets.targets) {
     const EvalImage& image = dataset.images.at(key);
     const std::vector<bool> is_target = target_instances(image, objects);
@@ -119,6 +121,9 @@ BopScores bop_scores(const Dataset& dataset, const std::vector<bop::ResultRow>& 
       const auto chosen = considered_rows(rows_by_group, key, obj_id, inst_count);
       scores.estimates += static_cast<int>(chosen.size());
       for (const auto* row : chosen) measure_row(*row, obj_id, m, mssd_group, mspd_group);
+      scored.push_back({key, obj_id, chosen, {}});
+      for (std::size_t i = 0; i < image.gt.size(); ++i)
+        if (is_target[i] && image.gt[i].obj_id == obj_id) scored.back().targets.push_back(int(i));
       mssd_groups.push_back(std::move(mssd_group));
       mspd_groups.push_back(std::move(mspd_group));
     }
@@ -126,6 +131,12 @@ BopScores bop_scores(const Dataset& dataset, const std::vector<bop::ResultRow>& 
   scores.mssd = recall_over_thresholds(mssd_groups, bop_mssd_thresholds());
   scores.mspd = recall_over_thresholds(mspd_groups, bop_mspd_thresholds());
   scores.average_recall = (scores.mssd.overall.average + scores.mspd.overall.average) / 2.0;
+  if (!options.vsd) return scores;
+  scores.vsd = bop_vsd_recall(dataset, scored, scores.vertices, options.vsd_delta_mm);
+  scores.has_vsd = scores.vsd.unavailable.empty();
+  if (scores.has_vsd)
+    scores.average_recall =
+        (scores.vsd.average + scores.mssd.overall.average + scores.mspd.overall.average) / 3.0;
   return scores;
 }
 

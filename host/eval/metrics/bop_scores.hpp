@@ -2,8 +2,9 @@
 // of the diameter, MSPD at 5..50 px scaled to a 640 px wide image, each matched and counted per
 // threshold (bop_matching.hpp) and averaged into AR_MSSD and AR_MSPD. Of each image and obj_id
 // only the inst_count best-scored estimates count (the toolkit's n_top = -1), against the
-// targets of bop_targets.hpp. VSD (it needs rendering) is not computed, so the average of the
-// two stands in for BOP's AR (the mean of VSD, MSSD and MSPD).
+// targets of bop_targets.hpp. VSD (bop_vsd_recall.hpp) renders the model with Vulkan; with it
+// AR is BOP's, the mean of AR_VSD, AR_MSSD and AR_MSPD; without it (not asked for, or no depth
+// images) the mean of the other two stands in.
 #pragma once
 
 #include <filesystem>
@@ -11,6 +12,7 @@
 #include <vector>
 
 #include "host/eval/metrics/bop_matching.hpp"
+#include "host/eval/metrics/bop_vsd_recall.hpp"
 #include "host/eval/metrics/eval_dataset.hpp"
 #include "host/formats/bop/results_csv.hpp"
 
@@ -26,7 +28,14 @@ struct BopScores {
   int targets = 0;                       // target instances
   int estimates = 0;                     // estimates considered (at most inst_count per group)
   MetricRecall mssd, mspd;
-  double average_recall = 0;             // (AR_MSSD + AR_MSPD) / 2
+  bool has_vsd = false;                  // vsd holds BOP's VSD recalls
+  VsdRecall vsd;                         // its `unavailable` says why not, if asked for
+  double average_recall = 0;             // (AR_VSD + AR_MSSD + AR_MSPD) / 3, or of the two
+};
+
+struct BopOptions {
+  bool vsd = true;  // render and compute VSD (the expensive one of the three)
+  double vsd_delta_mm = kBopVsdDelta;
 };
 
 // Thresholds of eval_bop19_pose.py: MSSD arange(0.05, 0.51, 0.05) (fraction of the diameter),
@@ -38,6 +47,7 @@ std::vector<double> bop_mspd_thresholds();
 // model file of a target's obj_id the scores are `unavailable` (eval still gives the paper's
 // figures, which need models_info.json only). Throws InputError for a model or targets file that
 // cannot be read.
-BopScores bop_scores(const Dataset& dataset, const std::vector<bop::ResultRow>& rows);
+BopScores bop_scores(const Dataset& dataset, const std::vector<bop::ResultRow>& rows,
+                     const BopOptions& options = {});
 
 }  // namespace binpick::eval

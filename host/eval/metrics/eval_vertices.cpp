@@ -11,10 +11,6 @@ namespace {
 
 namespace fs = std::filesystem;
 
-fs::path model_path(const fs::path& dir, int obj_id) {
-  return dir / fmt::format("obj_{:06d}.ply", obj_id);
-}
-
 std::vector<Eigen::Vector3d> read_vertices(const fs::path& path) {
   if (!fs::exists(path)) throw InputError("model " + path.string() + " does not exist");
   Mesh mesh;
@@ -32,22 +28,26 @@ std::vector<Eigen::Vector3d> read_vertices(const fs::path& path) {
 
 }  // namespace
 
+fs::path bop_model_path(const fs::path& dir, int obj_id) {
+  return dir / fmt::format("obj_{:06d}.ply", obj_id);
+}
+
 fs::path eval_vertices_directory(const fs::path& root, const std::set<int>& obj_ids) {
   const fs::path eval_dir = root / "models_eval";
-  const bool use_eval = !obj_ids.empty() && fs::exists(model_path(eval_dir, *obj_ids.begin()));
+  const bool use_eval = !obj_ids.empty() && fs::exists(bop_model_path(eval_dir, *obj_ids.begin()));
   return use_eval ? eval_dir : root / "models";
 }
 
 fs::path first_missing_model(const fs::path& directory, const std::set<int>& obj_ids) {
   for (int id : obj_ids)
-    if (!fs::exists(model_path(directory, id))) return model_path(directory, id);
+    if (!fs::exists(bop_model_path(directory, id))) return bop_model_path(directory, id);
   return {};
 }
 
 EvalVertices load_eval_vertices(const fs::path& root, const std::set<int>& obj_ids) {
   EvalVertices out;
   out.directory = eval_vertices_directory(root, obj_ids);
-  for (int id : obj_ids) out.by_object[id] = read_vertices(model_path(out.directory, id));
+  for (int id : obj_ids) out.by_object[id] = read_vertices(bop_model_path(out.directory, id));
   return out;
 }
 

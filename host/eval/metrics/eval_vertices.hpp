@@ -17,6 +17,9 @@ struct EvalVertices {
   std::filesystem::path directory;                       // models_eval/ or models/
 };
 
+// directory/obj_NNNNNN.ply, BOP's name of an object's model file.
+std::filesystem::path bop_model_path(const std::filesystem::path& directory, int obj_id);
+
 // The directory BOP's errors are measured in: root/models_eval/ if it has obj_NNNNNN.ply for the
 // first of obj_ids, else root/models/.
 std::filesystem::path eval_vertices_directory(const std::filesystem::path& root,

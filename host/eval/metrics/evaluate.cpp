@@ -91,6 +91,9 @@ void check(const EvalOptions& o) {
     if (!(p->translation_pct >= 0 && p->rotation_deg >= 0 && std::isfinite(p->translation_pct) &&
           std::isfinite(p->rotation_deg)))
       throw InputError("operating point thresholds must be finite and non-negative");
+  if (!(o.vsd_delta_mm > 0 && std::isfinite(o.vsd_delta_mm)))
+    throw InputError(fmt::format("the VSD delta {:g} mm must be positive and finite",
+                                 o.vsd_delta_mm));
   if (!(o.score_keep > 0 && o.score_keep <= 1))
     throw InputError(fmt::format("the score calibration's kept fraction {:g} must be in (0, 1]",
                                  o.score_keep));

@@ -24,6 +24,8 @@ struct EvalOptions {
   OperatingPoint loose{10, 15};
   OperatingPoint strict{5, 5};
   double score_keep = 0.9;  // the score calibration's threshold keeps this fraction of right rows
+  bool vsd = true;          // BOP's VSD too (renders the model at every estimate and target)
+  double vsd_delta_mm = 15;  // its visibility tolerance (the toolkit's per-dataset vsd_deltas)
 };
 
 // Where a hypothesis' pose lies (landing()): on a part of the sought obj_id (right or wrong), on
