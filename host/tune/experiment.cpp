@@ -197,6 +197,12 @@ namespace {
 std::string ar_cell(const eval::BopScores& bop, const eval::MetricRecall& metric) {
   return bop.unavailable.empty() ? fmt::format("{:.3f}", metric.overall.average) : "-";
 }
+// "-" also when VSD was not computed (no depth image, no Vulkan device, eval --no-vsd).
+std::string vsd_cell(const eval::BopScores& bop) {
+  return bop.unavailable.empty() && bop.has_vsd && bop.vsd.unavailable.empty()
+             ? fmt::format("{:.3f}", bop.vsd.average)
+             : "-";
+}
 
 }  // namespace
 
@@ -210,14 +216,15 @@ std::string results_table(const std::vector<eval::DatasetEvaluation>& evaluation
   const std::string wrong = fmt::format("wrong@{:g}%", 100 * at.score_keep);
   // off part: hypotheses whose pose lies on the bin or floor (no part) or on another object
   // (eval's landing), of the top-ranked ones and of all.
-  // BOP AR: BOP's average recalls over its MSSD and MSPD thresholds (bop_scores.hpp).
-  std::string t = fmt::format("{:>7} {:>5} {:>6}  {:^28}  {:^17}  {:^17}  {:>8}  {:^13}\n", "",
+  // BOP AR: BOP's average recalls over its VSD, MSSD and MSPD thresholds (bop_scores.hpp).
+  std::string t = fmt::format("{:>7} {:>5} {:>6}  {:^28}  {:^17}  {:^17}  {:>8}  {:^20}\n", "",
                               "", "", point("loose", at.loose), point("strict", at.strict),
                               "off part", "", "BOP AR");
   t += fmt::format(
-      "{:>7} {:>5} {:>6}  {:>8} {:>8} {:>10}  {:>8} {:>8}  {:>8} {:>8}  {:>8}  {:>6} {:>6}\n",
-      "noise", "bins", "hyps", "top", "all", wrong, "top", "all", "top", "all", "ms/hyp", "MSSD",
-      "MSPD");
+      "{:>7} {:>5} {:>6}  {:>8} {:>8} {:>10}  {:>8} {:>8}  {:>8} {:>8}  {:>8}  {:>6} {:>6} "
+      "{:>6}\n",
+      "noise", "bins", "hyps", "top", "all", wrong, "top", "all", "top", "all", "ms/hyp", "VSD",
+      "MSSD", "MSPD");
   for (const auto& e : evaluations) {
     const auto& s = e.summary;
     const std::string noise = e.dataset.noise >= 0 ? fmt::format("{:.3g}", e.dataset.noise)
@@ -227,12 +234,12 @@ std::string results_table(const std::vector<eval::DatasetEvaluation>& evaluation
                                        ? fmt::format("{:.1f}%", 100 * s.score_loose.wrong_fraction)
                                        : std::string("-");
     t += fmt::format("{:>7} {:>5} {:>6}  {:>7.1f}% {:>7.1f}% {:>10}  {:>7.1f}% {:>7.1f}%  "
-                     "{:>7.1f}% {:>7.1f}%  {:>8.1f}  {:>6} {:>6}\n",
+                     "{:>7.1f}% {:>7.1f}%  {:>8.1f}  {:>6} {:>6} {:>6}\n",
                      noise, s.images, s.hypotheses, 100 * s.loose.top, 100 * s.loose.all,
                      wrong_cell, 100 * s.strict.top, 100 * s.strict.all,
                      100 * (s.top_on_nothing + s.top_on_distractor),
                      100 * (s.all_on_nothing + s.all_on_distractor), s.ms_per_hypothesis,
-                     ar_cell(e.bop, e.bop.mssd), ar_cell(e.bop, e.bop.mspd));
+                     vsd_cell(e.bop), ar_cell(e.bop, e.bop.mssd), ar_cell(e.bop, e.bop.mspd));
   }
   return t;
 }
