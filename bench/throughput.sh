@@ -81,6 +81,7 @@ else
 fi
 
 echo "throughput: $BINS bins of $OBJECTS parts at ${WIDTH}x$HEIGHT, medians of $RUNS runs"
+load_before=$(cut -d' ' -f1-3 /proc/loadavg)
 "$BINPICK" synth "${synth_args[@]}" --out dataset >/dev/null  # detect's input, untimed
 "$BINPICK" train --model builtin:bracket --out bracket.ppfm >/dev/null
 
@@ -105,6 +106,8 @@ done
   echo
   echo "$BINS bins of $OBJECTS parts (builtin:bracket) at ${WIDTH}x$HEIGHT; detect with 5 hypotheses"
   echo "per image; medians of $RUNS runs from scratch; $(nproc) CPUs${cluster:+; Slurm: $cluster}."
+  echo "Load average (1, 5, 15 min) before: $load_before; after: $(cut -d' ' -f1-3 /proc/loadavg)"
+  echo "(other work on the machine takes cores from every mode alike)."
   echo
   echo "| mode | synth: bins per hour (run) | detect: images per second (run) |"
   echo "|---|---|---|"
