@@ -11,7 +11,7 @@
 # usage: bench/throughput.sh BINPICK OUT [RUNS]   writes OUT/throughput.md (and prints it)
 set -euo pipefail
 here=$(cd "$(dirname "$0")" && pwd)
-BINPICK=$(readlink -f "${1:?usage: throughput.sh BINPICK OUT [RUNS]}")
+given=$(readlink -f "${1:?usage: throughput.sh BINPICK OUT [RUNS]}")
 OUT=${2:?usage: throughput.sh BINPICK OUT [RUNS]}
 RUNS=${3:-3}
 BINS=${BINS:-8} OBJECTS=${OBJECTS:-40} WIDTH=${WIDTH:-800} HEIGHT=${HEIGHT:-450}
@@ -21,6 +21,9 @@ WORK=$OUT/throughput
 rm -rf "$WORK"
 mkdir -p "$WORK"
 cd "$WORK"
+# A copy: a rebuild during the runs must not change or remove the binary being measured.
+cp "$given" "$WORK/binpick"
+BINPICK=$WORK/binpick
 export BINPICK_QUIET=1
 
 synth_args=(--model builtin:bracket --bins "$BINS" --objects "$OBJECTS" --width "$WIDTH"
@@ -35,8 +38,17 @@ timed() {
   local start
   rm -rf synth_out detect_out.* detect_out.csv*
   start=$(now)
-  "$@" >/dev/null
+  "$@" >/dev/null || { echo "throughput: $* failed" >&2; return 1; }
   awk -v a="$start" -v b="$(now)" 'BEGIN { printf "%.3f\n", b - a }'
+}
+# The median seconds of RUNS runs of "$@"; exits if one fails.
+median_of_runs() {
+  local times="" t
+  for _ in $(seq "$RUNS"); do
+    t=$(timed "$@") || exit 1
+    times+="$t"$'\n'
+  done
+  printf '%s' "$times" | median
 }
 one() {
   case $1 in
@@ -53,7 +65,9 @@ two() {
     esac
     pids+=($!)
   done
-  for k in "${pids[@]}"; do wait "$k"; done
+  local status=0
+  for k in "${pids[@]}"; do wait "$k" || status=1; done
+  return $status
 }
 array() {
   case $1 in
@@ -93,8 +107,8 @@ for mode in one two array; do
     rows+="| $label | not measured: no Slurm cluster | |"$'\n'
     continue
   fi
-  synth_s=$(for _ in $(seq "$RUNS"); do timed "$mode" synth; done | median)
-  detect_s=$(for _ in $(seq "$RUNS"); do timed "$mode" detect; done | median)
+  synth_s=$(median_of_runs "$mode" synth) || exit 1
+  detect_s=$(median_of_runs "$mode" detect) || exit 1
   row=$(awk -v b="$BINS" -v s="$synth_s" -v d="$detect_s" -v l="$label" \
     'BEGIN { printf "| %s | %.0f (%.1f s) | %.2f (%.1f s) |", l, b * 3600 / s, s, b / d, d }')
   echo "$row"

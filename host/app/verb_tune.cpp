@@ -92,9 +92,16 @@ void add_tune_verb(CLI::App& app) {
   add_train_options(verb, a->train,
                     "models (the voxel is kept; the steps are the search's starting point)");
   add_detect_cli_options(verb, a->start, "starting point");
-  add_shard_options(verb, a->shards,
-                    "points of --points (a --slurm task's share; each round's candidates are "
-                    "one job array of --tasks tasks, and the --slurm process writes the table)");
+  add_shard_options(verb, a->shards, "points");
+  // The generic texts speak of merging outputs; tune's shards and array measure points.
+  verb->get_option("--shard")->description(
+      "K/N: with --points, measure only the points at positions K-1, K-1+N, ... of the file (what "
+      "task K of a --slurm array runs)");
+  verb->get_option("--slurm")->description(
+      "measure each round's candidates as a Slurm job array of --tasks tasks (script and logs in "
+      "OUT/shards/points-HASH/slurm/), follow it, then replay the search over the results; print "
+      "the table and write the files as without --slurm; run again to resubmit only what is "
+      "missing");
   verb->add_option("--points", a->points,
                    "measure only the points of this file (OUT/shards/points-HASH.json, "
                    "written by --slurm for its array tasks) into OUT/evals/")
