@@ -7,14 +7,14 @@
 #                      with Debian's slurm packages (tests/cluster/private_cluster.sh); skipped
 #                      otherwise, and said so.
 # synth in bins per hour, detect in images per second (one image per bin), medians of RUNS runs,
-# each from scratch. Sizes from the environment: BINS (8), OBJECTS (40), WIDTH (800), HEIGHT (450).
+# each from scratch. Sizes from the environment: BINS (8), OBJECTS (100), WIDTH (1600), HEIGHT (900).
 # usage: bench/throughput.sh BINPICK OUT [RUNS]   writes OUT/throughput.md (and prints it)
 set -euo pipefail
 here=$(cd "$(dirname "$0")" && pwd)
 given=$(readlink -f "${1:?usage: throughput.sh BINPICK OUT [RUNS]}")
 OUT=${2:?usage: throughput.sh BINPICK OUT [RUNS]}
 RUNS=${3:-3}
-BINS=${BINS:-8} OBJECTS=${OBJECTS:-40} WIDTH=${WIDTH:-800} HEIGHT=${HEIGHT:-450}
+BINS=${BINS:-8} OBJECTS=${OBJECTS:-100} WIDTH=${WIDTH:-1600} HEIGHT=${HEIGHT:-900}
 mkdir -p "$OUT"
 OUT=$(readlink -f "$OUT")
 WORK=$OUT/throughput

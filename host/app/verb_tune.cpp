@@ -30,7 +30,7 @@ struct TuneArgs {
                       .objects = TuneOptions{}.objects};
   TrainArgs train;
   DetectCliOptions start;
-  ShardCliOptions shards;          // --slurm; --shard with --points (a --slurm task)
+  ShardCliOptions shards;        // --slurm; --shard with --points (a --slurm task)
   std::filesystem::path points;  // --points FILE
 };
 
