@@ -23,7 +23,8 @@ usage: ./run.sh demo | test [--sanitize] | bench | fuzz [SECONDS]
   test   build, then run the test suite with ctest; --sanitize: build with AddressSanitizer
          and UndefinedBehaviorSanitizer into build-sanitize/ and run the suite there
   bench  build (with OpenCV for the comparison), then run the benchmarks:
-         build/bench/bench.md and bench.json; extra arguments go to 'binpick bench'
+         build/bench/bench.md and bench.json; extra arguments go to 'binpick bench';
+         then bench/throughput.sh: build/bench/throughput.md
   fuzz   build the libFuzzer targets with clang into build-fuzz/ and run each for SECONDS
          (default 60) from its seed corpus fuzz/corpus/NAME; fails if any input crashes
 TXT
@@ -84,6 +85,8 @@ case "$cmd" in
     mkdir -p build/bench/micro
     # The report a user reads: build/bench/bench.md and bench.json (binpick bench --help).
     build/binpick bench --out build/bench "$@"
+    # Batch throughput: one process, two shards at once, a 2-task Slurm array (build/bench/throughput.md).
+    bench/throughput.sh build/binpick build/bench 3
     # Micro-benchmarks of single stages (Google Benchmark), medians of 5 repetitions.
     for b in build/bench_*; do
       [ -x "$b" ] || continue
@@ -92,7 +95,7 @@ case "$cmd" in
       "$b" --benchmark_repetitions=5 --benchmark_report_aggregates_only=true \
            --benchmark_out="build/bench/micro/$name.json" --benchmark_out_format=json
     done
-    echo "run.sh: report in build/bench/bench.md (and bench.json); micro-benchmarks in build/bench/micro/"
+    echo "run.sh: report in build/bench/bench.md (and bench.json), build/bench/throughput.md; micro-benchmarks in build/bench/micro/"
     ;;
   fuzz)
     seconds=${2:-60}

@@ -12,10 +12,13 @@
 #include "host/app/dataset_options.hpp"
 #include "host/app/detect_options.hpp"
 #include "host/app/model_options.hpp"
+#include "host/app/shard_options.hpp"
 #include "host/app/train_options.hpp"
 #include "host/app/verbs.hpp"
+#include "host/core/error.hpp"
 #include "host/core/output_lock.hpp"
 #include "host/tune/tune_run.hpp"
+#include "host/tune/tune_slurm.hpp"
 
 namespace binpick::cli {
 namespace {
@@ -27,6 +30,8 @@ struct TuneArgs {
                       .objects = TuneOptions{}.objects};
   TrainArgs train;
   DetectCliOptions start;
+  ShardCliOptions shards;        // --slurm; --shard with --points (a --slurm task)
+  std::filesystem::path points;  // --points FILE
 };
 
 void run_tune(TuneArgs& a) {
@@ -40,8 +45,16 @@ void run_tune(TuneArgs& a) {
   o.start.angle_steps = train.angle_steps;
   o.start.detect = resolve(a.start);
   check(o);  // before the slow stages: bad options fail fast
+  const Shard shard = shard_of(a.shards);
+  if (shard.sharded() && a.points.empty())
+    throw InputError("tune --shard K/N measures a share of --points FILE (what a tune --slurm "
+                     "task does); without it, use --slurm");
   const Model part = load_part_finding_symmetries(o.part);
-  const OutputLock lock = OutputLock::directory(o.out);  // after the inputs load: a typo writes nothing
+  if (a.shards.slurm.enabled)
+    return run_tune_on_slurm(part, o, a.shards.slurm, task_command(own_command_line()), std::cout);
+  // After the inputs load: a typo writes nothing.
+  const OutputLock lock = OutputLock::directory(o.out, shard.index, shard.count);
+  if (!a.points.empty()) return measure_candidates(part, o, a.points, shard, std::cout);
   binpick::run_tune(part, o, std::cout);
 }
 
@@ -55,7 +68,8 @@ void add_tune_verb(CLI::App& app) {
       "reference ratio, clustering thresholds, exclusion radius and the model's angle and "
       "distance steps for the best top-voted precision at (10 %, 15 deg) within a time budget "
       "per hypothesis. Prints the table explored; writes OUT/tune.csv, OUT/best.json (for "
-      "`detect --params`) and OUT/best.ppfm (its model). Rerunning resumes.");
+      "`detect --params`) and OUT/best.ppfm (its model). Rerunning resumes. With --slurm the "
+      "candidates of each round are measured by a Slurm job array.");
   add_model_options(verb, a->model);
   auto& o = a->tune;
   verb->add_option("--out", o.out,
@@ -78,6 +92,20 @@ void add_tune_verb(CLI::App& app) {
   add_train_options(verb, a->train,
                     "models (the voxel is kept; the steps are the search's starting point)");
   add_detect_cli_options(verb, a->start, "starting point");
+  add_shard_options(verb, a->shards, "points");
+  // The generic texts speak of merging outputs; tune's shards and array measure points.
+  verb->get_option("--shard")->description(
+      "K/N: with --points, measure only the points at positions K-1, K-1+N, ... of the file (what "
+      "task K of a --slurm array runs)");
+  verb->get_option("--slurm")->description(
+      "measure each round's candidates as a Slurm job array of --tasks tasks (script and logs in "
+      "OUT/shards/points-HASH/slurm/), follow it, then replay the search over the results; print "
+      "the table and write the files as without --slurm; run again to resubmit only what is "
+      "missing");
+  verb->add_option("--points", a->points,
+                   "measure only the points of this file (OUT/shards/points-HASH.json, "
+                   "written by --slurm for its array tasks) into OUT/evals/")
+      ->excludes("--slurm");
   verb->callback([a] { run_tune(*a); });
 }
 

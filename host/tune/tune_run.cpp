@@ -1,21 +1,17 @@
 #include "host/tune/tune_run.hpp"
 
-#include <memory>
 #include <ostream>
 
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
-#include "host/formats/bop/png_image.hpp"
-#include "host/formats/bop/results_csv.hpp"
 #include "host/core/error.hpp"
 #include "host/core/progress.hpp"
 #include "host/detect/detect_params_file.hpp"
 #include "host/eval/metrics/eval_dataset.hpp"
-#include "host/eval/metrics/evaluate.hpp"
 #include "host/core/atomic_file.hpp"
 #include "host/core/read_file.hpp"
-#include "host/detect/detect_step.hpp"
+#include "host/tune/tune_measure.hpp"
 #include "host/tune/tune_table.hpp"
 #include "synth/synthesize.hpp"
 
@@ -36,62 +32,6 @@ SynthOptions synth_options(const TuneOptions& o) {
   return s;
 }
 
-PpfTrainParams train_params(const TuneOptions& o, const TunePoint& p) {
-  PpfTrainParams t;
-  t.voxel_ratio = o.voxel_ratio;
-  t.distance_steps = p.distance_steps;
-  t.angle_steps = p.angle_steps;
-  return t;
-}
-
-fs::path model_path(const TuneOptions& o, const TunePoint& p) {
-  return o.out / "models" / fmt::format("d{}_a{}.ppfm", p.distance_steps, p.angle_steps);
-}
-
-// Measures points: the model of the point's steps (one loaded at a time, each trained once),
-// detection of the dataset into the point's own results file, evaluation against the dataset.
-class Measurer {
- public:
-  Measurer(const TuneOptions& o, const Mesh& mesh, std::string part, eval::Dataset dataset)
-      : o_(o), mesh_(mesh), part_(std::move(part)), dataset_(std::move(dataset)) {}
-
-  TuneScore operator()(const TunePoint& p) {
-    const TrainedModel& model = model_for(p);
-    Detector detector(model.model, p.detect);
-    const fs::path csv = o_.out / "evals" / (checksum_hex(point_key(p)) + ".csv");
-    if (!warm_ && !fs::exists(csv)) warm_up(detector);
-    detect_to_csv(detector, model, dataset_.root, csv);
-    const eval::EvalSummary s = eval::evaluate(dataset_, bop::read_results_csv(csv));
-    return {s.loose.top, s.loose.all, s.strict.top, s.strict.all, s.ms_per_hypothesis};
-  }
-
-  const TrainedModel& model_for(const TunePoint& p) {
-    const fs::path path = model_path(o_, p);
-    if (!model_ || model_->path != path)
-      model_ = std::make_unique<TrainedModel>(
-          train_or_reuse(mesh_, part_, train_params(o_, p), path));
-    return *model_;
-  }
-
- private:
-  // The first detection of a process also builds the device programs: one image detected and
-  // thrown away first, so that the first point measured is not charged for it.
-  void warm_up(Detector& detector) {
-    warm_ = true;
-    const auto& [key, image] = *dataset_.images.begin();
-    const auto png = read_png16(image.files.depth(key.im_id));
-    detector.detect(DepthImage{png.width, png.height, png.pixels},
-                    image_camera(image.camera.K, image.camera.depth_scale, png.width, png.height));
-  }
-
-  const TuneOptions& o_;
-  const Mesh& mesh_;
-  std::string part_;
-  eval::Dataset dataset_;
-  std::unique_ptr<TrainedModel> model_;
-  bool warm_ = false;
-};
-
 void copy_atomically(const fs::path& from, const fs::path& to) {
   const std::string bytes = read_file_bytes(from);
   write_file_atomically(to, [&](std::ostream& s) { s << bytes; });
@@ -105,23 +45,30 @@ void check(const TuneOptions& o) {
     throw InputError("--out " + o.out.string() + " exists and is not a directory");
   validate_synth_options(synth_options(o));
   check(o.search);
-  check_train_params(train_params(o, o.start));
+  check_train_params(tune_train_params(o, o.start));
   binpick::check(o.start.detect);
 }
 
-TuneResult run_tune(const Model& part, const TuneOptions& o, std::ostream& out) {
+void make_tune_dataset(const Model& part, const TuneOptions& o, std::ostream& out) {
   check(o);
-  const std::string description = describe(o.part);
-  const SynthSummary made = synthesize(part, description, synth_options(o));
+  const SynthSummary made = synthesize(part, describe(o.part), synth_options(o));
   out << fmt::format("dataset {}: {} bins ({} made now), {} parts each, noise {}\n",
                      (o.out / "dataset").string(), made.bins_made + made.bins_skipped,
-                     made.bins_made, o.objects, o.noise);
+                     made.bins_made, o.objects, o.noise) << std::flush;
+}
+
+TuneResult run_tune(const Model& part, const TuneOptions& o, std::ostream& out) {
+  make_tune_dataset(part, o, out);
+  TuneMeasurer measure(o, part.mesh, describe(o.part), eval::load_dataset(o.out / "dataset"));
+  return search_and_report(o, measure, out);
+}
+
+TuneResult search_and_report(const TuneOptions& o, TuneMeasurer& measure, std::ostream& out) {
   out << fmt::format("objective: top-voted precision at (10 %, 15 deg), then at (5 %, 5 deg), then "
                      "all hypotheses' precision, then time; at most {} ms per hypothesis\n\n",
                      o.search.budget_ms)
       << tune_table_header() << std::flush;
 
-  Measurer measure(o, part.mesh, description, eval::load_dataset(o.out / "dataset"));
   TuneResult r;
   r.table_csv = o.out / "tune.csv";
   Progress progress("tune", max_measurements(o.search));

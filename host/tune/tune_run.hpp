@@ -50,4 +50,12 @@ struct TuneResult {
 // `part` is the model options.part names, loaded.
 TuneResult run_tune(const Model& part, const TuneOptions& options, std::ostream& out);
 
+// The stages of run_tune, for `tune --slurm` (tune_slurm.hpp), which measures elsewhere:
+// OUT/dataset made (or resumed), a line about it to `out`;
+void make_tune_dataset(const Model& part, const TuneOptions& options, std::ostream& out);
+// the search with `measure`, its table printed and OUT/tune.csv, best.json, best.ppfm and
+// best-train.json written.
+TuneResult search_and_report(const TuneOptions& options, class TuneMeasurer& measure,
+                             std::ostream& out);
+
 }  // namespace binpick

@@ -4,37 +4,22 @@
 # directory, so it touches nothing of the machine's), then
 #   - a 2-task synth array makes the dataset a single process makes (scene_gt.json, depth PNGs),
 #   - a 4-task detect array gives the single process's results CSV (time column aside),
-#   - a detect array with one task cancelled fails naming that shard; the same command again
-#     resubmits only it and then gives the same CSV,
+#   - a detect array with one task cancelled while it runs fails naming that shard; the same
+#     command again resubmits only it and then gives the same CSV,
 #   - a rerun while the array of an interrupted follower still runs follows it, not resubmits,
 #   - a 2-task run array writes the single process's report.json (paths and timing aside),
+#   - a tune whose round is a 2-task array measures the single process's points (tune.csv, times
+#     aside) and picks the same best.json,
 # and stops the daemons by their pid files.
 # usage: slurm_cluster_test.sh BINPICK      (exit 77: skipped, with the reason on stdout)
 #        slurm_cluster_test.sh --check      (says whether it would run or skip, exits 0)
 set -euo pipefail
 
-PACKAGES=(slurmctld slurmd slurm-client munge)
-
-missing_packages() {
-  local p
-  for p in "${PACKAGES[@]}"; do
-    dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || echo "$p"
-  done
-}
-
-# Prints why the test cannot run here; nothing if it can.
-skip_reason() {
-  local missing
-  missing=$(missing_packages | tr '\n' ' ')
-  if [ "$(id -u)" -ne 0 ]; then
-    echo "not root (slurmd runs jobs as root here)${missing:+, and $missing not installed}"
-  elif [ -n "$missing" ] && ! command -v apt-get >/dev/null; then
-    echo "$missing not installed and no apt-get"
-  fi
-}
+# shellcheck source=private_cluster.sh
+. "$(dirname "$0")/private_cluster.sh"
 
 if [ "${1:-}" = "--check" ]; then
-  reason=$(skip_reason)
+  reason=$(private_cluster_skip_reason)
   if [ -n "$reason" ]; then
     echo "cluster test (slurm_cluster): SKIPPED: $reason"
   else
@@ -44,35 +29,19 @@ if [ "${1:-}" = "--check" ]; then
 fi
 
 BINPICK=$(readlink -f "${1:?usage: slurm_cluster_test.sh BINPICK}")
-reason=$(skip_reason)
+reason=$(private_cluster_skip_reason)
 if [ -n "$reason" ]; then
-  echo "SKIPPED: the Slurm cluster test needs root and Debian's ${PACKAGES[*]}: $reason"
+  echo "SKIPPED: the Slurm cluster test needs root and Debian's ${PRIVATE_CLUSTER_PACKAGES[*]}: $reason"
   exit 77
 fi
-missing=$(missing_packages)
-if [ -n "$missing" ]; then
-  echo "installing" $missing
-  DEBIAN_FRONTEND=noninteractive apt-get install -y -qq --no-install-recommends $missing >/dev/null
-fi
+private_cluster_install
 
 DIR=$(mktemp -d /tmp/binpick_slurm.XXXXXX)
-chmod 0755 "$DIR"  # munged refuses a socket directory others cannot search
-export SLURM_CONF=$DIR/slurm.conf
 export BINPICK_QUIET=1
 fail() { echo "FAIL: $*"; exit 1; }
-
-stop_daemons() {
-  local name pid
-  for name in slurmd slurmctld munged; do
-    [ -f "$DIR/$name.pid" ] || continue
-    pid=$(cat "$DIR/$name.pid")
-    kill "$pid" 2>/dev/null || true
-    for _ in $(seq 50); do kill -0 "$pid" 2>/dev/null || break; sleep 0.1; done
-  done
-}
 cleanup() {
   local status=$?
-  stop_daemons
+  private_cluster_stop "$DIR"
   if [ $status -ne 0 ] && [ $status -ne 77 ]; then
     echo "--- logs ($DIR)"
     tail -n 20 "$DIR"/*.log "$DIR"/work/*.out 2>/dev/null || true
@@ -82,54 +51,9 @@ cleanup() {
 trap cleanup EXIT
 
 # ---- the cluster ---------------------------------------------------------------------------------
-mkdir -p "$DIR/munge" "$DIR/state" "$DIR/spool" "$DIR/work"
-chmod 0755 "$DIR/munge"
-dd if=/dev/urandom of="$DIR/munge/munge.key" bs=1024 count=1 status=none
-chmod 0600 "$DIR/munge/munge.key"
-munged --socket="$DIR/munge/munge.socket" --key-file="$DIR/munge/munge.key" \
-  --pid-file="$DIR/munged.pid" --log-file="$DIR/munged.log" --seed-file="$DIR/munge/seed" \
-  --force
-
-host=$(hostname -s)
-# Ports from the process id, so two runs (or a real cluster) on one machine do not collide.
-port=$((20000 + ($$ % 20000)))
-memory=$(awk '/MemTotal/ { print int($2 / 1024 * 0.9) }' /proc/meminfo)
-cat > "$SLURM_CONF" <<CONF
-ClusterName=binpicktest
-SlurmctldHost=$host(127.0.0.1)
-SlurmctldPort=$port
-SlurmdPort=$((port + 1))
-AuthType=auth/munge
-AuthInfo=socket=$DIR/munge/munge.socket
-CredType=cred/munge
-SlurmUser=root
-SlurmdUser=root
-StateSaveLocation=$DIR/state
-SlurmdSpoolDir=$DIR/spool
-SlurmctldPidFile=$DIR/slurmctld.pid
-SlurmdPidFile=$DIR/slurmd.pid
-SlurmctldLogFile=$DIR/slurmctld.log
-SlurmdLogFile=$DIR/slurmd.log
-MailProg=/bin/true
-ProctrackType=proctrack/linuxproc
-TaskPlugin=task/none
-SelectType=select/cons_tres
-SelectTypeParameters=CR_Core
-ReturnToService=2
-AccountingStorageType=accounting_storage/none
-JobCompType=jobcomp/none
-NodeName=$host NodeAddr=127.0.0.1 CPUs=$(nproc) RealMemory=$memory State=UNKNOWN
-PartitionName=binpick Nodes=ALL Default=YES MaxTime=INFINITE State=UP
-CONF
-slurmctld -i
-slurmd
-for _ in $(seq 100); do
-  state=$(sinfo -h -o %T 2>/dev/null || true)
-  case "$state" in idle*|mixed*|allocated*) break ;; esac
-  sleep 0.2
-done
-case "$state" in idle*|mixed*|allocated*) ;; *) fail "the node did not come up (state '$state')" ;; esac
-echo "cluster up: node $host, $(nproc) CPUs, ${SECONDS} s"
+private_cluster_start "$DIR" || fail "no cluster"
+mkdir -p "$DIR/work"
+echo "cluster up: node $(hostname -s), $(nproc) CPUs, ${SECONDS} s"
 
 # ---- the work ------------------------------------------------------------------------------------
 cd "$DIR/work"
@@ -157,27 +81,47 @@ without_time() { sed 's/,[^,]*$//' "$1"; }
 cmp -s single.details.csv array.details.csv || fail "detect: array.details.csv differs"
 echo "detect: a 4-task array gave the single process's $(($(wc -l < single.csv) - 1)) rows (${SECONDS} s)"
 
-# One task cancelled: the last (pending while the first ones hold both CPUs, or running).
-"$BINPICK" detect "${detect_args[@]}" --out cancel.csv --slurm --tasks 4 > cancel.out 2> cancel.err &
-follower=$!
-job=""
-for _ in $(seq 100); do
-  job=$(sed -n 's/^job \([0-9]*\);.*/\1/p' cancel.out)
-  [ -n "$job" ] && break
-  sleep 0.1
+# One task killed while it runs (state R, not a pending one): the array ends without that shard's
+# work; the same command again resubmits only that shard. A task can finish between squeue
+# seeing it run and scancel reaching it: then the whole array succeeded, and the case is tried
+# again on a fresh output (at most 3 times).
+for attempt in 1 2 3; do
+  rm -rf cancel.csv cancel.csv.parts cancel.details.csv
+  "$BINPICK" detect "${detect_args[@]}" --out cancel.csv --slurm --tasks 4 > cancel.out 2> cancel.err &
+  follower=$!
+  job=""
+  for _ in $(seq 100); do
+    job=$(sed -n 's/^job \([0-9]*\);.*/\1/p' cancel.out)
+    [ -n "$job" ] && break
+    sleep 0.1
+  done
+  [ -n "$job" ] || fail "detect --slurm printed no job id: $(cat cancel.out cancel.err)"
+  task=""
+  for _ in $(seq 300); do
+    task=$(squeue -h -r -j "$job" -t RUNNING -o %K 2>/dev/null | head -n 1)
+    [ -n "$task" ] && break
+    sleep 0.05
+  done
+  [ -n "$task" ] || fail "no task of job $job was seen running"
+  scancel "${job}_${task}"
+  shard="$((task + 1))/4"
+  status=0
+  wait $follower || status=$?
+  if [ $status -eq 0 ]; then
+    echo "detect: task $task finished before scancel reached it (attempt $attempt)"
+    continue
+  fi
+  break
 done
-[ -n "$job" ] || fail "detect --slurm printed no job id: $(cat cancel.out cancel.err)"
-scancel "${job}_3"
-status=0
-wait $follower || status=$?
-[ $status -eq 2 ] || fail "a cancelled task: exit $status, expected 2: $(cat cancel.err)"
-grep -q "shards 4/4 ended without their work" cancel.err || fail "no message naming shard 4/4: $(cat cancel.err)"
-[ ! -e cancel.csv ] || fail "cancel.csv merged without shard 4/4"
+[ $status -eq 2 ] || fail "a task killed while running: exit $status, expected 2: $(cat cancel.err)"
+grep -q "shards $shard ended without their work" cancel.err \
+  || fail "no message naming only shard $shard (task $task killed while running): $(cat cancel.err)"
+[ ! -e cancel.csv ] || fail "cancel.csv merged without shard $shard"
 "$BINPICK" detect "${detect_args[@]}" --out cancel.csv --slurm --tasks 4 > rerun.out \
   || fail "the rerun failed: $(cat rerun.out)"
-grep -q "submitting shards 4/4 as" rerun.out || fail "the rerun did not submit only shard 4/4: $(cat rerun.out)"
+grep -q "submitting shards $shard as" rerun.out || fail "the rerun did not submit only shard $shard: $(cat rerun.out)"
 [ "$(without_time single.csv)" = "$(without_time cancel.csv)" ] || fail "detect: cancel.csv differs after the rerun"
-echo "detect: a cancelled task's shard alone was resubmitted and completed the results (${SECONDS} s)"
+echo "detect: task $task killed while running; its shard $shard alone was resubmitted and completed the results (${SECONDS} s)"
 # The follower interrupted while its array runs: the same command follows that array again.
 "$BINPICK" detect "${detect_args[@]}" --out follow.csv --slurm --tasks 4 > follow.out 2>&1 &
 follower=$!
@@ -201,4 +145,30 @@ comparable() { grep -v -E '"(dataset|results|ms_per_hypothesis)":' "$1"; }
 [ "$(comparable run_single/report/report.json)" = "$(comparable run_array/report/report.json)" ] \
   || fail "run: report.json differs from the single process's"
 echo "run: a 2-task array wrote the single process's report.json (${SECONDS} s)"
+
+# Tuning: one round's candidates (the start and 2 values) as a 2-task array.
+tune_args=(--model builtin:bracket --bins 1 --objects 8 --width 480 --height 270 --hypotheses 3
+           --rounds 1 --max-evals 3 --budget-ms 100000)
+"$BINPICK" tune "${tune_args[@]}" --out tune_single >/dev/null
+"$BINPICK" tune "${tune_args[@]}" --out tune_array --slurm --tasks 2 > tune.out \
+  || fail "tune --slurm: $(cat tune.out)"
+grep -q "^3 points to measure" tune.out || fail "tune --slurm did not measure 3 points in one array: $(cat tune.out)"
+[ "$(grep -c "^submitting shards" tune.out)" = 1 ] || fail "tune --slurm submitted more than one array: $(cat tune.out)"
+measured() { cut -d, -f1-13 "$1"; }  # without ms_per_hypothesis, within_budget, best
+[ "$(measured tune_single/tune.csv)" = "$(measured tune_array/tune.csv)" ] \
+  || fail "tune: the array's tune.csv differs: $(cat tune_single/tune.csv tune_array/tune.csv)"
+best_row() { awk -F, '$16 == 1 { print $1 }' "$1"; }
+precisions() { awk -F, -v row="$2" '$1 == row { print $10, $11, $12, $13 }' "$1"; }
+if [ "$(best_row tune_single/tune.csv)" = "$(best_row tune_array/tune.csv)" ]; then
+  cmp -s tune_single/best.json tune_array/best.json || fail "tune: best.json differs"
+else
+  # Points equal in every precision are told apart by their measured time alone.
+  [ "$(precisions tune_single/tune.csv "$(best_row tune_single/tune.csv)")" = \
+    "$(precisions tune_array/tune.csv "$(best_row tune_array/tune.csv)")" ] \
+    || fail "tune: a different best point, not a tie in precision"
+fi
+"$BINPICK" tune "${tune_args[@]}" --out tune_array --slurm --tasks 2 > tune_again.out \
+  || fail "tune --slurm again: $(cat tune_again.out)"
+! grep -q "^submitting" tune_again.out || fail "tune --slurm again submitted work: $(cat tune_again.out)"
+echo "tune: a round as a 2-task array measured the single process's points (${SECONDS} s)"
 echo "PASS"
