@@ -26,7 +26,8 @@ usage: ./run.sh demo | test [--sanitize] | bench | fuzz [SECONDS]
          build/bench/bench.md and bench.json; extra arguments go to 'binpick bench';
          then bench/throughput.sh: build/bench/throughput.md
   fuzz   build the libFuzzer targets with clang into build-fuzz/ and run each for SECONDS
-         (default 60) from its seed corpus fuzz/corpus/NAME; fails if any input crashes
+         (default 60) from its seed corpus fuzz/corpus/NAME, FUZZ_JOBS (default: the cores) at
+         a time; prints CPU seconds per target and in total; fails if any input crashes
 TXT
 }
 
@@ -100,37 +101,53 @@ case "$cmd" in
   fuzz)
     seconds=${2:-60}
     [[ "$seconds" =~ ^[1-9][0-9]*$ ]] || { echo "run.sh fuzz: SECONDS must be a positive integer" >&2; exit 2; }
+    jobs=${FUZZ_JOBS:-$(nproc)}
+    [[ "$jobs" =~ ^[1-9][0-9]*$ ]] || { echo "run.sh fuzz: FUZZ_JOBS must be a positive integer" >&2; exit 2; }
     install_packages "${BUILD_PACKAGES[@]}" "${FUZZ_PACKAGES[@]}"
     cmake -S . -B build-fuzz -DCMAKE_BUILD_TYPE=RelWithDebInfo -DBINPICK_FUZZ=ON \
           -DCMAKE_C_COMPILER=clang -DCMAKE_CXX_COMPILER=clang++ >/dev/null
     targets=$(cd fuzz && ls fuzz_*.cpp | sed 's/\.cpp$//')
     # shellcheck disable=SC2086
     cmake --build build-fuzz -j"$(nproc)" --target $targets
+    mkdir -p build-fuzz/logs
+    # One target: its log, its CPU seconds (user + system: what "an hour of fuzzing" means on a
+    # shared machine) and its exit status in build-fuzz/logs/NAME.{log,cpu,status}.
+    fuzz_one() {
+      local target=$1 name=${1#fuzz_}
+      local work=build-fuzz/corpus-work/$name crashes=build-fuzz/crashes/$name
+      local log=build-fuzz/logs/$name.log
+      mkdir -p "$work" "$crashes"
+      local corpora=("$work" "fuzz/corpus/$name")  # new inputs go to work, not the repository
+      [ -d "fuzz/regressions/$name" ] && corpora+=("fuzz/regressions/$name")
+      # A leak, a hang (-timeout, seconds per input) or an allocation over 2 GB is a crash too.
+      local TIMEFORMAT='%3U %3S'
+      { time { status=0; "build-fuzz/$target" -max_total_time="$seconds" \
+        -timeout=20 -rss_limit_mb=2048 -print_final_stats=1 -artifact_prefix="$crashes/" \
+        "${corpora[@]}" >"$log" 2>&1 || status=$?; echo "$status" >"$log.status"; }; } 2>"$log.cpu"
+    }
+    # FUZZ_JOBS targets at a time (default: one per core).
+    running=0
+    for target in $targets; do
+      echo "== $target: ${seconds} s"
+      fuzz_one "$target" &
+      running=$((running + 1))
+      if [ "$running" -ge "$jobs" ]; then wait -n; running=$((running - 1)); fi
+    done
+    wait
     failed=()
     summary=""
     cpu_total=0
     for target in $targets; do
       name=${target#fuzz_}
-      work=build-fuzz/corpus-work/$name   # new inputs go here, not into the repository
-      crashes=build-fuzz/crashes/$name
       log=build-fuzz/logs/$name.log
-      mkdir -p "$work" "$crashes" build-fuzz/logs
-      corpora=("$work" "fuzz/corpus/$name")
-      [ -d "fuzz/regressions/$name" ] && corpora+=("fuzz/regressions/$name")
-      echo "== $target: ${seconds} s"
-      # A leak, a hang (-timeout, seconds per input) or an allocation over 2 GB is a crash too.
-      # The CPU seconds (user + system) are what "an hour of fuzzing" means on a shared machine.
-      TIMEFORMAT='%3U %3S'
-      { time { status=0; "build-fuzz/$target" -max_total_time="$seconds" \
-        -timeout=20 -rss_limit_mb=2048 -print_final_stats=1 -artifact_prefix="$crashes/" \
-        "${corpora[@]}" >"$log" 2>&1 || status=$?; }; } 2>"$log.cpu"
+      status=$(cat "$log.status")
       cpu=$(awk '{printf "%.0f", $1 + $2}' "$log.cpu")
       cpu_total=$((cpu_total + cpu))
       runs=$(sed -n 's/^stat::number_of_executed_units: *//p' "$log" | tail -1)
       cov=$(grep -Eo 'cov: [0-9]+ ft: [0-9]+' "$log" | tail -1)
       if [ "$status" -ne 0 ]; then
         failed+=("$name")
-        echo "   CRASH (exit $status); log: $log; input: $(ls "$crashes" | head -1)"
+        echo "   $name: CRASH (exit $status); log: $log; input: $(ls "build-fuzz/crashes/$name" | head -1)"
         grep -E '^(==[0-9]+==ERROR|SUMMARY|.*runtime error)' "$log" | head -3 | sed 's/^/   /'
       fi
       summary+=$(printf '%-15s %12s executions %6s CPU s  %s\n' "$name" "${runs:-?}" "$cpu" "${cov:-cov: ?}")$'\n'
