@@ -57,13 +57,17 @@ void print_summary(const std::vector<eval::DatasetEvaluation>& evaluations,
                            fmt::format("top{:g}/{:g}", o.strict.translation_pct, o.strict.rotation_deg),
                            fmt::format("all{:g}/{:g}", o.strict.translation_pct, o.strict.rotation_deg),
                            "med.te%", "med.re", "ms/hyp");
-  for (const auto& e : evaluations) {
-    const auto& s = e.summary;
+  const auto row = [](const std::string& label, const eval::EvalSummary& s) {
     std::cout << fmt::format(
         "{:<24} {:>7} {:>10} {:>8.1f}% {:>8.1f}% {:>8.1f}% {:>8.1f}% {:>9.2f} {:>9.2f} {:>10.1f}\n",
-        e.dataset.label, s.images, s.hypotheses, 100 * s.loose.top, 100 * s.loose.all,
+        label, s.images, s.hypotheses, 100 * s.loose.top, 100 * s.loose.all,
         100 * s.strict.top, 100 * s.strict.all, s.median_translation_pct_all,
         s.median_rotation_deg_all, s.ms_per_hypothesis);
+  };
+  for (const auto& e : evaluations) {
+    row(e.dataset.label, e.summary);
+    // With several objects, each one's rows (its top-ranked per image its own).
+    for (const auto& o : e.objects) row(fmt::format("  obj_id {}", o.obj_id), o.summary);
   }
   std::cout << eval::bop_summary_lines(evaluations);
   for (const auto& e : evaluations)

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 #include <map>
+#include <set>
 
 #include <fmt/format.h>
 
@@ -96,6 +97,38 @@ void check(const EvalOptions& o) {
                                  o.score_keep));
 }
 
+namespace {
+
+// The figures of s.results, whose ranks, tops and times are set.
+void summarize(EvalSummary& s, const EvalOptions& options) {
+  std::vector<double> te_all, re_all, te_top, re_top;
+  std::size_t tops = 0, all_distractor = 0, all_nothing = 0, top_distractor = 0, top_nothing = 0;
+  for (const auto& r : s.results) {
+    s.unmatched += r.gt_index < 0;
+    all_distractor += r.landing == Landing::distractor;
+    all_nothing += r.landing == Landing::none;
+    if (r.top) {
+      ++tops;
+      top_distractor += r.landing == Landing::distractor;
+      top_nothing += r.landing == Landing::none;
+    }
+    te_all.push_back(r.translation_pct), re_all.push_back(r.rotation_deg);
+    if (r.top) te_top.push_back(r.translation_pct), re_top.push_back(r.rotation_deg);
+  }
+  s.all_on_distractor = fraction(all_distractor, s.results.size());
+  s.all_on_nothing = fraction(all_nothing, s.results.size());
+  s.top_on_distractor = fraction(top_distractor, tops);
+  s.top_on_nothing = fraction(top_nothing, tops);
+  s.loose = precision_at(s.results, options.loose);
+  s.strict = precision_at(s.results, options.strict);
+  s.score_loose = calibrate(s.results, options.loose, options.score_keep);
+  s.score_strict = calibrate(s.results, options.strict, options.score_keep);
+  s.median_translation_pct_all = median(te_all), s.median_rotation_deg_all = median(re_all);
+  s.median_translation_pct_top = median(te_top), s.median_rotation_deg_top = median(re_top);
+}
+
+}  // namespace
+
 EvalSummary evaluate(const Dataset& dataset, const std::vector<bop::ResultRow>& rows,
                      const EvalOptions& options) {
   check(options);
@@ -121,53 +154,63 @@ EvalSummary evaluate(const Dataset& dataset, const std::vector<bop::ResultRow>& 
     r.row = row;
     measure(r, image->second, model->second);
     r.landing = landing(image->second, dataset.models, row.obj_id, row.R, row.t);
-    auto& list = by_image[key];
-    r.rank = int(list.size());
-    list.push_back(s.results.size());
+    by_image[key].push_back(s.results.size());
     s.results.push_back(r);
   }
 
   double total_ms = 0;
   for (const auto& [key, list] : by_image) {
-    std::size_t best = list.front();
-    for (std::size_t i : list)
-      if (s.results[i].score > s.results[best].score) best = i;
-    s.results[best].top = true;
     // The time column is per image (the same on each of its rows); rows may disagree if
     // concatenated from several runs: take the first.
     const double image_ms = 1e3 * s.results[list.front()].row.time;
     for (std::size_t i : list) s.results[i].ms = image_ms / double(list.size());
     total_ms += image_ms;
   }
+  // Ranks and the top-ranked row per image and obj_id: with several objects each has its own.
+  std::map<std::pair<ImageKey, int>, std::vector<std::size_t>> by_object;
+  for (std::size_t i = 0; i < s.results.size(); ++i) {
+    const HypothesisResult& r = s.results[i];
+    auto& list = by_object[{ImageKey{r.scene_id, r.im_id}, r.obj_id}];
+    s.results[i].rank = int(list.size());
+    list.push_back(i);
+  }
+  for (const auto& [key, list] : by_object) {
+    std::size_t best = list.front();
+    for (std::size_t i : list)
+      if (s.results[i].score > s.results[best].score) best = i;
+    s.results[best].top = true;
+  }
   s.images_with_results = by_image.size();
   s.hypotheses = s.results.size();
-
-  std::vector<double> te_all, re_all, te_top, re_top;
-  std::size_t tops = 0, all_distractor = 0, all_nothing = 0, top_distractor = 0, top_nothing = 0;
-  for (const auto& r : s.results) {
-    s.unmatched += r.gt_index < 0;
-    all_distractor += r.landing == Landing::distractor;
-    all_nothing += r.landing == Landing::none;
-    if (r.top) {
-      ++tops;
-      top_distractor += r.landing == Landing::distractor;
-      top_nothing += r.landing == Landing::none;
-    }
-    te_all.push_back(r.translation_pct), re_all.push_back(r.rotation_deg);
-    if (r.top) te_top.push_back(r.translation_pct), re_top.push_back(r.rotation_deg);
-  }
-  s.all_on_distractor = fraction(all_distractor, s.results.size());
-  s.all_on_nothing = fraction(all_nothing, s.results.size());
-  s.top_on_distractor = fraction(top_distractor, tops);
-  s.top_on_nothing = fraction(top_nothing, tops);
-  s.loose = precision_at(s.results, options.loose);
-  s.strict = precision_at(s.results, options.strict);
-  s.score_loose = calibrate(s.results, options.loose, options.score_keep);
-  s.score_strict = calibrate(s.results, options.strict, options.score_keep);
-  s.median_translation_pct_all = median(te_all), s.median_rotation_deg_all = median(re_all);
-  s.median_translation_pct_top = median(te_top), s.median_rotation_deg_top = median(re_top);
+  summarize(s, options);
   s.ms_per_hypothesis = s.hypotheses ? total_ms / double(s.hypotheses) : 0.0;
   return s;
+}
+
+std::vector<ObjectSummary> per_object(const Dataset& dataset, const EvalSummary& all,
+                                      const EvalOptions& options) {
+  std::map<int, EvalSummary> objects;
+  for (const HypothesisResult& r : all.results) objects[r.obj_id].results.push_back(r);
+  if (objects.size() < 2) return {};
+  std::vector<ObjectSummary> out;
+  for (auto& [obj_id, s] : objects) {
+    std::set<ImageKey> with_results;
+    double ms = 0;
+    for (const HypothesisResult& r : s.results) {
+      with_results.insert({r.scene_id, r.im_id});
+      ms += r.ms;
+    }
+    for (const auto& [key, image] : dataset.images)
+      s.images += std::any_of(image.gt.begin(), image.gt.end(),
+                              [id = obj_id](const bop::GroundTruth& g) { return g.obj_id == id; });
+    s.images_with_results = with_results.size();
+    s.hypotheses = s.results.size();
+    s.ms_per_hypothesis = ms / double(s.hypotheses);
+    summarize(s, options);
+    s.results.clear();  // `all` holds them
+    out.push_back({obj_id, std::move(s)});
+  }
+  return out;
 }
 
 }  // namespace binpick::eval
