@@ -14,6 +14,7 @@
 #include "host/core/progress.hpp"
 #include "host/detect/detect_params_file.hpp"
 #include "host/detect/detect_parts.hpp"
+#include "host/detect/shared_scene.hpp"
 #include "host/shards/shard_record.hpp"
 #include "host/core/atomic_file.hpp"
 #include "host/core/read_file.hpp"
@@ -177,12 +178,13 @@ void detect_image(const std::vector<ObjectDetector>& detectors, const DepthImage
                   std::string& details, BatchSummary& summary, std::ostream* log) {
   const bool several = detectors.size() > 1;
   std::vector<std::vector<Detection>> found(detectors.size());
+  SharedScene shared;  // the image prepared and its bin fitted once, for every model
   for (std::size_t m = 0; m < detectors.size(); ++m) {
     Detector& detector = *detectors[m].detector;
     const int obj_id = detectors[m].obj_id;
     DetectTimes times;
     try {
-      found[m] = detector.detect(depth, cam, &times);
+      found[m] = detector.detect(depth, cam, &times, nullptr, several ? &shared : nullptr);
     } catch (const InputError& e) {
       throw InputError(depth_path.string() + ": " + e.what());
     }

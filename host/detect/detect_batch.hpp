@@ -106,7 +106,7 @@ ShardRecord batch_shard_record(const BatchOptions& opt, const std::vector<int>& 
 // merges the parts into OUT; progress on stderr, the log (verbose lines) to `log` if given.
 BatchSummary detect_dataset(Detector& detector, const BatchOptions& opt, std::ostream* log);
 // The same with several models (ascending by obj_id, of equal parameters): each image's depth is
-// read once and every model detects in it; its rows are those of each model in turn (BOP's
+// read and prepared once, its bin fitted once (shared_scene.hpp), and every model detects in it; its rows are those of each model in turn (BOP's
 // order: obj_id, then score), each model's --instances budget its own; the image's time is that
 // of all of them.
 BatchSummary detect_dataset(const std::vector<ObjectDetector>& detectors, const BatchOptions& opt,
