@@ -203,6 +203,8 @@ void detect_image(const std::vector<ObjectDetector>& detectors, const DepthImage
       for (const Detection& d : detector.skipped())
         *log << "  hypothesis " << d.index << ": " << d.reason << "\n";
     }
+    // The bin is sought once per image (the models share its fit), not once per model.
+    if (m > 0) times.bin_sought = times.bin_found = 0;
     summary.times += times;
   }
   // The time of the whole image, every model's detection in it (BOP: one value per image).
