@@ -109,17 +109,17 @@ void run_detect(DetectArgs& a) {
     throw InputError("give exactly one of --dataset DIR and --cloud FILE.ply");
   const DetectParams params = resolve(a.detection);
   const Shard shard = shard_of(a.shards);
-  const std::vector<ModelSource> sources = resolve_model_sources(a.models, a.obj_ids);
   check_output_file(a.out);
+  // A shard shares the output with the other shards; --slurm's follower only waits for its
+  // tasks (which lock as shards) and merges after them.
+  std::optional<OutputLock> lock;
+  if (!a.shards.slurm.enabled) lock.emplace(OutputLock::file(a.out, shard.index, shard.count));
+  const std::vector<ModelSource> sources = resolve_model_sources(a.models, a.obj_ids);
   if (!a.cloud.empty()) {
     if (!a.scenes.empty()) throw InputError("--scenes applies to --dataset only");
     if (shard.sharded() || a.shards.slurm.enabled)
       throw InputError("--shard and --slurm apply to --dataset only (a --cloud is one scene)");
   }
-  // A shard shares the output with the other shards; --slurm's follower only waits for its
-  // tasks (which lock as shards) and merges after them.
-  std::optional<OutputLock> lock;
-  if (!a.shards.slurm.enabled) lock.emplace(OutputLock::file(a.out, shard.index, shard.count));
   std::vector<LoadedModel> models;
   models.reserve(sources.size());  // the detectors keep references to the models
   for (const ModelSource& source : sources) {

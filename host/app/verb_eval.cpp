@@ -116,7 +116,8 @@ void add_eval_verb(CLI::App& app) {
   auto* verb = app.add_subcommand(
       "eval",
       "Evaluate detection results against a dataset's ground truth: translation and rotation "
-      "errors, precision curves (all hypotheses and top-ranked per image), BOP's average recalls "
+      "errors, precision curves (all hypotheses and top-ranked per image), per obj_id as well "
+      "when the results hold several, BOP's average recalls "
       "(MSSD, MSPD; symmetry-aware; no VSD), precision against "
       "score threshold (is the score calibrated?), pictures; writes report.html, report.json, "
       "curves.csv, score_curves.csv, hypotheses.csv and PNGs into --out");

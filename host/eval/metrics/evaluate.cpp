@@ -4,7 +4,6 @@
 #include <cmath>
 #include <limits>
 #include <map>
-#include <set>
 
 #include <fmt/format.h>
 
@@ -154,31 +153,23 @@ EvalSummary evaluate(const Dataset& dataset, const std::vector<bop::ResultRow>& 
     r.row = row;
     measure(r, image->second, model->second);
     r.landing = landing(image->second, dataset.models, row.obj_id, row.R, row.t);
-    by_image[key].push_back(s.results.size());
+    auto& list = by_image[key];
+    r.rank = int(list.size());
+    list.push_back(s.results.size());
     s.results.push_back(r);
   }
 
   double total_ms = 0;
   for (const auto& [key, list] : by_image) {
+    std::size_t best = list.front();
+    for (std::size_t i : list)
+      if (s.results[i].score > s.results[best].score) best = i;
+    s.results[best].top = true;
     // The time column is per image (the same on each of its rows); rows may disagree if
     // concatenated from several runs: take the first.
     const double image_ms = 1e3 * s.results[list.front()].row.time;
     for (std::size_t i : list) s.results[i].ms = image_ms / double(list.size());
     total_ms += image_ms;
-  }
-  // Ranks and the top-ranked row per image and obj_id: with several objects each has its own.
-  std::map<std::pair<ImageKey, int>, std::vector<std::size_t>> by_object;
-  for (std::size_t i = 0; i < s.results.size(); ++i) {
-    const HypothesisResult& r = s.results[i];
-    auto& list = by_object[{ImageKey{r.scene_id, r.im_id}, r.obj_id}];
-    s.results[i].rank = int(list.size());
-    list.push_back(i);
-  }
-  for (const auto& [key, list] : by_object) {
-    std::size_t best = list.front();
-    for (std::size_t i : list)
-      if (s.results[i].score > s.results[best].score) best = i;
-    s.results[best].top = true;
   }
   s.images_with_results = by_image.size();
   s.hypotheses = s.results.size();
@@ -194,16 +185,28 @@ std::vector<ObjectSummary> per_object(const Dataset& dataset, const EvalSummary&
   if (objects.size() < 2) return {};
   std::vector<ObjectSummary> out;
   for (auto& [obj_id, s] : objects) {
-    std::set<ImageKey> with_results;
+    // Ranks and the top-ranked row among this object's rows of each image.
+    std::map<ImageKey, std::vector<std::size_t>> by_image;
+    for (std::size_t i = 0; i < s.results.size(); ++i) {
+      HypothesisResult& r = s.results[i];
+      auto& list = by_image[{r.scene_id, r.im_id}];
+      r.rank = int(list.size());
+      r.top = false;
+      list.push_back(i);
+    }
     double ms = 0;
-    for (const HypothesisResult& r : s.results) {
-      with_results.insert({r.scene_id, r.im_id});
-      ms += r.ms;
+    for (const auto& [key, list] : by_image) {
+      std::size_t best = list.front();
+      for (std::size_t i : list) {
+        if (s.results[i].score > s.results[best].score) best = i;
+        ms += s.results[i].ms;
+      }
+      s.results[best].top = true;
     }
     for (const auto& [key, image] : dataset.images)
       s.images += std::any_of(image.gt.begin(), image.gt.end(),
                               [id = obj_id](const bop::GroundTruth& g) { return g.obj_id == id; });
-    s.images_with_results = with_results.size();
+    s.images_with_results = by_image.size();
     s.hypotheses = s.results.size();
     s.ms_per_hypothesis = ms / double(s.hypotheses);
     summarize(s, options);

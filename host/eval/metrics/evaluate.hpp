@@ -1,7 +1,7 @@
 // Evaluation of detection results against a dataset's ground truth (paper section III-D): each
 // hypothesis is matched to the ground-truth part nearest in translation, its errors are
 // measured, and precision is counted for all hypotheses and for the top-ranked one (highest
-// score) of each image and obj_id; the score is calibrated against right and wrong (score_calibration.hpp).
+// score) of each image, and per obj_id (per_object) of each image's rows of it; the score is calibrated against right and wrong (score_calibration.hpp).
 // The numbers `binpick tune` optimises come from here.
 #pragma once
 
@@ -32,9 +32,9 @@ enum class Landing { part, distractor, none };
 
 struct HypothesisResult {
   int scene_id = 0, im_id = 0, obj_id = 1;
-  int rank = 0;          // 0 = the first row of its image and obj_id in the file
+  int rank = 0;          // 0 = the first row of its image in the file
   double score = 0;      // as detect writes it: the verified score in [0, 1]
-  bool top = false;      // the highest score of its image and obj_id (the first such row on ties)
+  bool top = false;      // the highest score of its image (the first such row on ties)
   int gt_index = -1;     // the matched instance of scene_gt.json, -1 if the image has none of obj_id
   double translation_mm = 0, translation_pct = 0, rotation_deg = 0;  // +inf if unmatched
   double ms = 0;         // the image's time divided by its number of hypotheses
@@ -73,8 +73,9 @@ void check(const EvalOptions& options);
 EvalSummary evaluate(const Dataset& dataset, const std::vector<bop::ResultRow>& rows,
                      const EvalOptions& options = {});
 
-// The paper's figures of one obj_id's rows (evaluate's, its top-ranked row of each image its
-// own): images are those whose ground truth holds the obj_id; results are left empty.
+// The paper's figures of one obj_id's rows, their ranks and top-ranked row per image among that
+// obj_id's rows alone: images are those whose ground truth holds the obj_id; results are left
+// empty.
 struct ObjectSummary {
   int obj_id = 0;
   EvalSummary summary;
