@@ -21,6 +21,7 @@
 #include "host/core/atomic_file.hpp"
 #include "host/core/read_file.hpp"
 #include "host/train/ppf_model_file.hpp"
+#include "host/app/detect_models.hpp"
 #include "host/app/detect_options.hpp"
 #include "host/app/shard_options.hpp"
 #include "host/detect/detect_parts.hpp"
@@ -34,8 +35,9 @@ namespace {
 namespace fs = std::filesystem;
 
 struct DetectArgs {
-  std::string model, dataset, cloud, out, scenes, split = "test", sensor;
-  int obj_id = 1;
+  std::vector<std::string> models;  // --model, repeated: .ppfm files or directories of them
+  std::vector<int> obj_ids;         // --obj-id, once per --model or not at all
+  std::string dataset, cloud, out, scenes, split = "test", sensor;
   bool verbose = false;
   DetectCliOptions detection;  // --params and one option per parameter
   ShardCliOptions shards;      // --shard K/N, --slurm
@@ -64,6 +66,44 @@ void detect_on_slurm(const DetectArgs& a, const BatchOptions& opt, const DetectP
   run_on_slurm(batch, a.shards.slurm, task_command(own_command_line()), std::cout);
 }
 
+// Detection in one point cloud (--cloud), by every model; written as scene 0, image 0.
+void detect_cloud(const DetectArgs& a, const std::vector<ObjectDetector>& detectors) {
+  const auto start = std::chrono::steady_clock::now();
+  const PointCloud cloud = read_point_cloud_ply(a.cloud);
+  const bool several = detectors.size() > 1;
+  BatchSummary s;
+  s.scenes = s.images = 1;
+  std::vector<std::vector<Detection>> found;
+  for (const ObjectDetector& d : detectors) {
+    try {
+      found.push_back(d.detector->detect(cloud, &s.times));
+    } catch (const InputError& e) {
+      throw InputError(a.cloud + ": " + e.what());
+    }
+  }
+  const double seconds = seconds_since(start);
+  std::vector<bop::ResultRow> rows;
+  std::string details = several ? kDetailsHeaderWithObjId : kDetailsHeader;
+  for (std::size_t m = 0; m < detectors.size(); ++m) {
+    const auto image_rows = detection_rows(found[m], 0, 0, detectors[m].obj_id, seconds);
+    rows.insert(rows.end(), image_rows.begin(), image_rows.end());
+    details += detail_rows(found[m], 0, 0,
+                           several ? std::optional<int>(detectors[m].obj_id) : std::nullopt);
+  }
+  write_file_atomically(details_path(a.out), [&](std::ostream& o) { o << details; });
+  bop::write_results_csv(a.out, rows);
+  s.rows = rows.size();
+  if (a.verbose) {
+    for (const StageTime& st : s.times.stages)
+      std::cout << fmt::format("  {} {:.1f} ms\n", st.stage, st.ms);
+    for (std::size_t m = 0; m < detectors.size(); ++m)
+      for (std::size_t r = 0; r < found[m].size(); ++r)
+        std::cout << "  " << (several ? fmt::format("obj_id {} ", detectors[m].obj_id) : "")
+                  << detection_line(r, found[m][r]) << "\n";
+  }
+  std::cout << summary_line(s) << "\nwrote " << a.out << "\n";
+}
+
 void run_detect(DetectArgs& a) {
   if (a.dataset.empty() == a.cloud.empty())
     throw InputError("give exactly one of --dataset DIR and --cloud FILE.ply");
@@ -74,38 +114,19 @@ void run_detect(DetectArgs& a) {
   // tasks (which lock as shards) and merges after them.
   std::optional<OutputLock> lock;
   if (!a.shards.slurm.enabled) lock.emplace(OutputLock::file(a.out, shard.index, shard.count));
-  const std::string model_bytes = read_file_bytes(a.model);
-  const PpfModel model = parse_ppf_model(model_bytes, a.model);
+  const std::vector<ModelSource> sources = resolve_model_sources(a.models, a.obj_ids);
   if (!a.cloud.empty()) {
     if (!a.scenes.empty()) throw InputError("--scenes applies to --dataset only");
     if (shard.sharded() || a.shards.slurm.enabled)
       throw InputError("--shard and --slurm apply to --dataset only (a --cloud is one scene)");
-    Detector detector(model, params);
-    const auto start = std::chrono::steady_clock::now();
-    const PointCloud cloud = read_point_cloud_ply(a.cloud);
-    DetectTimes times;
-    std::vector<Detection> found;
-    try {
-      found = detector.detect(cloud, &times);
-    } catch (const InputError& e) {
-      throw InputError(a.cloud + ": " + e.what());
-    }
-    const double seconds =
-        seconds_since(start);
-    write_file_atomically(details_path(a.out), [&](std::ostream& o) {
-      o << kDetailsHeader << detail_rows(found, 0, 0);
-    });
-    bop::write_results_csv(a.out, detection_rows(found, 0, 0, a.obj_id, seconds));
-    BatchSummary s;
-    s.scenes = s.images = 1;
-    s.rows = found.size();
-    s.times = times;
-    if (a.verbose) {
-      for (const StageTime& st : times.stages) std::cout << fmt::format("  {} {:.1f} ms\n", st.stage, st.ms);
-      for (std::size_t r = 0; r < found.size(); ++r) std::cout << "  " << detection_line(r, found[r]) << "\n";
-    }
-    std::cout << summary_line(s) << "\nwrote " << a.out << "\n";
-    return;
+  }
+  std::vector<LoadedModel> models;
+  models.reserve(sources.size());  // the detectors keep references to the models
+  for (const ModelSource& source : sources) {
+    models.push_back(load_model_source(source));
+    if (models.back().train_seconds > 0)
+      std::cout << fmt::format("trained {} (obj_id {}) in {:.1f} s\n", source.path.string(),
+                               source.obj_id, models.back().train_seconds);
   }
 
   BatchOptions opt;
@@ -113,14 +134,21 @@ void run_detect(DetectArgs& a) {
   opt.split = a.split;
   opt.sensor = a.sensor;
   if (!a.scenes.empty()) opt.scenes = parse_scene_list(a.scenes);
-  opt.obj_id = a.obj_id;
+  opt.obj_id = models.front().source.obj_id;
   opt.out = a.out;
-  opt.model_checksum = checksum_hex(model_bytes);
+  opt.model_checksum = models.front().checksum;
+  for (const LoadedModel& m : models) opt.models.push_back({m.checksum, m.source.obj_id});
   opt.verbose = a.verbose;
   opt.shard = shard;
-  if (a.shards.slurm.enabled) return detect_on_slurm(a, opt, params);
-  Detector detector(model, params);
-  const BatchSummary s = detect_dataset(detector, opt, &std::cout);
+  if (a.cloud.empty() && a.shards.slurm.enabled) return detect_on_slurm(a, opt, params);
+  std::vector<std::unique_ptr<Detector>> owned;
+  std::vector<ObjectDetector> detectors;
+  for (const LoadedModel& m : models) {
+    owned.push_back(std::make_unique<Detector>(m.model, params));
+    detectors.push_back({owned.back().get(), m.source.obj_id});
+  }
+  if (!a.cloud.empty()) return detect_cloud(a, detectors);
+  const BatchSummary s = detect_dataset(detectors, opt, &std::cout);
   std::cout << summary_line(s) << "\n";
   if (s.missing == 0)
     std::cout << "wrote " << a.out << "\n";
@@ -138,7 +166,11 @@ void add_detect_verb(CLI::App& app) {
       "detect",
       "Find the part around the highest points of every scene of a BOP dataset (or of a point "
       "cloud) with point pair feature voting on the OpenCL device; write the BOP results CSV");
-  verb->add_option("--model", a->model, "trained model (.ppfm, from `binpick train`)")->required();
+  verb->add_option("--model", a->models,
+                   "trained model (.ppfm, from `binpick train`); repeat for several objects, or "
+                   "give a directory of obj_NNNNNN.ppfm files (or a BOP models/ folder: "
+                   "models_info.json and obj_NNNNNN.ply, trained here with train's defaults)")
+      ->required();
   verb->add_option("--dataset", a->dataset, "BOP dataset directory (DIR/SPLIT/NNNNNN/depth/...)");
   verb->add_option("--cloud", a->cloud,
                    "instead of --dataset: one scene as a .ply point cloud in the camera frame "
@@ -149,7 +181,9 @@ void add_detect_verb(CLI::App& app) {
                    "BOP sensor suffix: read scene_camera_NAME.json and depth_NAME/ (BOP's "
                    "industrial datasets)");
   verb->add_option("--scenes", a->scenes, "subset of scene ids, e.g. 0,3,5-9 (default: all)");
-  verb->add_option("--obj-id", a->obj_id, "object id written in the results")->capture_default_str();
+  verb->add_option("--obj-id", a->obj_ids,
+                   "object id written in the results, once per --model in the same order "
+                   "(default: from a BOP name obj_NNNNNN.ppfm, else 1 for a single model)");
   verb->add_flag("--verbose", a->verbose, "print per-stage timings of every image");
   add_detect_cli_options(verb, a->detection, "detection");
   add_shard_options(verb, a->shards, "scenes");

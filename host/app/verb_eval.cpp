@@ -59,13 +59,17 @@ void print_summary(const std::vector<eval::DatasetEvaluation>& evaluations,
                            fmt::format("top{:g}/{:g}", o.strict.translation_pct, o.strict.rotation_deg),
                            fmt::format("all{:g}/{:g}", o.strict.translation_pct, o.strict.rotation_deg),
                            "med.te%", "med.re", "ms/hyp");
-  for (const auto& e : evaluations) {
-    const auto& s = e.summary;
+  const auto row = [](const std::string& label, const eval::EvalSummary& s) {
     std::cout << fmt::format(
         "{:<24} {:>7} {:>10} {:>8.1f}% {:>8.1f}% {:>8.1f}% {:>8.1f}% {:>9.2f} {:>9.2f} {:>10.1f}\n",
-        e.dataset.label, s.images, s.hypotheses, 100 * s.loose.top, 100 * s.loose.all,
+        label, s.images, s.hypotheses, 100 * s.loose.top, 100 * s.loose.all,
         100 * s.strict.top, 100 * s.strict.all, s.median_translation_pct_all,
         s.median_rotation_deg_all, s.ms_per_hypothesis);
+  };
+  for (const auto& e : evaluations) {
+    row(e.dataset.label, e.summary);
+    // With several objects, each one's rows (its top-ranked per image its own).
+    for (const auto& o : e.objects) row(fmt::format("  obj_id {}", o.obj_id), o.summary);
   }
   std::cout << eval::bop_summary_lines(evaluations);
   for (const auto& e : evaluations)
@@ -117,7 +121,8 @@ void add_eval_verb(CLI::App& app) {
   auto* verb = app.add_subcommand(
       "eval",
       "Evaluate detection results against a dataset's ground truth: translation and rotation "
-      "errors, precision curves (all hypotheses and top-ranked per image), BOP's average recalls "
+      "errors, precision curves (all hypotheses and top-ranked per image), per obj_id as well "
+      "when the results hold several, BOP's average recalls "
       "(VSD rendered with Vulkan, MSSD and MSPD symmetry-aware), precision against "
       "score threshold (is the score calibrated?), pictures; writes report.html, report.json, "
       "curves.csv, score_curves.csv, hypotheses.csv and PNGs into --out");

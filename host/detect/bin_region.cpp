@@ -10,7 +10,7 @@
 namespace binpick {
 
 SceneRegionMask apply_region(PreparedScene& scene, const RegionSetup& setup, int lowpass_radius,
-                             StageTimings* timings) {
+                             StageTimings* timings, const BinFit* known_bin) {
   SceneRegionMask out;
   if (!setup.wanted()) return out;
   if (!scene.device) throw InputError("apply_region needs a scene on the device");
@@ -22,7 +22,8 @@ SceneRegionMask apply_region(PreparedScene& scene, const RegionSetup& setup, int
     BinFitOptions bo;
     bo.spec = setup.bin;
     bo.min_height = setup.min_height;
-    out.bin = fit_bin(dev, scene.device->points.read(dev), scene.width, scene.height, bo);
+    out.bin = known_bin ? *known_bin
+                        : fit_bin(dev, scene.device->points.read(dev), scene.width, scene.height, bo);
     out.report = describe(*out.bin);
     if (out.bin->found) {
       const bool clear = setup.clear_floor && out.bin->floor_plane;

@@ -14,6 +14,7 @@
 #include "host/core/progress.hpp"
 #include "host/detect/detect_params_file.hpp"
 #include "host/detect/detect_parts.hpp"
+#include "host/detect/shared_scene.hpp"
 #include "host/shards/shard_record.hpp"
 #include "host/core/atomic_file.hpp"
 #include "host/core/read_file.hpp"
@@ -91,22 +92,33 @@ fs::path details_path(const fs::path& out) {
   return p.replace_extension(".details.csv");
 }
 
-std::string detail_rows(const std::vector<Detection>& detections, int scene_id, int im_id) {
+namespace {
+
+// "OBJ_ID," with several models, "" with one.
+std::string obj_id_column(std::optional<int> obj_id) {
+  return obj_id ? fmt::format("{},", *obj_id) : std::string();
+}
+
+}  // namespace
+
+std::string detail_rows(const std::vector<Detection>& detections, int scene_id, int im_id,
+                        std::optional<int> obj_id) {
   std::string text;
   for (std::size_t r = 0; r < detections.size(); ++r) {
     const Detection& d = detections[r];
-    text += fmt::format("{},{},{},{},{},{:.6f},{},{},{},{}\n", scene_id, im_id, r, d.index,
-                        d.candidate, d.score, d.votes, d.visible, d.inliers,
-                        d.reason.empty() ? "" : csv_quoted(d.reason));
+    text += fmt::format("{},{},{}{},{},{},{:.6f},{},{},{},{}\n", scene_id, im_id,
+                        obj_id_column(obj_id), r, d.index, d.candidate, d.score, d.votes,
+                        d.visible, d.inliers, d.reason.empty() ? "" : csv_quoted(d.reason));
   }
   return text;
 }
 
-std::string skipped_rows(const std::vector<Detection>& skipped, int scene_id, int im_id) {
+std::string skipped_rows(const std::vector<Detection>& skipped, int scene_id, int im_id,
+                         std::optional<int> obj_id) {
   std::string text;
   for (const Detection& d : skipped)
-    text += fmt::format("{},{},,{},0,0.000000,0,0,0,{}\n", scene_id, im_id, d.index,
-                        csv_quoted(d.reason));
+    text += fmt::format("{},{},{},{},0,0.000000,0,0,0,{}\n", scene_id, im_id,
+                        obj_id_column(obj_id), d.index, csv_quoted(d.reason));
   return text;
 }
 
@@ -140,27 +152,90 @@ std::vector<int> batch_scenes(const BatchOptions& opt) {
 }
 
 std::string batch_fingerprint(const BatchOptions& opt, const DetectParams& params) {
+  std::string models = fmt::format("\"model\": \"{}\", \"obj_id\": {}", opt.model_checksum,
+                                   opt.obj_id);
+  if (opt.models.size() > 1) {
+    models = "\"models\": [";
+    for (std::size_t i = 0; i < opt.models.size(); ++i)
+      models += fmt::format("{}{{\"model\": \"{}\", \"obj_id\": {}}}", i ? ", " : "",
+                            opt.models[i].checksum, opt.models[i].obj_id);
+    models += "]";
+  }
   return fmt::format(
-      "{{\"model\": \"{}\", \"obj_id\": {}, \"split\": \"{}\", \"sensor\": \"{}\", "
-      "\"dataset\": \"{}\", \"params\": {}}}\n",
-      opt.model_checksum, opt.obj_id, opt.split, opt.sensor, fs::absolute(opt.dataset).string(),
-      params_json(params));
+      "{{{}, \"split\": \"{}\", \"sensor\": \"{}\", \"dataset\": \"{}\", \"params\": {}}}\n",
+      models, opt.split, opt.sensor, fs::absolute(opt.dataset).string(), params_json(params));
 }
 
 ShardRecord batch_shard_record(const BatchOptions& opt, const std::vector<int>& scenes) {
   return {"detect", fs::absolute(opt.out), scenes, opt.shard.count};
 }
 
+namespace {
+
+// One image of the batch: every model detects in it, in turn; their rows (each model's best
+// first) and details are appended, all with the image's time.
+void detect_image(const std::vector<ObjectDetector>& detectors, const DepthImage& depth,
+                  const bp_camera& cam, const fs::path& depth_path, int scene, int im_id,
+                  std::chrono::steady_clock::time_point start, std::vector<bop::ResultRow>& rows,
+                  std::string& details, BatchSummary& summary, std::ostream* log) {
+  const bool several = detectors.size() > 1;
+  std::vector<std::vector<Detection>> found(detectors.size());
+  SharedScene shared;  // the image prepared and its bin fitted once, for every model
+  for (std::size_t m = 0; m < detectors.size(); ++m) {
+    Detector& detector = *detectors[m].detector;
+    const int obj_id = detectors[m].obj_id;
+    DetectTimes times;
+    try {
+      found[m] = detector.detect(depth, cam, &times, nullptr, several ? &shared : nullptr);
+    } catch (const InputError& e) {
+      throw InputError(depth_path.string() + ": " + e.what());
+    }
+    const std::optional<int> column = several ? std::optional<int>(obj_id) : std::nullopt;
+    details += detail_rows(found[m], scene, im_id, column);
+    details += skipped_rows(detector.skipped(), scene, im_id, column);
+    if (log) {
+      std::string line = fmt::format("scene {} image {}{}: {} hypotheses;", scene, im_id,
+                                     several ? fmt::format(" obj_id {}", obj_id) : "",
+                                     times.hypotheses);
+      for (const StageTime& st : times.stages) line += fmt::format(" {} {:.1f}", st.stage, st.ms);
+      *log << line << " ms\n";
+      if (!detector.region_report().empty()) *log << "  " << detector.region_report() << "\n";
+      for (std::size_t r = 0; r < found[m].size(); ++r)
+        *log << "  " << detection_line(r, found[m][r]) << "\n";
+      for (const Detection& d : detector.skipped())
+        *log << "  hypothesis " << d.index << ": " << d.reason << "\n";
+    }
+    // The bin is sought once per image (the models share its fit), not once per model.
+    if (m > 0) times.bin_sought = times.bin_found = 0;
+    summary.times += times;
+  }
+  // The time of the whole image, every model's detection in it (BOP: one value per image).
+  const double seconds = seconds_since(start);
+  for (std::size_t m = 0; m < detectors.size(); ++m) {
+    const auto image_rows = detection_rows(found[m], scene, im_id, detectors[m].obj_id, seconds);
+    rows.insert(rows.end(), image_rows.begin(), image_rows.end());
+  }
+}
+
+}  // namespace
+
 BatchSummary detect_dataset(Detector& detector, const BatchOptions& opt, std::ostream* log) {
+  return detect_dataset({{&detector, opt.obj_id}}, opt, log);
+}
+
+BatchSummary detect_dataset(const std::vector<ObjectDetector>& detectors, const BatchOptions& opt,
+                            std::ostream* log) {
+  if (detectors.empty()) throw std::logic_error("detect_dataset without a detector");
   const std::vector<int> scenes = batch_scenes(opt);
-  prepare_parts(opt.out, batch_fingerprint(opt, detector.params()));
+  prepare_parts(opt.out, batch_fingerprint(opt, detectors.front().detector->params()));
+  write_details_header(opt.out, detectors.size() > 1 ? kDetailsHeaderWithObjId : kDetailsHeader);
   // Shards of one batch share OUT.parts; the record tells the merge which scenes make it whole.
   const ShardRecord record = batch_shard_record(opt, scenes);
   const auto done = [&](int scene) { return scene_done(opt.out, scene); };
   if (opt.shard.sharded()) claim_shard_record(shard_record_file(opt.out), record, done);
 
   BatchSummary summary;
-  summary.program_build_s = detector.program_build_seconds();
+  for (const ObjectDetector& d : detectors) summary.program_build_s += d.detector->program_build_seconds();
   std::size_t own = 0;
   for (std::size_t s = 0; s < scenes.size(); ++s) own += opt.shard.owns(s);
   Progress progress(opt.shard.sharded() ? "detect shard " + opt.shard.name() : "detect", own);
@@ -185,30 +260,10 @@ BatchSummary detect_dataset(Detector& detector, const BatchOptions& opt, std::os
       const fs::path depth_path = files.depth(im_id);
       const GrayImage<std::uint16_t> png = read_png16(depth_path);
       const DepthImage depth{png.width, png.height, png.pixels};
-      DetectTimes times;
-      std::vector<Detection> found;
-      try {
-        found = detector.detect(depth, image_camera(cam.K, cam.depth_scale, png.width, png.height),
-                                &times);
-      } catch (const InputError& e) {
-        throw InputError(depth_path.string() + ": " + e.what());
-      }
-      const auto image_rows = detection_rows(found, scene, im_id, opt.obj_id, seconds_since(start));
-      rows.insert(rows.end(), image_rows.begin(), image_rows.end());
-      details += detail_rows(found, scene, im_id);
-      details += skipped_rows(detector.skipped(), scene, im_id);
+      detect_image(detectors, depth, image_camera(cam.K, cam.depth_scale, png.width, png.height),
+                   depth_path, scene, im_id, start, rows, details, summary,
+                   opt.verbose ? log : nullptr);
       ++summary.images;
-      if (opt.verbose && log) {
-        std::string line = fmt::format("scene {} image {}: {} hypotheses;", scene, im_id,
-                                       times.hypotheses);
-        for (const StageTime& st : times.stages) line += fmt::format(" {} {:.1f}", st.stage, st.ms);
-        *log << line << " ms\n";
-        if (!detector.region_report().empty()) *log << "  " << detector.region_report() << "\n";
-        for (std::size_t r = 0; r < found.size(); ++r) *log << "  " << detection_line(r, found[r]) << "\n";
-        for (const Detection& d : detector.skipped())
-          *log << "  hypothesis " << d.index << ": " << d.reason << "\n";
-      }
-      summary.times += times;
     }
     // The results part last: its presence marks the scene done.
     write_file_atomically(details_part_file(opt.out, scene), [&](std::ostream& o) { o << details; });

@@ -9,6 +9,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <iosfwd>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -20,6 +21,12 @@
 
 namespace binpick {
 
+// One model of a batch: the checksum of its file (the fingerprint) and the obj_id of its rows.
+struct BatchModel {
+  std::string checksum;
+  int obj_id = 1;
+};
+
 struct BatchOptions {
   std::filesystem::path dataset;
   std::string split = "test";
@@ -28,6 +35,9 @@ struct BatchOptions {
   int obj_id = 1;
   std::filesystem::path out;
   std::string model_checksum;  // part of the fingerprint
+  // Several models (detect --model repeated), ascending by obj_id: their checksums and obj_ids
+  // make the fingerprint instead of model_checksum and obj_id. Empty or one: the single model's.
+  std::vector<BatchModel> models;
   bool verbose = false;        // per-image stage timings to the log
   Shard shard;                 // --shard K/N: only the scenes at positions K-1, K-1+N, ...
 };
@@ -50,6 +60,12 @@ std::vector<int> parse_scene_list(const std::string& text);
 bp_camera image_camera(const Eigen::Matrix3d& K, double depth_scale, std::uint32_t width,
                        std::uint32_t height);
 
+// A detector and the obj_id its rows are written with (detect_dataset with several models).
+struct ObjectDetector {
+  Detector* detector = nullptr;
+  int obj_id = 1;
+};
+
 // The rows of one image (best first), with `time` its seconds.
 std::vector<bop::ResultRow> detection_rows(const std::vector<Detection>& detections, int scene_id,
                                            int im_id, int obj_id, double seconds);
@@ -58,12 +74,18 @@ std::vector<bop::ResultRow> detection_rows(const std::vector<Detection>& detecti
 // extension .details.csv: per detection its rank, hypothesis, candidate cluster, score, votes,
 // visible and agreeing model points, and the reason of a 0 score or a refinement cut short.
 std::filesystem::path details_path(const std::filesystem::path& out);
+// With several models an obj_id column follows im_id (rank is then per obj_id).
 inline constexpr const char* kDetailsHeader =
     "scene_id,im_id,rank,hypothesis,candidate,score,votes,visible,inliers,reason\n";
-std::string detail_rows(const std::vector<Detection>& detections, int scene_id, int im_id);
+inline constexpr const char* kDetailsHeaderWithObjId =
+    "scene_id,im_id,obj_id,rank,hypothesis,candidate,score,votes,visible,inliers,reason\n";
+// obj_id: the column's value with several models; none with one (the column left out).
+std::string detail_rows(const std::vector<Detection>& detections, int scene_id, int im_id,
+                        std::optional<int> obj_id = std::nullopt);
 // The hypotheses skipped before voting (Detector::skipped), after an image's detections: rank
 // empty (they are not results), score and counts 0, the reason why.
-std::string skipped_rows(const std::vector<Detection>& skipped, int scene_id, int im_id);
+std::string skipped_rows(const std::vector<Detection>& skipped, int scene_id, int im_id,
+                         std::optional<int> obj_id = std::nullopt);
 
 // One detection for --verbose: rank, hypothesis, score and its counts, votes, and the reason of
 // a 0 score or a refinement cut short.
@@ -83,6 +105,12 @@ ShardRecord batch_shard_record(const BatchOptions& opt, const std::vector<int>& 
 // Runs the batch (with opt.shard: its share) and, once every scene of the batch is done,
 // merges the parts into OUT; progress on stderr, the log (verbose lines) to `log` if given.
 BatchSummary detect_dataset(Detector& detector, const BatchOptions& opt, std::ostream* log);
+// The same with several models (ascending by obj_id, of equal parameters): each image's depth is
+// read and prepared once, its bin fitted once (shared_scene.hpp), and every model detects in it; its rows are those of each model in turn (BOP's
+// order: obj_id, then score), each model's --instances budget its own; the image's time is that
+// of all of them.
+BatchSummary detect_dataset(const std::vector<ObjectDetector>& detectors, const BatchOptions& opt,
+                            std::ostream* log);
 
 // "N scenes (K skipped), H hypotheses; ms per hypothesis: preparation P, voting V,
 // clustering C, refinement F, total T", then the program builds' seconds if the detector paid any.

@@ -24,6 +24,20 @@ fs::path details_part_file(const fs::path& out, int scene) {
 
 fs::path shard_record_file(const fs::path& out) { return parts_dir(out) / "shards.json"; }
 
+namespace {
+
+fs::path details_header_file(const fs::path& out) { return parts_dir(out) / "details_header.csv"; }
+
+}  // namespace
+
+void write_details_header(const fs::path& out, const std::string& header) {
+  const fs::path file = details_header_file(out);
+  // The one-model header is the default: no file, as parts made before several models were.
+  std::error_code ec;
+  if (header == kDetailsHeader) fs::remove(file, ec);
+  else write_file_atomically(file, [&](std::ostream& s) { s << header; });
+}
+
 void prepare_parts(const fs::path& out, const std::string& fingerprint) {
   const fs::path dir = parts_dir(out);
   const fs::path stamp = dir / "fingerprint.json";
@@ -56,7 +70,8 @@ std::size_t merge_detect_parts(const fs::path& out, const std::vector<int>& scen
     const auto rows = bop::read_results_csv(part_file(out, scene));
     all.insert(all.end(), rows.begin(), rows.end());
   }
-  std::string details = kDetailsHeader;
+  const fs::path header = details_header_file(out);
+  std::string details = fs::is_regular_file(header) ? read_file_bytes(header) : kDetailsHeader;
   for (int scene : scenes) details += read_file_bytes(details_part_file(out, scene));
   write_file_atomically(details_path(out), [&](std::ostream& o) { o << details; });
   bop::write_results_csv(out, all);

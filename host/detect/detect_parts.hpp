@@ -17,6 +17,11 @@ std::filesystem::path part_file(const std::filesystem::path& out, int scene);
 std::filesystem::path details_part_file(const std::filesystem::path& out, int scene);
 std::filesystem::path shard_record_file(const std::filesystem::path& out);  // OUT.parts/shards.json
 
+// The header of the merged details file (detect_batch.hpp: an obj_id column with several
+// models), kept in OUT.parts so that a merge by another process (`binpick merge`, --slurm's
+// follower) writes the same one.
+void write_details_header(const std::filesystem::path& out, const std::string& header);
+
 // Makes OUT.parts hold this run's fingerprint; a different one empties it first (its scene
 // parts and its shard record).
 void prepare_parts(const std::filesystem::path& out, const std::string& fingerprint);

@@ -23,6 +23,7 @@
 #include "host/detect/scene_crop.hpp"
 #include "host/detect/scene_neighbourhood.hpp"
 #include "host/detect/scene_prepare.hpp"
+#include "host/detect/shared_scene.hpp"
 #include "host/train/voxel_subsample.hpp"
 
 namespace binpick {
@@ -294,7 +295,8 @@ Detection Detector::detect_subsampled(const PointCloud& subsampled, DetectTimes*
 
 std::vector<Detection> Detector::detect(const DepthImage& depth, const bp_camera& cam,
                                         DetectTimes* times,
-                                        std::vector<PointCloud>* neighbourhoods) {
+                                        std::vector<PointCloud>* neighbourhoods,
+                                        SharedScene* shared) {
   DetectTimes t;
   Stopwatch clock;
   require(depth.width > 0 && depth.height > 0, "the depth image is empty");
@@ -309,7 +311,8 @@ std::vector<Detection> Detector::detect(const DepthImage& depth, const bp_camera
   prep.normals_everywhere = false;  // only where the neighbourhoods need them, below
   skipped_.clear();
   region_report_.clear();
-  PreparedScene scene = prepare_scene(dev_, depth, cam, prep);
+  PreparedScene scene = shared ? shared->scene_for_model(dev_, depth, cam, prep)
+                               : prepare_scene(dev_, depth, cam, prep);
   t.stages.insert(t.stages.end(), scene.timings.begin(), scene.timings.end());
   // --roi / --bin: the mask of the pixels that may be used, and the low-pass of those only.
   RegionSetup region;
@@ -318,7 +321,10 @@ std::vector<Detection> Detector::detect(const DepthImage& depth, const bp_camera
   region.margin = params_.bin_margin * model_.diameter;
   region.above = model_.diameter;
   region.min_height = 0.5 * model_.diameter;  // a tray shallower than half a part holds none
-  const SceneRegionMask masked = apply_region(scene, region, prep.lowpass_radius, &t.stages);
+  const BinFit* known_bin = shared ? shared->bin(params_.bin, region.min_height) : nullptr;
+  const SceneRegionMask masked =
+      apply_region(scene, region, prep.lowpass_radius, &t.stages, known_bin);
+  if (shared && masked.bin) shared->keep_bin(params_.bin, region.min_height, *masked.bin);
   const ocl::Buffer<std::uint8_t>* mask = masked.mask ? &*masked.mask : nullptr;
   if (region.wanted()) {
     const std::size_t valid = std::size_t(std::count_if(

@@ -26,6 +26,7 @@
 namespace binpick {
 
 struct BinFit;
+class SharedScene;
 
 // Every parameter of detection; the paper's values are the defaults (docs/parameters.md).
 // Ratios are fractions of the model's diameter.
@@ -132,9 +133,12 @@ class Detector {
   // If neighbourhoods is given, each hypothesis' subsampled neighbourhood (what it voted on) is
   // appended to it in hypothesis order, for the benchmark (which hands the same crops to
   // another detector) and for pictures.
+  // If shared is given, the image's preparation and bin fit are taken from it when another
+  // model made them, and left there for the next (shared_scene.hpp): the detections are the same.
   std::vector<Detection> detect(const DepthImage& depth, const bp_camera& cam,
                                 DetectTimes* times = nullptr,
-                                std::vector<PointCloud>* neighbourhoods = nullptr);
+                                std::vector<PointCloud>* neighbourhoods = nullptr,
+                                SharedScene* shared = nullptr);
 
   // A point cloud in the camera frame (z along the viewing axis: "highest" = smallest z). Without
   // normals they are estimated (PCA within normal_ratio of the diameter, oriented to the camera).

@@ -27,6 +27,7 @@ std::vector<DatasetEvaluation> evaluate_inputs(const std::vector<EvalInput>& inp
     const auto rows = bop::read_results_csv(in.results);
     try {
       e.summary = evaluate(e.dataset, rows, options);
+      e.objects = per_object(e.dataset, e.summary, options);
       e.bop = bop_scores(e.dataset, rows, {options.vsd, options.vsd_delta_mm});
     } catch (const InputError& err) {
       throw InputError(in.results.string() + ": " + err.what());

@@ -26,6 +26,7 @@ struct DatasetEvaluation {
   std::array<PrecisionCurve, 4> curves;  // figure7_curves(summary.results)
   ScoreCurve score_curve;                 // score_curve(summary.results, options.loose)
   BopScores bop;                          // BOP's MSSD / MSPD recalls, next to the paper's
+  std::vector<ObjectSummary> objects;     // the paper's figures per obj_id, when several
 };
 
 // Loads and evaluates each pair; InputError names the failing pair. With every dataset's noise

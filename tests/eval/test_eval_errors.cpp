@@ -190,6 +190,41 @@ TEST(Evaluate, SymmetricPartAndUnmatchedObject) {
   EXPECT_DOUBLE_EQ(s.loose.top, 1.0);
 }
 
+TEST(Evaluate, PerObjectFiguresRankEachObjectsRowsAlone) {
+  Dataset d = two_part_dataset();
+  d.models[2] = {30.0, {}};
+  for (auto& [key, image] : d.images) image.gt[1].obj_id = 2;  // the second part is object 2
+  const Eigen::Vector3d second_t = kGtT + Eigen::Vector3d(100, 0, 0);
+  const auto of_two = [](bop::ResultRow r) { r.obj_id = 2; return r; };
+  const std::vector<bop::ResultRow> rows{
+      row(0, 0.9, kGtR, kGtT),                                     // object 1, right
+      of_two(row(0, 0.5, rot(90, {0, 1, 0}), second_t)),           // object 2, right
+      of_two(row(0, 0.4, kGtR, second_t + Eigen::Vector3d(0, 0, 20))),  // object 2, wrong
+      row(1, 0.3, kGtR, kGtT + Eigen::Vector3d(0, 0, 40)),        // object 1, wrong
+  };
+  const EvalSummary all = evaluate(d, rows);
+  EXPECT_DOUBLE_EQ(all.loose.top, 0.5);  // over all: each image's best row, whatever its object
+  EXPECT_DOUBLE_EQ(all.loose.all, 0.5);
+  const auto objects = per_object(d, all);
+  ASSERT_EQ(objects.size(), 2u);
+  const EvalSummary& one = objects[0].summary;
+  const EvalSummary& two = objects[1].summary;
+  EXPECT_EQ(objects[0].obj_id, 1);
+  EXPECT_EQ(objects[1].obj_id, 2);
+  EXPECT_EQ(one.hypotheses, 2u);
+  EXPECT_EQ(two.hypotheses, 2u);
+  EXPECT_EQ(one.images, 2u);
+  EXPECT_EQ(two.images_with_results, 1u);
+  EXPECT_DOUBLE_EQ(one.loose.top, 0.5);
+  EXPECT_DOUBLE_EQ(two.loose.top, 1.0);  // its own best row of image 0, below object 1's
+  EXPECT_DOUBLE_EQ(two.loose.all, 0.5);
+  EXPECT_NEAR(two.ms_per_hypothesis, 500.0 / 3, 1e-9);  // image 0's 0.5 s over its 3 rows
+  EXPECT_NEAR(one.ms_per_hypothesis, (500.0 / 3 + 500.0) / 2, 1e-9);
+  EXPECT_TRUE(one.results.empty());
+  // One object: no per-object figures.
+  EXPECT_TRUE(per_object(d, evaluate(d, {rows[0], rows[3]})).empty());
+}
+
 TEST(Evaluate, RowsOutsideTheDatasetAreInputErrors) {
   const Dataset d = two_part_dataset();
   try {

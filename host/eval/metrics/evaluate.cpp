@@ -99,6 +99,38 @@ void check(const EvalOptions& o) {
                                  o.score_keep));
 }
 
+namespace {
+
+// The figures of s.results, whose ranks, tops and times are set.
+void summarize(EvalSummary& s, const EvalOptions& options) {
+  std::vector<double> te_all, re_all, te_top, re_top;
+  std::size_t tops = 0, all_distractor = 0, all_nothing = 0, top_distractor = 0, top_nothing = 0;
+  for (const auto& r : s.results) {
+    s.unmatched += r.gt_index < 0;
+    all_distractor += r.landing == Landing::distractor;
+    all_nothing += r.landing == Landing::none;
+    if (r.top) {
+      ++tops;
+      top_distractor += r.landing == Landing::distractor;
+      top_nothing += r.landing == Landing::none;
+    }
+    te_all.push_back(r.translation_pct), re_all.push_back(r.rotation_deg);
+    if (r.top) te_top.push_back(r.translation_pct), re_top.push_back(r.rotation_deg);
+  }
+  s.all_on_distractor = fraction(all_distractor, s.results.size());
+  s.all_on_nothing = fraction(all_nothing, s.results.size());
+  s.top_on_distractor = fraction(top_distractor, tops);
+  s.top_on_nothing = fraction(top_nothing, tops);
+  s.loose = precision_at(s.results, options.loose);
+  s.strict = precision_at(s.results, options.strict);
+  s.score_loose = calibrate(s.results, options.loose, options.score_keep);
+  s.score_strict = calibrate(s.results, options.strict, options.score_keep);
+  s.median_translation_pct_all = median(te_all), s.median_rotation_deg_all = median(re_all);
+  s.median_translation_pct_top = median(te_top), s.median_rotation_deg_top = median(re_top);
+}
+
+}  // namespace
+
 EvalSummary evaluate(const Dataset& dataset, const std::vector<bop::ResultRow>& rows,
                      const EvalOptions& options) {
   check(options);
@@ -144,33 +176,47 @@ EvalSummary evaluate(const Dataset& dataset, const std::vector<bop::ResultRow>& 
   }
   s.images_with_results = by_image.size();
   s.hypotheses = s.results.size();
-
-  std::vector<double> te_all, re_all, te_top, re_top;
-  std::size_t tops = 0, all_distractor = 0, all_nothing = 0, top_distractor = 0, top_nothing = 0;
-  for (const auto& r : s.results) {
-    s.unmatched += r.gt_index < 0;
-    all_distractor += r.landing == Landing::distractor;
-    all_nothing += r.landing == Landing::none;
-    if (r.top) {
-      ++tops;
-      top_distractor += r.landing == Landing::distractor;
-      top_nothing += r.landing == Landing::none;
-    }
-    te_all.push_back(r.translation_pct), re_all.push_back(r.rotation_deg);
-    if (r.top) te_top.push_back(r.translation_pct), re_top.push_back(r.rotation_deg);
-  }
-  s.all_on_distractor = fraction(all_distractor, s.results.size());
-  s.all_on_nothing = fraction(all_nothing, s.results.size());
-  s.top_on_distractor = fraction(top_distractor, tops);
-  s.top_on_nothing = fraction(top_nothing, tops);
-  s.loose = precision_at(s.results, options.loose);
-  s.strict = precision_at(s.results, options.strict);
-  s.score_loose = calibrate(s.results, options.loose, options.score_keep);
-  s.score_strict = calibrate(s.results, options.strict, options.score_keep);
-  s.median_translation_pct_all = median(te_all), s.median_rotation_deg_all = median(re_all);
-  s.median_translation_pct_top = median(te_top), s.median_rotation_deg_top = median(re_top);
+  summarize(s, options);
   s.ms_per_hypothesis = s.hypotheses ? total_ms / double(s.hypotheses) : 0.0;
   return s;
+}
+
+std::vector<ObjectSummary> per_object(const Dataset& dataset, const EvalSummary& all,
+                                      const EvalOptions& options) {
+  std::map<int, EvalSummary> objects;
+  for (const HypothesisResult& r : all.results) objects[r.obj_id].results.push_back(r);
+  if (objects.size() < 2) return {};
+  std::vector<ObjectSummary> out;
+  for (auto& [obj_id, s] : objects) {
+    // Ranks and the top-ranked row among this object's rows of each image.
+    std::map<ImageKey, std::vector<std::size_t>> by_image;
+    for (std::size_t i = 0; i < s.results.size(); ++i) {
+      HypothesisResult& r = s.results[i];
+      auto& list = by_image[{r.scene_id, r.im_id}];
+      r.rank = int(list.size());
+      r.top = false;
+      list.push_back(i);
+    }
+    double ms = 0;
+    for (const auto& [key, list] : by_image) {
+      std::size_t best = list.front();
+      for (std::size_t i : list) {
+        if (s.results[i].score > s.results[best].score) best = i;
+        ms += s.results[i].ms;
+      }
+      s.results[best].top = true;
+    }
+    for (const auto& [key, image] : dataset.images)
+      s.images += std::any_of(image.gt.begin(), image.gt.end(),
+                              [id = obj_id](const bop::GroundTruth& g) { return g.obj_id == id; });
+    s.images_with_results = by_image.size();
+    s.hypotheses = s.results.size();
+    s.ms_per_hypothesis = ms / double(s.hypotheses);
+    summarize(s, options);
+    s.results.clear();  // `all` holds them
+    out.push_back({obj_id, std::move(s)});
+  }
+  return out;
 }
 
 }  // namespace binpick::eval

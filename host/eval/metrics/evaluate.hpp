@@ -1,7 +1,7 @@
 // Evaluation of detection results against a dataset's ground truth (paper section III-D): each
 // hypothesis is matched to the ground-truth part nearest in translation, its errors are
 // measured, and precision is counted for all hypotheses and for the top-ranked one (highest
-// score) of each image; the score is calibrated against right and wrong (score_calibration.hpp).
+// score) of each image, and per obj_id (per_object) of each image's rows of it; the score is calibrated against right and wrong (score_calibration.hpp).
 // The numbers `binpick tune` optimises come from here.
 #pragma once
 
@@ -74,6 +74,18 @@ void check(const EvalOptions& options);
 // its models_info.json lacks, naming the row (1-based data row number, as in the file).
 EvalSummary evaluate(const Dataset& dataset, const std::vector<bop::ResultRow>& rows,
                      const EvalOptions& options = {});
+
+// The paper's figures of one obj_id's rows, their ranks and top-ranked row per image among that
+// obj_id's rows alone: images are those whose ground truth holds the obj_id; results are left
+// empty.
+struct ObjectSummary {
+  int obj_id = 0;
+  EvalSummary summary;
+};
+
+// One summary per obj_id of all.results, ascending; empty when they hold fewer than two.
+std::vector<ObjectSummary> per_object(const Dataset& dataset, const EvalSummary& all,
+                                      const EvalOptions& options = {});
 
 // Where the pose (R, t) of a part of obj_id lands in an image: the instance (any obj_id) whose
 // bounding-box centre lies nearest the pose's, if within half that instance's diameter; a part

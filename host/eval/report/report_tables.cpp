@@ -30,13 +30,9 @@ json calibration(const ScoreCalibration& c) {
           {"wrong_fraction", number(c.wrong_fraction)}};
 }
 
-json summary_json(const DatasetEvaluation& e) {
-  const EvalSummary& s = e.summary;
-  return {{"label", e.dataset.label},
-          {"dataset", e.dataset.root.string()},
-          {"results", e.results.string()},
-          {"noise", e.dataset.noise >= 0 ? json(e.dataset.noise) : json(nullptr)},
-          {"images", s.images},
+// The paper's figures of a summary (of a dataset, or of one obj_id's rows).
+json figures_json(const EvalSummary& s) {
+  return {{"images", s.images},
           {"images_with_results", s.images_with_results},
           {"hypotheses", s.hypotheses},
           {"unmatched", s.unmatched},
@@ -57,8 +53,26 @@ json summary_json(const DatasetEvaluation& e) {
             {"scores_outside_unit", s.score_loose.outside_unit},
             {"max_score", number(s.score_loose.max_score)},
             {"loose", calibration(s.score_loose)},
-            {"strict", calibration(s.score_strict)}}},
-          {"bop", bop_json(e.bop)}};
+            {"strict", calibration(s.score_strict)}}}};
+}
+
+json summary_json(const DatasetEvaluation& e) {
+  json j = figures_json(e.summary);
+  j["label"] = e.dataset.label;
+  j["dataset"] = e.dataset.root.string();
+  j["results"] = e.results.string();
+  j["noise"] = e.dataset.noise >= 0 ? json(e.dataset.noise) : json(nullptr);
+  j["bop"] = bop_json(e.bop);
+  if (!e.objects.empty()) {
+    json objects = json::array();
+    for (const ObjectSummary& o : e.objects) {
+      json figures = figures_json(o.summary);
+      figures["obj_id"] = o.obj_id;
+      objects.push_back(std::move(figures));
+    }
+    j["objects"] = std::move(objects);
+  }
+  return j;
 }
 
 const char* landing_name(Landing l) {

@@ -15,8 +15,9 @@ namespace binpick::eval {
 // "precision": {"loose": {"translation_pct", "rotation_deg", "all", "top"}, "strict": {...}},
 // "median": {...}, "ms_per_hypothesis", "score_calibration": {"keep", "scores_outside_unit",
 // "max_score", "loose": {"any_right", "right", "threshold", "accepted", "accepted_right",
-// "accepted_wrong", "kept", "wrong_fraction"}, "strict": {...}}, "bop": {...}}]}
-// (score_calibration.hpp; "bop": bop_report.hpp).
+// "accepted_wrong", "kept", "wrong_fraction"}, "strict": {...}}, "bop": {...}, and with
+// results of several obj_ids "objects": [{"obj_id", images, ..., "score_calibration"}]: the same
+// figures per obj_id}]} (score_calibration.hpp; "bop": bop_report.hpp).
 // Non-finite numbers (no data) are null.
 nlohmann::json report_json(const std::vector<DatasetEvaluation>& evaluations,
                            const EvalOptions& options);

@@ -49,6 +49,15 @@ class Buffer {
     return host;
   }
   std::vector<T> read(Device& dev) const { return read(dev, count_); }
+  // A buffer of its own with the same contents (a copy shares the device memory).
+  Buffer clone(Device& dev) const {
+    Buffer copy(dev, count_);
+    guarded("copying a buffer", [&] {
+      dev.queue().enqueueCopyBuffer(buffer_, copy.buffer_, 0, 0,
+                                    sizeof(T) * std::max<std::size_t>(count_, 1));
+    });
+    return copy;
+  }
 
   std::size_t size() const { return count_; }
   const cl::Buffer& get() const { return buffer_; }

@@ -1,0 +1,29 @@
+#include "host/detect/shared_scene.hpp"
+
+#include <memory>
+
+namespace binpick {
+
+PreparedScene SharedScene::scene_for_model(ocl::Device& dev, const DepthImage& depth,
+                                           const bp_camera& cam, const ScenePrepOptions& opt) {
+  const bool first = !prepared_;
+  if (first) prepared_ = prepare_scene(dev, depth, cam, opt);
+  PreparedScene scene = *prepared_;
+  if (!first) scene.timings.clear();
+  // The points are only read; the low-pass is rewritten by a model's region mask.
+  scene.device = std::make_shared<DeviceScene>(*prepared_->device);
+  scene.device->filtered = prepared_->device->filtered.clone(dev);
+  return scene;
+}
+
+const BinFit* SharedScene::bin(const std::string& spec, double min_height) const {
+  for (const auto& [key, fit] : bins_)
+    if (key.first == spec && key.second == min_height) return &fit;
+  return nullptr;
+}
+
+void SharedScene::keep_bin(const std::string& spec, double min_height, const BinFit& fit) {
+  if (!bin(spec, min_height)) bins_.push_back({{spec, min_height}, fit});
+}
+
+}  // namespace binpick
