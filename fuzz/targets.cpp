@@ -14,6 +14,7 @@
 #include "host/formats/bop/models_info.hpp"
 #include "host/formats/bop/png_image.hpp"
 #include "host/formats/bop/results_csv.hpp"
+#include "host/formats/bop/test_targets.hpp"
 #include "host/formats/mesh/load_model.hpp"
 #include "host/train/ppf_model_file.hpp"
 
@@ -110,6 +111,10 @@ void parse_params(std::string_view bytes) {
   parse_bin(params.bin);
 }
 
+void parse_test_targets(std::string_view bytes) {
+  bop::parse_test_targets(std::string(bytes), "test_targets_bop19.json");
+}
+
 const std::vector<Target>& all_targets() {
   static const std::vector<Target> targets = {
       {"ply", parse_ply},
@@ -125,6 +130,7 @@ const std::vector<Target>& all_targets() {
       {"png", parse_png},
       {"results_csv", parse_results_csv},
       {"params", parse_params},
+      {"test_targets", parse_test_targets},
   };
   return targets;
 }

@@ -37,7 +37,7 @@ namespace fs = std::filesystem;
 struct DetectArgs {
   std::vector<std::string> models;  // --model, repeated: .ppfm files or directories of them
   std::vector<int> obj_ids;         // --obj-id, once per --model or not at all
-  std::string dataset, cloud, out, scenes, split = "test", sensor;
+  std::string dataset, cloud, out, scenes, split = "test", sensor, targets;
   bool verbose = false;
   DetectCliOptions detection;  // --params and one option per parameter
   ShardCliOptions shards;      // --shard K/N, --slurm
@@ -117,6 +117,7 @@ void run_detect(DetectArgs& a) {
   const std::vector<ModelSource> sources = resolve_model_sources(a.models, a.obj_ids);
   if (!a.cloud.empty()) {
     if (!a.scenes.empty()) throw InputError("--scenes applies to --dataset only");
+    if (!a.targets.empty()) throw InputError("--targets applies to --dataset only");
     if (shard.sharded() || a.shards.slurm.enabled)
       throw InputError("--shard and --slurm apply to --dataset only (a --cloud is one scene)");
   }
@@ -140,6 +141,12 @@ void run_detect(DetectArgs& a) {
   for (const LoadedModel& m : models) opt.models.push_back({m.checksum, m.source.obj_id});
   opt.verbose = a.verbose;
   opt.shard = shard;
+  if (!a.targets.empty()) {
+    if (params.instances > 0)
+      throw InputError("--targets sets each image's instance budget from the file; leave out "
+                       "--instances (and \"instances\" in --params)");
+    opt.targets = read_detect_targets(a.targets);
+  }
   if (a.cloud.empty() && a.shards.slurm.enabled) return detect_on_slurm(a, opt, params);
   std::vector<std::unique_ptr<Detector>> owned;
   std::vector<ObjectDetector> detectors;
@@ -184,6 +191,10 @@ void add_detect_verb(CLI::App& app) {
   verb->add_option("--obj-id", a->obj_ids,
                    "object id written in the results, once per --model in the same order "
                    "(default: from a BOP name obj_NNNNNN.ppfm, else 1 for a single model)");
+  verb->add_option("--targets", a->targets,
+                   "BOP target list (e.g. DATASET/test_targets_bop19.json): each model detects "
+                   "only in the images listing its obj_id, with their inst_count as its "
+                   "--instances budget; images listing none are not read");
   verb->add_flag("--verbose", a->verbose, "print per-stage timings of every image");
   add_detect_cli_options(verb, a->detection, "detection");
   add_shard_options(verb, a->shards, "scenes");

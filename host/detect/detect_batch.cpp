@@ -161,9 +161,13 @@ std::string batch_fingerprint(const BatchOptions& opt, const DetectParams& param
                             opt.models[i].checksum, opt.models[i].obj_id);
     models += "]";
   }
+  // Without --targets the fingerprint is what it was before the option existed (parts resume).
+  const std::string targets =
+      opt.targets ? fmt::format(", \"targets\": \"{}\"", opt.targets->checksum) : "";
   return fmt::format(
-      "{{{}, \"split\": \"{}\", \"sensor\": \"{}\", \"dataset\": \"{}\", \"params\": {}}}\n",
-      models, opt.split, opt.sensor, fs::absolute(opt.dataset).string(), params_json(params));
+      "{{{}, \"split\": \"{}\", \"sensor\": \"{}\", \"dataset\": \"{}\", \"params\": {}{}}}\n",
+      models, opt.split, opt.sensor, fs::absolute(opt.dataset).string(), params_json(params),
+      targets);
 }
 
 ShardRecord batch_shard_record(const BatchOptions& opt, const std::vector<int>& scenes) {
@@ -174,11 +178,13 @@ namespace {
 
 // One image of the batch: every model detects in it, in turn; their rows (each model's best
 // first) and details are appended, all with the image's time.
-void detect_image(const std::vector<ObjectDetector>& detectors, const DepthImage& depth,
-                  const bp_camera& cam, const fs::path& depth_path, int scene, int im_id,
-                  std::chrono::steady_clock::time_point start, std::vector<bop::ResultRow>& rows,
-                  std::string& details, BatchSummary& summary, std::ostream* log) {
-  const bool several = detectors.size() > 1;
+// `several`: the batch has several models (the details' obj_id column), even when --targets
+// leaves one of them for this image.
+void detect_image(const std::vector<ObjectDetector>& detectors, bool several,
+                  const DepthImage& depth, const bp_camera& cam, const fs::path& depth_path,
+                  int scene, int im_id, std::chrono::steady_clock::time_point start,
+                  std::vector<bop::ResultRow>& rows, std::string& details, BatchSummary& summary,
+                  std::ostream* log) {
   std::vector<std::vector<Detection>> found(detectors.size());
   SharedScene shared;  // the image prepared and its bin fitted once, for every model
   for (std::size_t m = 0; m < detectors.size(); ++m) {
@@ -215,6 +221,22 @@ void detect_image(const std::vector<ObjectDetector>& detectors, const DepthImage
     const auto image_rows = detection_rows(found[m], scene, im_id, detectors[m].obj_id, seconds);
     rows.insert(rows.end(), image_rows.begin(), image_rows.end());
   }
+}
+
+// The models that detect in an image: all of them, or with --targets those whose obj_id the
+// image lists, each with its inst_count as budget (the details' obj_id column and the order
+// of the rows stay those of the whole batch's models).
+std::vector<ObjectDetector> image_detectors(const std::vector<ObjectDetector>& detectors,
+                                            const BatchOptions& opt, int scene, int im_id) {
+  if (!opt.targets) return detectors;
+  std::vector<ObjectDetector> targeted;
+  for (const ObjectDetector& d : detectors) {
+    const std::uint32_t budget = opt.targets->count(scene, im_id, d.obj_id);
+    if (budget == 0) continue;
+    d.detector->set_instances(budget);
+    targeted.push_back(d);
+  }
+  return targeted;
 }
 
 }  // namespace
@@ -257,10 +279,15 @@ BatchSummary detect_dataset(const std::vector<ObjectDetector>& detectors, const 
     std::string details;
     for (const auto& [im_id, cam] : cameras) {
       const auto start = std::chrono::steady_clock::now();
+      const std::vector<ObjectDetector> targeted = image_detectors(detectors, opt, scene, im_id);
+      if (targeted.empty()) {
+        ++summary.untargeted;
+        continue;
+      }
       const fs::path depth_path = files.depth(im_id);
       const GrayImage<std::uint16_t> png = read_png16(depth_path);
       const DepthImage depth{png.width, png.height, png.pixels};
-      detect_image(detectors, depth, image_camera(cam.K, cam.depth_scale, png.width, png.height),
+      detect_image(targeted, detectors.size() > 1, depth, image_camera(cam.K, cam.depth_scale, png.width, png.height),
                    depth_path, scene, im_id, start, rows, details, summary,
                    opt.verbose ? log : nullptr);
       ++summary.images;
@@ -285,13 +312,15 @@ std::string summary_line(const BatchSummary& s) {
       s.program_build_s > 0 ? fmt::format("; OpenCL programs built once in {:.2f} s (not counted above)",
                                           s.program_build_s)
                             : "";
+  const std::string untargeted =
+      s.untargeted > 0 ? fmt::format(" ({} without a target not read)", s.untargeted) : "";
   const std::string bins =
       t.bin_sought > 0 ? fmt::format("; a bin found in {} of {} images", t.bin_found, t.bin_sought)
                        : "";
   return fmt::format(
-      "{} scenes ({} done before), {} images, {} hypotheses, {} rows; ms per hypothesis: "
+      "{} scenes ({} done before), {} images{}, {} hypotheses, {} rows; ms per hypothesis: "
       "preparation {:.1f}, voting {:.1f}, clustering {:.1f}, refinement {:.1f}, total {:.1f}{}{}",
-      s.scenes, s.skipped, s.images, t.hypotheses, s.rows, t.prepare_ms / h, t.vote_ms / h,
+      s.scenes, s.skipped, s.images, untargeted, t.hypotheses, s.rows, t.prepare_ms / h, t.vote_ms / h,
       t.cluster_ms / h, t.refine_ms / h, t.total_ms() / h, bins, builds);
 }
 

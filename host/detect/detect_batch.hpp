@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "host/formats/bop/results_csv.hpp"
+#include "host/detect/detect_targets.hpp"
 #include "host/detect/detector.hpp"
 #include "host/detect/depth_to_points.hpp"
 #include "host/shards/shard.hpp"
@@ -40,10 +41,14 @@ struct BatchOptions {
   std::vector<BatchModel> models;
   bool verbose = false;        // per-image stage timings to the log
   Shard shard;                 // --shard K/N: only the scenes at positions K-1, K-1+N, ...
+  // --targets: each model detects only in the images that list its obj_id, with their
+  // inst_count as its instance budget (detect_targets.hpp); images listing none are skipped.
+  std::optional<DetectTargets> targets;
 };
 
 struct BatchSummary {
   std::size_t scenes = 0, skipped = 0, images = 0, rows = 0;
+  std::size_t untargeted = 0;  // images not read: --targets lists none of the models there
   std::size_t missing = 0;  // scenes of the batch not done yet (other shards'): OUT not merged
   DetectTimes times;  // of the scenes run now (not the skipped ones)
   double program_build_s = 0;  // the detector's OpenCL program builds, outside every image's time

@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
 #include <iostream>
 #include <span>
 
@@ -291,6 +292,11 @@ Detection Detector::detect_subsampled(const PointCloud& subsampled, DetectTimes*
   t.hypotheses += 1;
   if (times) *times += t;
   return d;
+}
+
+void Detector::set_instances(std::uint32_t n) {
+  if (n > 1000) throw std::logic_error("an instance budget above 1000");
+  params_.instances = n;
 }
 
 std::vector<Detection> Detector::detect(const DepthImage& depth, const bp_camera& cam,

@@ -125,6 +125,9 @@ class Detector {
   // had built them before): paid once, and kept out of every image's time.
   double program_build_seconds() const { return program_build_s_; }
   const DetectParams& params() const { return params_; }
+  // The instance budget of the images detected from now on (DetectParams::instances): detect
+  // --targets sets it per image. std::logic_error above 1000 (the targets' reader refuses that).
+  void set_instances(std::uint32_t n);
 
   // A depth image (BOP: raw * depth_scale mm). Detections best first (verified score; ties:
   // votes, then height order); a hypothesis without any vote gives no detection. With

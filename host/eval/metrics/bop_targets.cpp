@@ -10,21 +10,12 @@
 
 #include "host/core/error.hpp"
 #include "host/core/read_file.hpp"
+#include "host/formats/bop/test_targets.hpp"
 
 namespace binpick::eval {
 namespace {
 
 constexpr const char* kTargetsFile = "test_targets_bop19.json";
-
-int non_negative_int(const nlohmann::json& entry, const char* key, const std::string& name,
-                     std::size_t index) {
-  const auto it = entry.find(key);
-  if (it == entry.end() || !it->is_number_integer() || it->get<long long>() < 0 ||
-      it->get<long long>() > 1'000'000'000)
-    throw InputError(fmt::format("{}: entry {} has no non-negative integer \"{}\"", name,
-                                 index, key));
-  return static_cast<int>(it->get<long long>());
-}
 
 double visibility(const EvalImage& image, std::size_t i) {
   return image.visib_fract.empty() ? 1.0 : image.visib_fract[i];
@@ -33,26 +24,9 @@ double visibility(const EvalImage& image, std::size_t i) {
 }  // namespace
 
 BopTargets parse_bop_targets(const std::string& text, const std::string& name) {
-  nlohmann::json j;
-  try {
-    j = nlohmann::json::parse(text);
-  } catch (const nlohmann::json::exception& e) {
-    throw InputError(name + " is not valid JSON: " + e.what());
-  }
-  if (!j.is_array()) throw InputError(name + " is not a JSON array of targets");
   BopTargets targets;
-  std::set<std::tuple<int, int, int>> seen;
-  for (std::size_t i = 0; i < j.size(); ++i) {
-    if (!j[i].is_object()) throw InputError(fmt::format("{}: entry {} is not an object", name, i));
-    const int scene = non_negative_int(j[i], "scene_id", name, i);
-    const int im = non_negative_int(j[i], "im_id", name, i);
-    const int obj = non_negative_int(j[i], "obj_id", name, i);
-    const int count = non_negative_int(j[i], "inst_count", name, i);
-    if (!seen.insert({scene, im, obj}).second)
-      throw InputError(fmt::format("{}: scene {} image {} obj_id {} is listed twice", name,
-                                   scene, im, obj));
-    if (count > 0) targets[{scene, im}][obj] = count;
-  }
+  for (const bop::TestTarget& t : bop::parse_test_targets(text, name))
+    if (t.inst_count > 0) targets[{t.scene_id, t.im_id}][t.obj_id] = t.inst_count;
   return targets;
 }
 

@@ -2,8 +2,11 @@
 
 #include <algorithm>
 #include <map>
+#include <set>
+#include <tuple>
 #include <string>
 
+#include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
 #include "host/core/atomic_file.hpp"
@@ -13,6 +16,45 @@ namespace binpick::bop {
 
 namespace fs = std::filesystem;
 using json = nlohmann::json;
+
+namespace {
+
+int non_negative_int(const json& entry, const char* key, const std::string& name,
+                     std::size_t index) {
+  const auto it = entry.find(key);
+  if (it == entry.end() || !it->is_number_integer() || it->get<long long>() < 0 ||
+      it->get<long long>() > 1'000'000'000)
+    throw InputError(fmt::format("{}: entry {} has no non-negative integer \"{}\"", name,
+                                 index, key));
+  return static_cast<int>(it->get<long long>());
+}
+
+}  // namespace
+
+std::vector<TestTarget> parse_test_targets(const std::string& text, const std::string& name) {
+  json j;
+  try {
+    j = json::parse(text);
+  } catch (const json::exception& e) {
+    throw InputError(name + " is not valid JSON: " + e.what());
+  }
+  if (!j.is_array()) throw InputError(name + " is not a JSON array of targets");
+  std::vector<TestTarget> targets;
+  std::set<std::tuple<int, int, int>> seen;
+  for (std::size_t i = 0; i < j.size(); ++i) {
+    if (!j[i].is_object()) throw InputError(fmt::format("{}: entry {} is not an object", name, i));
+    TestTarget t;
+    t.scene_id = non_negative_int(j[i], "scene_id", name, i);
+    t.im_id = non_negative_int(j[i], "im_id", name, i);
+    t.obj_id = non_negative_int(j[i], "obj_id", name, i);
+    t.inst_count = non_negative_int(j[i], "inst_count", name, i);
+    if (!seen.insert({t.scene_id, t.im_id, t.obj_id}).second)
+      throw InputError(fmt::format("{}: scene {} image {} obj_id {} is listed twice", name,
+                                   t.scene_id, t.im_id, t.obj_id));
+    targets.push_back(t);
+  }
+  return targets;
+}
 
 std::vector<TestTarget> localization_targets(int scene_id, const SceneGroundTruth& gt,
                                              const SceneGroundTruthInfo& info,

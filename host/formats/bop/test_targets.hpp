@@ -5,6 +5,7 @@
 #pragma once
 
 #include <filesystem>
+#include <string>
 #include <vector>
 
 #include "host/formats/bop/bop_files.hpp"
@@ -23,6 +24,11 @@ struct TestTarget {
 std::vector<TestTarget> localization_targets(int scene_id, const SceneGroundTruth& gt,
                                              const SceneGroundTruthInfo& info,
                                              double min_visib_fract = kTargetMinVisibFract);
+
+// Parses a target list's text ([{"scene_id", "im_id", "obj_id", "inst_count"}, ...]), in file
+// order. InputError naming `name` and the entry for anything else, a negative id or count, or a
+// repeated (scene_id, im_id, obj_id). Entries with inst_count 0 are kept (callers skip them).
+std::vector<TestTarget> parse_test_targets(const std::string& text, const std::string& name);
 
 // Reads every dataset/test/NNNNNN scene (in scene order) and writes both files at the root
 // (atomically). Returns the number of localization targets.
