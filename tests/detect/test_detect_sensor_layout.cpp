@@ -178,6 +178,10 @@ TEST(DetectSensorLayout, TwoObjectsDetectedTogetherAndEvaluatedPerObjId) {
   ASSERT_EQ(r.status, 0) << r.err;
   EXPECT_NE(r.out.find("\n  obj_id 1 "), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("\n  obj_id 2 "), std::string::npos) << r.out;
+  // report.html: a summary row per obj_id under the dataset's.
+  const std::string html = test::slurp(dir / "report" / "report.html");
+  EXPECT_NE(html.find("<tr><td>&nbsp;&nbsp;obj_id 1</td>"), std::string::npos);
+  EXPECT_NE(html.find("<tr><td>&nbsp;&nbsp;obj_id 2</td>"), std::string::npos);
 
   // The dataset's BOP models/ folder: its meshes are trained when detect starts.
   r = test::run_binpick(fmt::format("detect --model {}/models {} --out {}", ind, layout,

@@ -50,6 +50,19 @@ std::string wrong_cell(const ScoreCalibration& c) {
   return fmt::format("{} ({} of {})", pct(c.wrong_fraction), c.accepted_wrong, c.accepted);
 }
 
+// One row of the summary table: `label` (HTML) and its figures.
+std::string summary_row(const std::string& label, const EvalSummary& m) {
+  return fmt::format(
+      "<tr><td>{}</td><td>{} ({} with results)</td><td>{}{}</td><td>{}</td><td>{}</td><td>{}</td>"
+      "<td>{}</td><td>{} / {}</td><td>{} / {}</td><td>{}</td><td>{}</td><td>{}</td></tr>\n",
+      label, m.images, m.images_with_results, m.hypotheses,
+      m.unmatched ? fmt::format(" ({} unmatched)", m.unmatched) : "", pct(m.loose.top),
+      pct(m.loose.all), pct(m.strict.top), pct(m.strict.all), num(m.median_translation_pct_top, ""),
+      num(m.median_translation_pct_all, ""), num(m.median_rotation_deg_top, ""),
+      num(m.median_rotation_deg_all, ""), num(m.ms_per_hypothesis, " ms"),
+      threshold_cell(m.score_loose), wrong_cell(m.score_loose));
+}
+
 std::string summary_table(const std::vector<DatasetEvaluation>& evaluations, const EvalOptions& o) {
   std::string s = fmt::format(
       "<table>\n<tr><th>dataset</th><th>images</th><th>hypotheses</th>"
@@ -61,16 +74,11 @@ std::string summary_table(const std::vector<DatasetEvaluation>& evaluations, con
       "<th>wrong among the<br>poses it accepts</th></tr>\n",
       op(o.loose), op(o.strict), 100 * o.score_keep);
   for (const auto& e : evaluations) {
-    const EvalSummary& m = e.summary;
-    s += fmt::format(
-        "<tr><td>{}</td><td>{} ({} with results)</td><td>{}{}</td><td>{}</td><td>{}</td><td>{}</td>"
-        "<td>{}</td><td>{} / {}</td><td>{} / {}</td><td>{}</td><td>{}</td><td>{}</td></tr>\n",
-        html_escaped(e.dataset.label), m.images, m.images_with_results, m.hypotheses,
-        m.unmatched ? fmt::format(" ({} unmatched)", m.unmatched) : "", pct(m.loose.top),
-        pct(m.loose.all), pct(m.strict.top), pct(m.strict.all), num(m.median_translation_pct_top, ""),
-        num(m.median_translation_pct_all, ""), num(m.median_rotation_deg_top, ""),
-        num(m.median_rotation_deg_all, ""), num(m.ms_per_hypothesis, " ms"),
-        threshold_cell(m.score_loose), wrong_cell(m.score_loose));
+    s += summary_row(html_escaped(e.dataset.label), e.summary);
+    // With several obj_ids, each object's own figures under the dataset's (as in the table
+    // eval prints and report.json's "objects").
+    for (const ObjectSummary& o : e.objects)
+      s += summary_row(fmt::format("&nbsp;&nbsp;obj_id {}", o.obj_id), o.summary);
   }
   return s + "</table>\n";
 }
