@@ -21,6 +21,13 @@
 #include "tests/support/cli_run.hpp"
 
 namespace binpick {
+// The sanitized build (./run.sh test --sanitize) runs everything several times slower.
+#if defined(__SANITIZE_ADDRESS__)
+constexpr double kSanitizerSlowdown = 5;
+#else
+constexpr double kSanitizerSlowdown = 1;
+#endif
+
 namespace {
 
 namespace fs = std::filesystem;
@@ -48,8 +55,9 @@ class SynthLimitsCli : public ::testing::Test {
     EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
     EXPECT_FALSE(fs::exists(out_ / "test")) << extra;
     // Not a speed claim: a refusal that waited for a decomposition or a drop would take
-    // minutes, this is an order of magnitude above a cold start.
-    EXPECT_LT(seconds, 30.0) << extra;
+    // minutes, this is an order of magnitude above a cold start (five times that under ASan,
+    // whose build reads a 50 MB mesh several times slower: 36 s seen on a loaded machine).
+    EXPECT_LT(seconds, kSanitizerSlowdown * 30.0) << extra;
   }
   int parts_in_bin() const {
     const auto gt = nlohmann::json::parse(test::slurp(out_ / "test" / "000000" / "scene_gt.json"));
