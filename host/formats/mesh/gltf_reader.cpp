@@ -3,11 +3,15 @@
 #include <tiny_gltf.h>
 
 #include <Eigen/Geometry>
+#include <filesystem>
 #include <limits>
+#include <string>
+#include <vector>
 #include <set>
 #include <utility>
 
 #include "host/core/error.hpp"
+#include "host/core/read_file.hpp"
 #include "host/formats/mesh/little_endian.hpp"
 #include "host/formats/mesh/gltf_accessors.hpp"
 #include "host/formats/mesh/mesh_readers.hpp"
@@ -26,6 +30,39 @@ struct MeshInstance {
 bool skip_image(tinygltf::Image*, const int, std::string*, std::string*, int, int,
                 const unsigned char*, int, void*) {
   return true;
+}
+
+// External buffers (a "uri" that is not a data URI) are read through these instead of
+// tinygltf's own file functions: those take the size a stream reports, so a URI naming a
+// directory asked for 2^63 bytes (found by fuzzing), and they expand paths with wordexp. Here
+// only regular files are read, and paths are taken as they are.
+bool regular_file_exists(const std::string& path, void*) {
+  std::error_code ignored;
+  return std::filesystem::is_regular_file(path, ignored);
+}
+
+std::string path_as_given(const std::string& path, void*) { return path; }
+
+bool read_buffer_file(std::vector<unsigned char>* out, std::string* err, const std::string& path,
+                      void*) {
+  if (!regular_file_exists(path, nullptr)) {
+    if (err) *err += "glTF buffer '" + path + "' is not a readable file\n";
+    return false;
+  }
+  try {
+    const std::string bytes = read_file_bytes(path);
+    out->assign(bytes.begin(), bytes.end());
+    return true;
+  } catch (const std::exception& e) {
+    if (err) *err += std::string(e.what()) + "\n";
+    return false;
+  }
+}
+
+bool refuse_write(std::string* err, const std::string&, const std::vector<unsigned char>&,
+                  void*) {
+  if (err) *err += "the glTF reader writes no file\n";
+  return false;
 }
 
 // tinygltf trusts the GLB chunk lengths; check them against the file first.
@@ -249,6 +286,8 @@ Mesh read_gltf(std::string_view bytes, const std::filesystem::path& directory,
   if (binary) check_glb_layout(bytes);
   tinygltf::TinyGLTF loader;
   loader.SetImageLoader(&skip_image, nullptr);
+  loader.SetFsCallbacks(
+      {&regular_file_exists, &path_as_given, &read_buffer_file, &refuse_write, nullptr});
   tinygltf::Model model;
   std::string errors, warnings;
   if (bytes.size() > std::numeric_limits<unsigned>::max())
