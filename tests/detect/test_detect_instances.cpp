@@ -1,12 +1,17 @@
 // The instance budget (--instances N): the selection on hand-made poses (best first, score 0 and
 // duplicates of one part left out, at most N), and on a synthetic bin of 35 brackets through the
 // command line: N = 10 gives more than 5 rows an image, no two on one part; N = 0 gives exactly
-// the rows of a run without the option (the paper's one per hypothesis).
+// the rows of a run without the option (the paper's one per hypothesis). And the budget per
+// image from BOP's target list (detect --targets).
 #include <gtest/gtest.h>
 
+#include <fstream>
+#include <map>
 #include <string>
+#include <utility>
 
 #include <fmt/format.h>
+#include <nlohmann/json.hpp>
 
 #include "host/detect/instance_select.hpp"
 #include "host/detect/pose_fit.hpp"
@@ -27,6 +32,46 @@ Detection pose(double x, double score, std::uint64_t votes, std::uint32_t index)
   d.index = index;
   return d;
 }
+
+// Two synthetic bins of 35 brackets (640 x 360) and the bracket's model, in a fresh directory;
+// detect() runs detection on them with extra options and returns the results file and stdout.
+struct BracketBins {
+  fs::path dir;
+  std::string data, ppfm;
+
+  explicit BracketBins(const std::string& name) : dir(test::fresh_temp_dir(name)) {
+    data = (dir / "data").string();
+    ppfm = (dir / "bracket.ppfm").string();
+    auto r = test::run_binpick(fmt::format(
+        "synth --model builtin:bracket --out {} --bins 2 --objects 35 --width 640 --height 360",
+        data));
+    EXPECT_EQ(r.status, 0) << r.err;
+    r = test::run_binpick(fmt::format("train --model builtin:bracket --out {}", ppfm));
+    EXPECT_EQ(r.status, 0) << r.err;
+  }
+  ~BracketBins() { fs::remove_all(dir); }
+
+  std::pair<fs::path, std::string> detect(const std::string& name,
+                                          const std::string& extra) const {
+    const fs::path csv = dir / name;
+    const auto run = test::run_binpick(
+        fmt::format("detect --model {} --dataset {} --out {} {}", ppfm, data, csv.string(), extra));
+    EXPECT_EQ(run.status, 0) << extra << "\n" << run.err;
+    return {csv, run.out};
+  }
+};
+
+// The CSV lines of one scene, without the time column.
+std::string scene_rows(const fs::path& csv, int scene) {
+  std::string out;
+  for (bop::ResultRow row : bop::read_results_csv(csv)) {
+    row.time = 0;  // the image's seconds differ between runs
+    if (row.scene_id == scene) out += bop::format_result_row(row) + "\n";
+  }
+  return out;
+}
+
+void write(const fs::path& path, const std::string& text) { std::ofstream(path) << text; }
 
 }  // namespace
 
@@ -62,20 +107,12 @@ TEST(InstanceSelect, BestFirstDistinctPartsWithinBudget) {
 }
 
 TEST(DetectInstances, BudgetOnABinOf35Parts) {
-  const fs::path dir = test::fresh_temp_dir("detect_instances");
-  const std::string data = (dir / "data").string(), ppfm = (dir / "bracket.ppfm").string();
-  auto r = test::run_binpick(fmt::format(
-      "synth --model builtin:bracket --out {} --bins 2 --objects 35 --width 640 --height 360",
-      data));
-  ASSERT_EQ(r.status, 0) << r.err;
-  r = test::run_binpick(fmt::format("train --model builtin:bracket --out {}", ppfm));
-  ASSERT_EQ(r.status, 0) << r.err;
+  const BracketBins bins("detect_instances");
+  ASSERT_FALSE(::testing::Test::HasFailure());
+  const fs::path& dir = bins.dir;
+  const std::string &data = bins.data, &ppfm = bins.ppfm;
   const auto detect = [&](const std::string& name, const std::string& extra) {
-    const fs::path csv = dir / name;
-    const auto run = test::run_binpick(
-        fmt::format("detect --model {} --dataset {} --out {} {}", ppfm, data, csv.string(), extra));
-    EXPECT_EQ(run.status, 0) << extra << "\n" << run.err;
-    return csv;
+    return bins.detect(name, extra).first;
   };
   const fs::path paper = detect("paper.csv", "");
   const fs::path zero = detect("zero.csv", "--instances 0");
@@ -118,5 +155,61 @@ TEST(DetectInstances, BudgetOnABinOf35Parts) {
     EXPECT_EQ(run.status, 2) << bad;
     EXPECT_NE(run.err.find("--instances"), std::string::npos) << bad << "\n" << run.err;
   }
-  fs::remove_all(dir);
+}
+
+// detect --targets FILE (BOP's test_targets_bop19.json as the instance budget): each image gets
+// exactly the rows of `--instances inst_count` on that image, images not listed (or listing
+// another obj_id only) get none and are not read, and bad target files or --targets with
+// --instances are refused with one message.
+TEST(DetectTargets, BudgetPerImageFromTheTargetList) {
+  const BracketBins bins("detect_targets");
+  ASSERT_FALSE(::testing::Test::HasFailure());
+  const fs::path& dir = bins.dir;
+  const std::string &data = bins.data, &ppfm = bins.ppfm;
+  const auto detect = [&](const std::string& name, const std::string& extra) {
+    return bins.detect(name, extra);
+  };
+
+  // The dataset's own list (synth writes it): every image is a target of obj_id 1.
+  const fs::path bop19 = fs::path(data) / "test_targets_bop19.json";
+  std::map<int, int> count;
+  for (const auto& e : nlohmann::json::parse(test::slurp(bop19)))
+    count[e["scene_id"].get<int>()] = e["inst_count"].get<int>();
+  ASSERT_EQ(count.size(), 2u);
+  const auto [listed, listed_log] = detect("listed.csv", "--targets " + bop19.string());
+  for (const auto& [scene, n] : count) {
+    ASSERT_GT(n, 5) << "scene " << scene;  // more than the paper's 5 rows: the budget shows
+    const auto [alone, log] =
+        detect(fmt::format("alone{}.csv", scene), fmt::format("--instances {} --scenes {}", n, scene));
+    EXPECT_FALSE(scene_rows(alone, scene).empty());
+    EXPECT_EQ(scene_rows(listed, scene), scene_rows(alone, scene)) << "scene " << scene;
+  }
+
+  // A hand-made list: scene 1 only, 3 instances; scene 0 lists another object only.
+  const fs::path mine = dir / "mine.json";
+  write(mine, R"([{"scene_id": 0, "im_id": 0, "obj_id": 7, "inst_count": 2},
+                  {"scene_id": 1, "im_id": 0, "obj_id": 1, "inst_count": 3}])");
+  const auto [three, three_log] = detect("three.csv", "--targets " + mine.string());
+  EXPECT_EQ(scene_rows(three, 0), "");
+  const auto [alone3, log3] = detect("alone3.csv", "--instances 3 --scenes 1");
+  EXPECT_EQ(scene_rows(three, 1), scene_rows(alone3, 1));
+  EXPECT_LE(bop::read_results_csv(three).size(), 3u);
+  EXPECT_NE(three_log.find("1 without a target not read"), std::string::npos) << three_log;
+
+  // Refused with one message: each names what is wrong.
+  write(dir / "bad.json", R"({"scene_id": 1})");
+  write(dir / "huge.json", R"([{"scene_id": 1, "im_id": 0, "obj_id": 1, "inst_count": 5000}])");
+  const std::pair<std::string, std::string> bad[] = {
+      {"--targets " + (dir / "bad.json").string(), "bad.json"},
+      {"--targets " + (dir / "huge.json").string(), "at most 1000"},
+      {"--targets " + (dir / "none.json").string(), "none.json"},
+      {"--targets " + bop19.string() + " --instances 4", "--instances"},
+  };
+  for (const auto& [args, says] : bad) {
+    const auto run = test::run_binpick(fmt::format("detect --model {} --dataset {} --out {} {}",
+                                                   ppfm, data, (dir / "x.csv").string(), args));
+    EXPECT_EQ(run.status, 2) << args;
+    EXPECT_NE(run.err.find(says), std::string::npos) << args << "\n" << run.err;
+    EXPECT_FALSE(fs::exists(dir / "x.csv")) << args;
+  }
 }
