@@ -8,6 +8,7 @@
 #include "host/formats/bop/png_image.hpp"
 #include "host/core/error.hpp"
 #include "host/formats/mesh/point_cloud_ply.hpp"
+#include "synth/render/part_pixels.hpp"
 
 namespace binpick {
 namespace {
@@ -39,20 +40,27 @@ BopVisibility visibility_of(const BinRecord& bin, const GrayImage<std::uint16_t>
                             std::size_t part, bool keep_pixels) {
   Eigen::Matrix3d K;
   K << bin.camera.fx, 0, bin.camera.cx, 0, bin.camera.fy, bin.camera.cy, 0, 0, 1;
-  return bop_visibility(bin.render.silhouettes[part],
+  return bop_visibility(bin.silhouettes[part],
                         {depth.width, depth.height, &depth.pixels, bin.depth_scale}, K,
                         kBopVisibDelta, keep_pixels);
 }
 
-// calc_gt_info.py's entry for one part, from its visibility v.
-bop::GroundTruthInfo info_of(const RenderedBin& r, const BopVisibility& v, std::size_t part) {
+// calc_2d_bbox of the part's unoccluded pixels.
+std::array<int, 4> bbox_of(const PartSilhouette& s, std::uint32_t width) {
+  PartPixels box(1);
+  for (std::uint32_t p : s.pixels) box.add(0, int(p % width), int(p / width));
+  return bop_bbox(box.box[0]);
+}
+
+// calc_gt_info.py's entry for one part, from its silhouette s and visibility v.
+bop::GroundTruthInfo info_of(const PartSilhouette& s, std::uint32_t width, const BopVisibility& v) {
   bop::GroundTruthInfo g;
-  g.px_count_all = r.px_all[part];
+  g.px_count_all = std::uint32_t(s.pixels.size());
   g.px_count_valid = v.px_count_valid;
   g.px_count_visib = v.px_count_visib;
   g.visib_fract = g.px_count_all ? double(g.px_count_visib) / double(g.px_count_all) : 0.0;
   // The toolkit fills bbox_obj only for a part with a visible pixel.
-  g.bbox_obj = v.px_count_visib > 0 ? r.bbox_all[part] : std::array<int, 4>{-1, -1, -1, -1};
+  g.bbox_obj = v.px_count_visib > 0 ? bbox_of(s, width) : std::array<int, 4>{-1, -1, -1, -1};
   g.bbox_visib = v.bbox_visib;
   return g;
 }
@@ -81,15 +89,15 @@ void write_bop_scene(const fs::path& dir, const BinRecord& bin) {
 
   if (bin.obj_ids.size() != bin.part_to_camera.size())
     throw InputError("bin writer: an obj_id is needed for every part");
-  if (r.silhouettes.size() != bin.part_to_camera.size() || r.px_all.size() != bin.part_to_camera.size())
-    throw InputError("bin writer: the render needs every part's silhouette (RenderOptions::silhouettes)");
+  if (bin.silhouettes.size() != bin.part_to_camera.size())
+    throw InputError("bin writer: every part's silhouette is needed (BinRenderer::silhouettes)");
   std::vector<bop::GroundTruth> gt;
   std::vector<bop::GroundTruthInfo> info;
   std::vector<BopVisibility> visibility;  // per part; with the visible pixels for the masks
   for (std::size_t i = 0; i < bin.part_to_camera.size(); ++i) {
     gt.push_back({bin.obj_ids[i], bop::Pose::from(bin.part_to_camera[i])});
     visibility.push_back(visibility_of(bin, depth, i, bin.write_masks));
-    info.push_back(info_of(r, visibility.back(), i));
+    info.push_back(info_of(bin.silhouettes[i], r.width, visibility.back()));
   }
   bop::write_scene_gt(dir / "scene_gt.json", {{0, gt}});
   bop::write_scene_gt_info(dir / "scene_gt_info.json", {{0, info}});
@@ -100,7 +108,7 @@ void write_bop_scene(const fs::path& dir, const BinRecord& bin) {
     fs::create_directories(dir / "mask_visib");
     for (std::size_t part = 0; part < bin.part_to_camera.size(); ++part) {
       const std::string name = fmt::format("000000_{:06d}.png", part);
-      write_png(dir / "mask" / name, mask_of(r, r.silhouettes[part].pixels));
+      write_png(dir / "mask" / name, mask_of(r, bin.silhouettes[part].pixels));
       write_png(dir / "mask_visib" / name, mask_of(r, visibility[part].visible));
     }
   }

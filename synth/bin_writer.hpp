@@ -13,6 +13,9 @@ namespace binpick {
 
 struct BinRecord {
   const RenderedBin& render;
+  // Each part drawn alone with bop_toolkit_sampling(camera) (BinRenderer::silhouettes), one per
+  // part: scene_gt_info.json and the masks come from these, as calc_gt_info.py renders them.
+  const std::vector<PartSilhouette>& silhouettes;
   const RenderCamera& camera;
   const Eigen::Isometry3d& world_to_camera;
   const std::vector<Eigen::Isometry3d>& part_to_camera;  // mm, one per part, same order as render

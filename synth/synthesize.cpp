@@ -145,6 +145,9 @@ SynthSummary synthesize(const Model& model, const std::string& model_description
   summary.seconds_decompose = seconds_since(t0);
 
   std::unique_ptr<BinRenderer> renderer;  // made on the first bin that is not already there
+  // Each part alone by the BOP toolkit's pixel centres, for scene_gt_info.json and the masks
+  // (bin_camera.hpp: bop_toolkit_sampling). Back faces drawn, as the toolkit's renderer does.
+  std::unique_ptr<BinRenderer> toolkit_renderer;
   std::unique_ptr<SensorStage> sensor;    // the same, for a structured-light sensor
   const bool structured_light = o.sensor.kind != SensorModel::Kind::ideal;
   SensorModel sensor_model = o.sensor;
@@ -188,7 +191,7 @@ SynthSummary synthesize(const Model& model, const std::string& model_description
     RenderOptions render_options;
     render_options.noise_sigma_mm = structured_light ? 0.0 : o.noise * diameter;
     render_options.seed = mix_seed(o.seed, 2 * std::uint64_t(b) + 1);
-    render_options.silhouettes = true;  // scene_gt_info.json by BOP's rule (bin_writer.cpp)
+    render_options.count_unoccluded = false;  // the toolkit's silhouettes below count them
     const bool show_bin = o.bin_render == BinRender::full;
     if (!renderer)
       renderer = std::make_unique<BinRenderer>(meshes, show_bin ? drop_options.bin.get() : nullptr,
@@ -196,6 +199,11 @@ SynthSummary synthesize(const Model& model, const std::string& model_description
     RenderedBin rendered = renderer->render_scene(
         {part_to_camera, dropped.kinds, show_bin ? std::optional(w2c) : std::nullopt},
         render_options);
+    if (!toolkit_renderer)
+      toolkit_renderer =
+          std::make_unique<BinRenderer>(meshes, nullptr, bop_toolkit_sampling(camera), false);
+    const std::vector<PartSilhouette> silhouettes =
+        toolkit_renderer->silhouettes({part_to_camera, dropped.kinds, std::nullopt});
     if (structured_light) {
       if (!sensor)
         sensor = std::make_unique<SensorStage>(vkrt::Context::shared(), camera.width, camera.height);
@@ -207,7 +215,7 @@ SynthSummary synthesize(const Model& model, const std::string& model_description
     std::vector<int> obj_ids;
     for (const int k : dropped.kinds) obj_ids.push_back(k + 1);
     try {
-      write_bop_scene(staging, {rendered, camera, w2c, part_to_camera, obj_ids, o.depth_scale,
+      write_bop_scene(staging, {rendered, silhouettes, camera, w2c, part_to_camera, obj_ids, o.depth_scale,
                                 o.write_cloud, o.write_masks});
       fs::rename(staging, scene);
     } catch (...) {

@@ -30,6 +30,13 @@ RenderCamera camera_for_bin(double bin_x_mm, double bin_y_mm, double bin_z_mm,
   return cam;
 }
 
+RenderCamera bop_toolkit_sampling(const RenderCamera& camera) {
+  RenderCamera shifted = camera;
+  shifted.cx -= 0.5;
+  shifted.cy -= 0.5;
+  return shifted;
+}
+
 void check_camera(const RenderCamera& c) {
   if (c.width == 0 || c.height == 0 || c.width > 16384 || c.height > 16384)
     throw InputError("render camera: image size " + std::to_string(c.width) + " x " +

@@ -27,6 +27,15 @@ RenderCamera camera_for_bin(double bin_x_mm = 600, double bin_y_mm = 400, double
                             double camera_height_mm = 1000, std::uint32_t width = 1600,
                             std::uint32_t height = 900);
 
+// The camera whose pixel (u, v) samples the point (u + 0.5, v + 0.5) of `camera`: the principal
+// point moved by -0.5 px. The BOP toolkit's renderers (renderer_vispy.py's _calc_calib_proj,
+// bop_renderer's calculateProjectionMatrix) put pixel (i, j) there, half a pixel off the
+// convention above, which binpick's depth images follow. The annotations the toolkit renders
+// (calc_gt_info.py's scene_gt_info.json, calc_masks.py's masks, VSD's model depths) are
+// reproduced by drawing the models with this camera; distances along the rays are still
+// computed with the image's own intrinsics, as the toolkit does.
+RenderCamera bop_toolkit_sampling(const RenderCamera& camera);
+
 // Throws InputError unless the camera can render (positive size and focal lengths, 0 < near < far).
 void check_camera(const RenderCamera& camera);
 

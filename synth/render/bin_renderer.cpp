@@ -129,7 +129,8 @@ RenderedBin BinRenderer::render_scene(const RenderScene& scene, const RenderOpti
                   .px_visible = seen.count,
                   .px_all = {},
                   .bbox_visible = bop_bboxes(seen),
-                  .bbox_all = {}};
+                  .bbox_all = {},
+                  .silhouettes = {}};
   timings_.readback_ms = ms_since(start);
 
   if (!options.count_unoccluded) {

@@ -201,8 +201,10 @@ TEST(RenderBinScene, SeveralMeshesKeepTheirInstanceIds) {
     EXPECT_EQ(r.px_visible[k], a.px_visible[0]) << k;
     EXPECT_EQ(r.px_all[k], a.px_all[0]) << k;
     EXPECT_EQ(r.bbox_visible[k], a.bbox_visible[0]) << k;
-    for (std::size_t i = 0; i < a.instance.size(); ++i)
-      if (a.instance[i] == 0) ASSERT_EQ(r.instance[i], int(k)) << "part " << k << " pixel " << i;
+    for (std::size_t i = 0; i < a.instance.size(); ++i) {
+      if (a.instance[i] != 0) continue;
+      ASSERT_EQ(r.instance[i], int(k)) << "part " << k << " pixel " << i;
+    }
   }
   EXPECT_GT(r.px_visible[0], 2 * r.px_visible[1]);  // the large box is larger
   EXPECT_THROW(both.render_scene({poses, {0, 2, 0}, std::nullopt}), InputError);

@@ -1,6 +1,7 @@
 // scene_gt_info.json, mask/ and mask_visib/ of `binpick synth` follow bop_toolkit's
 // calc_gt_info.py: recomputed here from the files as written (the depth PNG, the camera, the
-// poses and the model, each part rendered alone) they give the same numbers; and the dataset's
+// poses and the model, each part rendered alone where the toolkit's renderer puts pixel centres:
+// bop_toolkit_sampling) they give the same numbers; and the dataset's
 // test target lists count what scene_gt_info.json says.
 #include <fmt/format.h>
 #include <gtest/gtest.h>
@@ -62,7 +63,8 @@ TEST(SynthGtInfo, RecomputedFromTheWrittenFilesGivesTheSameNumbers) {
                       10.0, 10000.0};
   std::vector<Eigen::Isometry3d> poses;
   for (const auto& g : gt) poses.push_back(g.model_to_camera.isometry());
-  const RenderedBin alone = BinRenderer(model, camera).render(poses, {.silhouettes = true});
+  const RenderedBin alone =
+      BinRenderer(model, bop_toolkit_sampling(camera)).render(poses, {.silhouettes = true});
 
   ASSERT_EQ(info.size(), gt.size());
   int partly_hidden = 0;

@@ -35,8 +35,10 @@ std::vector<PartSilhouette> ModelDepthRenderer::render(const Eigen::Matrix3d& K,
   if (objects.empty()) return {};
   const CameraKey key{width, height, K(0, 0), K(1, 1), K(0, 2), K(1, 2)};
   if (!renderer_ || key != camera_) {
-    const RenderCamera camera{width, height, K(0, 0), K(1, 1), K(0, 2), K(1, 2), kVsdNearMm,
-                              kVsdFarMm};
+    // Pixel centres as the toolkit's renderers place them (bin_camera.hpp), so that its VSD
+    // and binpick's compare the same pixels.
+    const RenderCamera camera = bop_toolkit_sampling(
+        {width, height, K(0, 0), K(1, 1), K(0, 2), K(1, 2), kVsdNearMm, kVsdFarMm});
     renderer_.reset();  // first free the old one's buffers
     // Back faces are drawn: the toolkit's renderers do not cull, which matters for open meshes.
     renderer_ = std::make_unique<BinRenderer>(meshes_, nullptr, camera, false);

@@ -40,8 +40,8 @@ class ModelDepthRenderer {
   ModelDepthRenderer(const ModelDepthRenderer&) = delete;
   ModelDepthRenderer& operator=(const ModelDepthRenderer&) = delete;
 
-  // Each object drawn alone in a width x height image with intrinsics K (skew ignored): its
-  // pixels and depth there (the nearest surface, back faces included, as the toolkit's
+  // Each object drawn alone in a width x height image with intrinsics K (skew ignored) and the
+  // toolkit's pixel centres (bin_camera.hpp: bop_toolkit_sampling): its pixels and depth there (the nearest surface, back faces included, as the toolkit's
   // renderers draw). The renderer of the last camera is kept (building one compiles shaders;
   // each holds image-sized buffers, so datasets with many cameras do not pile them up).
   // InputError for an obj_id without a mesh.
