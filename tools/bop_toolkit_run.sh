@@ -6,7 +6,7 @@
 #   scripts/calc_gt_info.py         on a copy of every dataset, against binpick's scene_gt_info.json.
 #
 #   tools/bop_toolkit_run.sh --toolkit DIR --python PY --work DIR [--binpick BIN]
-#                            [--models "shaft bracket bolt"] [--steps data,toolkit,compare]
+#                            [--models "shaft bracket bolt"] [--steps data,check,eval,gtinfo,compare]
 #
 # --toolkit: a checkout (the directory holding bop_toolkit_lib/ and scripts/); it is copied into
 #   WORK/toolkit and only the copy is changed: the datasets' registration
@@ -14,12 +14,13 @@
 # --python: an interpreter with the toolkit's requirements (numpy, scipy, imageio, vispy,
 #   PyOpenGL...). Without a display, vispy renders through EGL: EGL_PLATFORM=surfaceless (set
 #   here) and Mesa's EGL (libegl-mesa0).
-# Steps: data (binpick run: 2 bins of 60 parts, noise 0 and 0.02, seed 3, then detect
-# --instances 20 and 60 and eval), toolkit (its three scripts; about 20 min a model on 2 cores),
-# compare (tools/bop_toolkit_compare.py: tables on stdout and WORK/compare.json).
+# Steps (default all): data (binpick run: 2 bins of 60 parts, noise 0 and 0.02, seed 3, then
+# detect --instances 20 and 60 and eval), check, eval (about 3 min a results file on 2 idle
+# cores, 18 files), gtinfo (a minute a dataset), compare (tools/bop_toolkit_compare.py: tables
+# on stdout and WORK/compare.json; what was not run is left out).
 set -euo pipefail
 here=$(cd "$(dirname "$0")" && pwd)
-toolkit="" py="" work="" bin="$here/../build/binpick" models="shaft bracket bolt" steps=data,toolkit,compare
+toolkit="" py="" work="" bin="$here/../build/binpick" models="shaft bracket bolt" steps=data,check,eval,gtinfo,compare
 while [[ $# -gt 0 ]]; do
   case $1 in
     --toolkit) toolkit=$2; shift 2;;
@@ -61,7 +62,7 @@ if step data; then
   done
 fi
 
-if step toolkit; then
+if step check || step eval || step gtinfo; then
   # The datasets (OUT/bop/noiseDDD of every model) share names: one registration serves all.
   rm -rf "$work/toolkit" && cp -r "$toolkit" "$work/toolkit"
   size=$(python3 -c "import json,sys; c=json.load(open(sys.argv[1])); print('%d,%d' % (c['width'], c['height']))" \
@@ -75,9 +76,12 @@ if step toolkit; then
     for s in results results-i20 results-i60; do
       for n in $noises; do
         f=binpick_noise$n-test.csv
-        echo "== check_results_bop19 $m $s $f"
-        BOP_RESULTS_PATH=$work/run-$m/$s "$py" scripts/check_results_bop19.py --result_filenames=$f 2>&1 |
-          tee "$work/run-$m/$s/check_results_noise$n.log" | grep "Check msg"
+        if step check; then
+          echo "== check_results_bop19 $m $s $f"
+          BOP_RESULTS_PATH=$work/run-$m/$s "$py" scripts/check_results_bop19.py --result_filenames=$f 2>&1 |
+            tee "$work/run-$m/$s/check_results_noise$n.log" | grep "Check msg"
+        fi
+        step eval || continue
         e=$work/eval/$m/$s
         mkdir -p "$e"
         echo "== eval_bop19_pose $m $s $f"
@@ -88,6 +92,7 @@ if step toolkit; then
       done
     done
     for n in $noises; do
+      step gtinfo || continue
       g=$work/gtinfo/$m
       rm -rf "$g/noise$n" && mkdir -p "$g"
       cp -rL "$work/run-$m/bop/noise$n" "$g/noise$n"  # a copy: calc_gt_info.py overwrites scene_gt_info.json
