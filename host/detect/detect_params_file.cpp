@@ -66,6 +66,7 @@ const std::map<std::string, Field>& fields() {
       {"verify-tolerance", real(&DetectParams::verify_tolerance)},
       {"verify-noise-factor", real(&DetectParams::verify_noise_factor)},
       {"verify-patch", real(&DetectParams::verify_patch)},
+      {"verify-ray", real(&DetectParams::verify_ray)},
       {"roi", text(&DetectParams::roi)},
       {"bin", text(&DetectParams::bin)},
       {"bin-margin", real(&DetectParams::bin_margin)},

@@ -63,6 +63,7 @@ std::optional<ParamProblem> find_param_problem(const DetectParams& p) {
       {in(p.verify_tolerance, 0, 1) && p.verify_tolerance > 0, {"verify-tolerance", p.verify_tolerance, "(0, 1]"}},
       {in(p.verify_noise_factor, 0, 100), {"verify-noise-factor", p.verify_noise_factor, "[0, 100]"}},
       {in(p.verify_patch, 0, 1), {"verify-patch", p.verify_patch, "[0, 1]"}},
+      {in(p.verify_ray, 0, 1), {"verify-ray", p.verify_ray, "[0, 1]"}},
       {in(p.bin_margin, 0, 10), {"bin-margin", p.bin_margin, "[0, 10]"}},
       {p.instances <= 1000, {"instances", double(p.instances), "[0, 1000]"}},
   };
@@ -127,6 +128,10 @@ Detector::Detector(const PpfModel& model, const DetectParams& params, ocl::Devic
   fit_model_ = upload_fit_model(dev_, fit_cloud);
   if (params_.verify_patch > 0)
     fit_geometry_.patches = model_patches(fit_cloud, float(params_.verify_patch * model_.diameter));
+  if (params_.verify_ray > 0) {
+    fit_geometry_.points = fit_cloud.points;
+    fit_geometry_.normals = fit_cloud.normals;
+  }
   fit_geometry_.diameter = model_.diameter;
   fit_geometry_.voxel_size = model_.voxel_size;
   fit_geometry_.centroid = model_centroid(model_.cloud);
@@ -228,6 +233,7 @@ std::vector<Detection> Detector::refine_and_rank(
   ro.tolerance_ratio = float(params_.verify_tolerance);
   ro.noise_factor = float(params_.verify_noise_factor);
   ro.outline_ratio = outline_ratio_;
+  ro.ray_band_ratio = float(params_.verify_ray);
   const auto sums = [&](const std::vector<bp_pose_fit>& fits) {
     return pose_fit_sums(dev_, points, cam, fit_model_, fits);
   };

@@ -141,9 +141,40 @@ std::vector<RefinedPose> refine_and_verify(const FitSumsFn& sums_of, const bp_ca
   PatchTestOptions patch_opt;
   patch_opt.dead_band = 0.25f * opt.tolerance_ratio * g.diameter;
   const bool patch_test_on = g.patches.count > 0;
-  const std::vector<FitSums> sums =
-      final_sums(tolerance, final_gate, opt.outline_ratio * g.diameter, patch_test_on);
+  const bool ray_test_on = opt.ray_band_ratio > 0 && !g.points.empty() &&
+                           g.points.size() == g.normals.size() && g.points.size() == model_points;
+  const std::vector<FitSums> sums = final_sums(tolerance, final_gate, opt.outline_ratio * g.diameter,
+                                               patch_test_on || ray_test_on);
   const double min_support = double(opt.min_support_ratio) * model_points;
+  // The ray test: each pose's mean square residual along the rays, and the image's least.
+  std::vector<double> ray_ms(poses.size(), INFINITY);
+  std::vector<std::size_t> ray_n(poses.size(), 0);
+  double ray_floor = INFINITY;
+  if (ray_test_on) {
+    for (std::size_t k = 0; k < poses.size(); ++k) {
+      const std::vector<float>& res = sums[k].residuals;
+      if (res.size() != model_points) continue;
+      const Eigen::Matrix3f R = poses[k].R.cast<float>();
+      const Eigen::Vector3f t = poses[k].t.cast<float>();
+      double sq = 0;
+      std::size_t n = 0;
+      for (std::size_t j = 0; j < res.size(); ++j) {
+        if (!std::isfinite(res[j])) continue;
+        const Eigen::Vector3f q = R * g.points[j] + t;
+        const Eigen::Vector3f nq = R * g.normals[j];
+        const float c = -nq.dot(q) / (q.norm() * nq.norm());
+        if (!(c > 0.0f)) continue;
+        const double e = double(res[j]) / c;
+        sq += e * e;
+        ++n;
+      }
+      ray_n[k] = n;
+      if (n >= opt.min_pairs) {
+        ray_ms[k] = sq / double(n);
+        ray_floor = std::min(ray_floor, ray_ms[k]);
+      }
+    }
+  }
   for (std::size_t k = 0; k < poses.size(); ++k) {
     RefinedPose& r = out[k];
     const FitSums& s = sums[k];
@@ -175,6 +206,12 @@ std::vector<RefinedPose> refine_and_verify(const FitSumsFn& sums_of, const bp_ca
         r.patches_tested = pt.tested;
         r.patches_biased = pt.biased;
         r.score *= pt.factor();
+      }
+      if (ray_test_on && std::isfinite(ray_floor) && std::isfinite(ray_ms[k])) {
+        const double inflate = 1.0 + 2.0 * std::sqrt(2.0 / double(ray_n[k]));
+        r.ray_excess = std::sqrt(std::max(0.0, ray_ms[k] - ray_floor * inflate));
+        const double band = double(opt.ray_band_ratio) * g.diameter;
+        if (r.ray_excess > band) r.score *= band / r.ray_excess;
       }
     }
   }
