@@ -68,9 +68,9 @@ void add_detect_cli_options(CLI::App* verb, DetectCliOptions& a, const std::stri
       "patch test: the score is multiplied by the share of the model's patches (cells of "
           "this side, fraction of the diameter) whose residuals average out, in [0, 1]; 0: off");
   add("verify-ray", p.verify_ray,
-      "ray test: a pose whose residual along the viewing rays exceeds the image's best pose's "
-          "by more than this (fraction of the diameter, significance-corrected) loses score in "
-          "proportion, in [0, 1]; 0: off");
+      "ray test: a pose whose residuals along the viewing rays spread wider than the image's "
+          "best pose's (significance-corrected) by more than this (fraction of the diameter) "
+          "has its score multiplied by band / excess, in [0, 1]; 0: off");
   add("roi", p.roi,
       "only this box may hold hypotheses and crops: camera:x0,y0,z0,x1,y1,z1 (camera frame, "
           "mm) or bin:x0,y0,z0,x1,y1,z1 (the bin's frame: origin at the floor's centre, z up, "

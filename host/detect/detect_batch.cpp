@@ -132,6 +132,8 @@ std::string detection_line(std::size_t rank, const Detection& d) {
                         d.outline_continue + d.outline_step);
   if (d.patches_tested > 0)
     line += fmt::format("; {} of {} patches biased", d.patches_biased, d.patches_tested);
+  if (d.ray_tested)
+    line += fmt::format("; {:.2f} mm spread along the rays beyond the noise", d.ray_excess);
   if (!d.reason.empty()) line += "; " + d.reason;
   return line;
 }

@@ -200,6 +200,8 @@ void take_pose(Detection& d, const RefinedPose& r, std::uint64_t votes, std::uin
   d.outline_step = r.outline_step;
   d.patches_tested = r.patches_tested;
   d.patches_biased = r.patches_biased;
+  d.ray_tested = r.ray_tested;
+  d.ray_excess = r.ray_excess;
   d.reason = r.reason;
 }
 

@@ -48,10 +48,10 @@ struct DetectParams {
   double verify_tolerance = 0.04;  // depth agreement of a verified model point (fraction)
   double verify_noise_factor = 3.5;  // tolerance widens to this x the noise seen (0: fixed)
   double verify_patch = 0.2;       // patch test's cell side (fraction; 0: no patch test)
-  // Ray test's dead band (fraction; 0: off): the along-ray residual's RMS beyond the image's
-  // best pose's (pose_refine.hpp) costs score past this. Off by default: measured with 0.01,
-  // shaft piles 5 -> 9 of 18 top-ranked right, 150 other images 130 -> 131 (brackets at 5 % lose 3).
-  double verify_ray = 0;
+  // Ray test's dead band (fraction; 0: off, ray_test.hpp): a spread along the rays wider than
+  // the image's best pose's by more than this costs score. 0.01 d, the patch test's dead band
+  // (a right pose's leftover error); measured in docs/pipeline.md, step 9.
+  double verify_ray = 0.01;
   // Where hypotheses and crops may be (bin_spec.hpp, docs/cli.md): "" (anywhere),
   // "camera:x0,y0,z0,x1,y1,z1" or "bin:..." (mm).
   std::string roi;
@@ -97,6 +97,9 @@ struct Detection {
   std::uint32_t outline_continue = 0, outline_step = 0;
   // Model patches tested and found biased by the patch test (patch_test.hpp; 0 without it).
   std::uint32_t patches_tested = 0, patches_biased = 0;
+  // The ray test's excess RMS along the rays beyond the image's noise (mm; ray_test.hpp), if run.
+  bool ray_tested = false;
+  double ray_excess = 0;
   std::string reason;               // why the score is 0 or refinement stopped early, or why the
                                     // hypothesis was skipped (Detector::skipped)
   // neighbourhood: points in the crop (from a depth image: pixels with data, whether or not

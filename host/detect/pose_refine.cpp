@@ -8,6 +8,7 @@
 #include <fmt/format.h>
 
 #include "host/core/error.hpp"
+#include "host/detect/ray_test.hpp"
 
 namespace binpick {
 namespace {
@@ -51,6 +52,8 @@ void check(const RefineOptions& o) {
     throw InputError(fmt::format("verify noise factor {} must be in [0, 100]", o.noise_factor));
   if (bad(o.outline_ratio, 0, 1))
     throw InputError(fmt::format("outline tolerance {} must be in [0, 1]", o.outline_ratio));
+  if (bad(o.ray_band_ratio, 0, 1))
+    throw InputError(fmt::format("ray test band {} must be in [0, 1]", o.ray_band_ratio));
   if (bad(o.min_support_ratio, 0, 1))
     throw InputError(fmt::format("verify min support {} must be in [0, 1]", o.min_support_ratio));
 }
@@ -146,34 +149,16 @@ std::vector<RefinedPose> refine_and_verify(const FitSumsFn& sums_of, const bp_ca
   const std::vector<FitSums> sums = final_sums(tolerance, final_gate, opt.outline_ratio * g.diameter,
                                                patch_test_on || ray_test_on);
   const double min_support = double(opt.min_support_ratio) * model_points;
-  // The ray test: each pose's mean square residual along the rays, and the image's least.
-  std::vector<double> ray_ms(poses.size(), INFINITY);
-  std::vector<std::size_t> ray_n(poses.size(), 0);
-  double ray_floor = INFINITY;
+  // The ray test (ray_test.hpp): each pose's spread along the rays; the image's noise is the
+  // least among the poses with enough points.
+  std::vector<RaySpread> ray(poses.size());
+  RaySpread ray_noise;
   if (ray_test_on) {
-    for (std::size_t k = 0; k < poses.size(); ++k) {
-      const std::vector<float>& res = sums[k].residuals;
-      if (res.size() != model_points) continue;
-      const Eigen::Matrix3f R = poses[k].R.cast<float>();
-      const Eigen::Vector3f t = poses[k].t.cast<float>();
-      double sq = 0;
-      std::size_t n = 0;
-      for (std::size_t j = 0; j < res.size(); ++j) {
-        if (!std::isfinite(res[j])) continue;
-        const Eigen::Vector3f q = R * g.points[j] + t;
-        const Eigen::Vector3f nq = R * g.normals[j];
-        const float c = -nq.dot(q) / (q.norm() * nq.norm());
-        if (!(c > 0.0f)) continue;
-        const double e = double(res[j]) / c;
-        sq += e * e;
-        ++n;
-      }
-      ray_n[k] = n;
-      if (n >= opt.min_pairs) {
-        ray_ms[k] = sq / double(n);
-        ray_floor = std::min(ray_floor, ray_ms[k]);
-      }
-    }
+    for (std::size_t k = 0; k < poses.size(); ++k)
+      if (sums[k].residuals.size() == model_points)
+        ray[k] = ray_spread(
+            ray_residuals(sums[k].residuals, poses[k].R, poses[k].t, g.points, g.normals));
+    ray_noise = ray_floor(ray);
   }
   for (std::size_t k = 0; k < poses.size(); ++k) {
     RefinedPose& r = out[k];
@@ -207,11 +192,11 @@ std::vector<RefinedPose> refine_and_verify(const FitSumsFn& sums_of, const bp_ca
         r.patches_biased = pt.biased;
         r.score *= pt.factor();
       }
-      if (ray_test_on && std::isfinite(ray_floor) && std::isfinite(ray_ms[k])) {
-        const double inflate = 1.0 + 2.0 * std::sqrt(2.0 / double(ray_n[k]));
-        r.ray_excess = std::sqrt(std::max(0.0, ray_ms[k] - ray_floor * inflate));
-        const double band = double(opt.ray_band_ratio) * g.diameter;
-        if (r.ray_excess > band) r.score *= band / r.ray_excess;
+      // Fewer residuals than refinement needs: too few to tell a spread from the noise.
+      if (ray_test_on && ray_noise.n > 0 && ray[k].n >= opt.min_pairs) {
+        r.ray_tested = true;
+        r.ray_excess = ray_excess(ray[k], ray_noise);
+        r.score *= ray_factor(r.ray_excess, double(opt.ray_band_ratio) * g.diameter);
       }
     }
   }

@@ -56,11 +56,9 @@ struct RefineOptions {
   // diameter; the score is multiplied by the share of outline cells where the measured surface
   // steps down (1 - continue / (continue + step)). 0: off (thin parts: pose_refine.cpp).
   float outline_ratio = 0.0f;
-  // > 0 (and the geometry's points): the ray test. Each point's ICP residual divided by the
-  // cosine between its normal and the viewing ray is its distance from the model's tangent
-  // plane along the ray (the sensor's noise is along the ray). Its mean square per pose, minus
-  // the image's least (the noise) inflated by two standard errors (1 + 2 sqrt(2 / n)), is the
-  // excess; beyond this dead band (fraction of the diameter) the score is multiplied by
+  // > 0 (and the geometry's points and normals): the ray test (ray_test.hpp). A pose whose
+  // residuals along the viewing rays spread wider than the image's best pose's (the sensor's
+  // noise) by more than this dead band (fraction of the diameter) has its score multiplied by
   // band / excess. 0: off.
   float ray_band_ratio = 0.0f;
 };
@@ -73,7 +71,8 @@ struct RefinedPose {
   std::uint32_t visible = 0, missing = 0, inliers = 0, see_through = 0, occluded = 0;
   std::uint32_t outline_continue = 0, outline_step = 0;  // outline cells (0 without the test)
   std::uint32_t patches_tested = 0, patches_biased = 0;  // the patch test (0 without it)
-  double ray_excess = 0;        // mm, the ray test's excess (0 without it)
+  bool ray_tested = false;       // the ray test ran on this pose
+  double ray_excess = 0;        // mm, its excess RMS along the rays (0 without it)
   std::uint32_t iterations = 0;  // ICP steps taken
   float tolerance = 0;           // mm, the verification tolerance used (the same for all poses)
   std::string reason;          // why the score is 0 or refinement stopped early; empty if neither

@@ -25,11 +25,13 @@ struct FitScene {
   PointImage image;
 };
 
-// The bracket at a tilted pose 500 mm in front of the camera, a floor 40 mm behind it; noise
-// sigma (mm) on every measured depth. raise (optional): how much nearer the camera (mm) the
-// measured surface lies than the model at a model point: a similar but different object.
+// The bracket at a tilted pose 500 mm in front of the camera (its centroid at `at`), a floor
+// 40 mm behind it; noise sigma (mm) on every measured depth. raise (optional): how much nearer
+// the camera (mm) the measured surface lies than the model at a model point: a similar but
+// different object.
 inline FitScene make_fit_scene(double noise = 0.0, unsigned seed = 1,
-                               const std::function<double(const Eigen::Vector3f&)>& raise = {}) {
+                               const std::function<double(const Eigen::Vector3f&)>& raise = {},
+                               const Eigen::Vector3d& at = Eigen::Vector3d(-10, 5, 500)) {
   FitScene s;
   const Mesh mesh = l_bracket();
   const PointCloud dense = sample_surface(mesh, 60000);
@@ -38,7 +40,7 @@ inline FitScene make_fit_scene(double noise = 0.0, unsigned seed = 1,
   s.geometry.diameter = 54.0f;
   s.geometry.centroid = model_centroid(s.model);
   s.R = Eigen::AngleAxisd(0.5, Eigen::Vector3d(1, 2, 0.5).normalized()).toRotationMatrix();
-  s.t = Eigen::Vector3d(-10, 5, 500) - s.R * s.geometry.centroid;
+  s.t = at - s.R * s.geometry.centroid;
   s.image.width = s.cam.width;
   s.image.height = s.cam.height;
   s.image.xyzw.assign(std::size_t(s.cam.width) * s.cam.height * 4, 0.0f);

@@ -154,6 +154,8 @@ TEST_F(DetectCli, WritesResultsBestFirstResumesAndIsDeterministic) {
                                     model_, (*dir_ / "data").string(), sub.string()));
   ASSERT_EQ(r.status, 0) << r.err;
   EXPECT_NE(r.out.find("scene 2 image 0"), std::string::npos) << r.out;
+  // The ray test is on by default and says what it found per detection.
+  EXPECT_NE(r.out.find("mm spread along the rays beyond the noise"), std::string::npos) << r.out;
   for (const auto& row : bop::read_results_csv(sub)) EXPECT_GE(row.scene_id, 1);
 }
 
@@ -174,6 +176,12 @@ TEST_F(DetectCli, ParamsFileAppliesAndCommandLineWins) {
                                     (*dir_ / "data").string(), out.string(), params.string()));
   EXPECT_EQ(r.status, 2);
   EXPECT_NE(r.err.find("no_such_thing"), std::string::npos) << r.err;
+  // The ray test's band from the file is checked like the command line's.
+  { std::ofstream(params) << R"({"verify_ray": 2})"; }
+  r = test::run_binpick(fmt::format("detect --model {} --dataset {} --out {} --params {}", model_,
+                                    (*dir_ / "data").string(), out.string(), params.string()));
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.err.find("verify-ray 2 must be in [0, 1]"), std::string::npos) << r.err;
 }
 
 TEST_F(DetectCli, CloudPath) {
