@@ -103,7 +103,7 @@ btRigidBody* BinWorld::add_part(const btTransform& body_pose, int kind) {
   body->setUserIndex(static_cast<int>(parts_.size()));
   parts_.push_back(body);
   kinds_of_parts_.push_back(kind);
-  rest_.add();
+  rest_.add(body_pose);
   world_.addRigidBody(body);
   return body;
 }
@@ -127,7 +127,7 @@ double BinWorld::step() {
   world_.stepSimulation(btScalar(dt), 0);
   for (const btRigidBody* body : parts_)
     if (body->isInWorld() && !body->isStaticObject())
-      rest_.update(body->getUserIndex(), body->getLinearVelocity(), body->getAngularVelocity(), dt);
+      rest_.update(body->getUserIndex(), body->getWorldTransform(), dt);
   return dt;
 }
 
@@ -157,7 +157,7 @@ void BinWorld::thaw(btRigidBody* body) {
   body->updateInertiaTensor();
   world_.addRigidBody(body);
   body->activate(true);
-  rest_.restart(body->getUserIndex());
+  rest_.restart(body->getUserIndex(), body->getWorldTransform());
 }
 
 void BinWorld::remove(btRigidBody* body) { world_.removeRigidBody(body); }

@@ -1,20 +1,25 @@
-// Whether each part is at rest: its linear and angular velocity, averaged over the last quarter
-// second, stayed under the rest speeds (in magnitude, so motion in any direction counts,
-// docs/synthesis.md) for rest_seconds. Averaged, because parts resting on each other jitter:
-// Bullet's contact solver kicks a resting part back and forth from step to step, its speed
-// spiking over any useful threshold while it goes nowhere (measured: 3 mm/s and 0.1 rad/s
-// for a bracket that moved 0.2 mm in 1.5 s). A raw test, like Bullet's own sleeping test,
-// then either never sees a pile at rest or needs thresholds so loose that parts still
-// sliding or tipping pass as resting. The average cancels the kicks and keeps the drift.
+// Whether each part is at rest: how far it went over the last quarter second (its centre of
+// mass and its orientation), over that time, stayed under the rest speeds for rest_seconds
+// (docs/synthesis.md).
 //
-// A plain average over a sliding window (the displacement over the window, over its length),
-// not an exponential one: a part that lands at 3 m/s and stops reads as stopped one window
-// later, where an exponential average still read it as moving (and pushing its neighbours
-// awake, pile_freezer.hpp) for over a second. Measured on the 350-part torus bin: about a
-// fifth less time.
+// Displacement, not velocity. Parts resting on each other jitter: Bullet's contact solver kicks
+// a resting part back and forth from step to step, its speed spiking over any useful threshold
+// while it goes nowhere (measured: 3 mm/s and 0.1 rad/s for a bracket that moved 0.2 mm in
+// 1.5 s). And in a deep pile the solver does not converge in its iterations: a part keeps a
+// velocity into its supports that the solver's position correction (split impulse) undoes
+// every step, so the velocity says it sinks while it stays put. Flat sheet-metal plates
+// stacked eight deep read 3 mm/s on average, 15 to 20 of 105 over 5 mm/s for seconds on end,
+// almost all of it downward, while none of them moved 5 mm in a second; every wave of a
+// 350-plate bin ran into its time limit. The pose itself shows only what the part did.
+//
+// A plain sliding window (the displacement over the window, over its length), not an
+// exponential average: a part that lands at 3 m/s and stops reads as stopped one window later,
+// where an exponential average still read it as moving (and pushing its neighbours awake,
+// pile_freezer.hpp) for over a second. Measured on the 350-part torus bin: about a fifth less
+// time. Magnitudes of the displacement and of the turn, so that motion in any direction counts.
 #pragma once
 
-#include <LinearMath/btVector3.h>
+#include <LinearMath/btTransform.h>
 
 #include <cstddef>
 #include <deque>
@@ -27,31 +32,33 @@ class RestTracker {
   // Speeds in units/s and rad/s.
   RestTracker(double linear_speed, double angular_speed, double rest_seconds);
 
-  // Starts tracking part `index` (the next one), released at rest.
-  void add();
-  // The velocities at the end of a step of length dt (s).
-  void update(std::size_t index, const btVector3& linear, const btVector3& angular, double dt);
-  // The part was jolted (or was frozen and is moving again): forget its history; it has to
-  // come to rest again.
-  void restart(std::size_t index);
+  // Starts tracking part `index` (the next one), released at rest at `pose` (units).
+  void add(const btTransform& pose);
+  // The pose at the end of a step of length dt (s).
+  void update(std::size_t index, const btTransform& pose, double dt);
+  // The part was jolted (or was frozen and is moving again) at `pose`: forget its history; it
+  // has to come to rest again.
+  void restart(std::size_t index, const btTransform& pose);
 
-  // The larger of the averaged speeds over their rest speeds: below 1 is calm.
+  // The larger of the window's speeds over their rest speeds: below 1 is calm.
   double speed_ratio(std::size_t index) const;
   // Calm for rest_seconds.
   bool at_rest(std::size_t index) const;
 
  private:
-  struct Step {
-    double dt;
-    btVector3 linear, angular;  // velocity times dt: the step's displacement and rotation
+  struct Sample {
+    double time;  // s, on the part's own clock since it was added or restarted
+    btVector3 position;
+    btQuaternion orientation;
   };
   struct Motion {
-    std::deque<Step> window;  // the steps of the last kWindowSeconds, oldest first
-    double window_seconds = 0.0;
-    btVector3 linear_sum{0, 0, 0}, angular_sum{0, 0, 0};  // over the window
+    std::deque<Sample> window;  // the poses spanning the last kWindowSeconds, oldest first
     double ratio = 0.0;         // speed_ratio after the last update
     double calm_seconds = 0.0;  // how long ratio has been below 1
   };
+  // A part at `pose`; still there for the last window if `still_before`.
+  static Motion start_at(const btTransform& pose, bool still_before);
+
   double linear_speed_, angular_speed_, rest_seconds_;
   std::vector<Motion> parts_;
 };

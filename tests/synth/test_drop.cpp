@@ -81,31 +81,39 @@ class DropBin : public ::testing::TestWithParam<BinKind> {
   const DroppedBin& bin() const { return dropped_bin(GetParam()); }
 };
 
-// The rest test averages velocities over a sliding quarter second (rest_tracker.hpp).
+// The rest test measures how far each part went over a sliding quarter second
+// (rest_tracker.hpp).
 TEST(RestTracker, JitterCancelsDriftCountsAndAStopShowsOneWindowLater) {
   const double dt = 1.0 / 120;
   RestTracker rest(0.5, 0.05, 0.25);  // units/s, rad/s, s
-  rest.add();  // 0: kicked back and forth at 6 times the rest speed, going nowhere
-  rest.add();  // 1: falls at 300 units/s, then lies still
-  rest.add();  // 2: creeps steadily at twice the rest speed
-  const btVector3 zero(0, 0, 0);
+  const auto at = [](double x, double z, double turn) {
+    return btTransform(btQuaternion(btVector3(0, 0, 1), btScalar(turn)),
+                       btVector3(btScalar(x), 0, btScalar(z)));
+  };
+  rest.add(at(0, 0, 0));   // 0: kicked back and forth at 6 times the rest speed, going nowhere
+  rest.add(at(0, 50, 0));  // 1: falls at 300 units/s, then lies still
+  rest.add(at(0, 0, 0));   // 2: creeps steadily at twice the rest speed
+  rest.add(at(0, 0, 0));   // 3: turns in place at twice the rest speed
   double at_rest_since = -1;  // part 1, after it stops at t = 0.5 s
   for (int step = 1; step <= 240; ++step) {
     const double t = step * dt;
-    const btScalar kick = step % 2 ? 3 : -3;
-    rest.update(0, btVector3(kick, 0, 0), btVector3(0, 0, kick / 10), dt);
-    rest.update(1, t <= 0.5 ? btVector3(0, 0, -300) : zero, zero, dt);
-    rest.update(2, btVector3(1, 0, 0), zero, dt);
+    const double kick = step % 2 ? 3 * dt : 0;  // there and back in alternate steps
+    rest.update(0, at(kick, 0, kick / 10), dt);
+    rest.update(1, at(0, 50 - 300 * std::min(t, 0.5), 0), dt);
+    rest.update(2, at(t, 0, 0), dt);
+    rest.update(3, at(0, 0, 0.1 * t), dt);
     if (at_rest_since < 0 && rest.at_rest(1)) at_rest_since = t;
   }
   EXPECT_TRUE(rest.at_rest(0));
   EXPECT_FALSE(rest.at_rest(2));
   EXPECT_NEAR(rest.speed_ratio(2), 2.0, 1e-3);
+  EXPECT_FALSE(rest.at_rest(3));
+  EXPECT_NEAR(rest.speed_ratio(3), 2.0, 1e-3);
   // A window to forget the fall, then rest_seconds of calm: an exponential average of the
   // fall would still read over the rest speed a second later.
   EXPECT_GT(at_rest_since, 0.5 + 0.25 + 0.25 - 2 * dt);
   EXPECT_LT(at_rest_since, 0.5 + 0.25 + 0.25 + 2 * dt);
-  rest.restart(0);
+  rest.restart(0, at(0, 0, 0));
   EXPECT_FALSE(rest.at_rest(0));
 }
 
