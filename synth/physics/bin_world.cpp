@@ -31,10 +31,7 @@ BinWorld::BinWorld(const DropOptions& options, std::vector<const PartShape*> kin
   gDeactivationTime = btScalar(options.rest_seconds);
 
   thinnest_mm_ = INFINITY;
-  for (const PartShape* k : kinds_) {
-    largest_radius_mm_ = std::max(largest_radius_mm_, k->bounding_radius_mm());
-    thinnest_mm_ = std::min(thinnest_mm_, k->thinnest_mm());
-  }
+  for (const PartShape* k : kinds_) thinnest_mm_ = std::min(thinnest_mm_, k->thinnest_mm());
 
   const auto bin = bin_of(options);
   if (bin->boxes.empty()) {
@@ -158,6 +155,20 @@ void BinWorld::thaw(btRigidBody* body) {
   world_.addRigidBody(body);
   body->activate(true);
   rest_.restart(body->getUserIndex(), body->getWorldTransform());
+}
+
+bool BinWorld::touching(btRigidBody& a, btRigidBody& b, btScalar within) {
+  struct Closest : btCollisionWorld::ContactResultCallback {
+    bool close = false;
+    btScalar addSingleResult(btManifoldPoint& point, const btCollisionObjectWrapper*, int, int,
+                             const btCollisionObjectWrapper*, int, int) override {
+      close = close || point.getDistance() < m_closestDistanceThreshold;
+      return 0;
+    }
+  } result;
+  result.m_closestDistanceThreshold = within;
+  world_.contactPairTest(&a, &b, result);
+  return result.close;
 }
 
 void BinWorld::remove(btRigidBody* body) { world_.removeRigidBody(body); }

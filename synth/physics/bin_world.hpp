@@ -43,6 +43,9 @@ class BinWorld {
   void freeze(btRigidBody* body);
   // Makes a frozen part dynamic again, at rest where it was.
   void thaw(btRigidBody* body);
+  // Whether the shapes of two parts come closer than `within` (units). Bullet keeps no
+  // contacts between two static (frozen) parts, so this runs the collision test itself.
+  bool touching(btRigidBody& a, btRigidBody& b, btScalar within);
   // Takes a part out of the simulation (one that fell off the world); it stays in parts()
   // with isInWorld() false.
   void remove(btRigidBody* body);
@@ -54,8 +57,6 @@ class BinWorld {
   }
   btDispatcher& dispatcher() { return dispatcher_; }
   const PartShape& shape(int kind) const { return *kinds_[std::size_t(kind)]; }
-  // Of the largest kind, mm.
-  double largest_radius_mm() const { return largest_radius_mm_; }
   // A part whose centre of mass is below this (units) fell through the ground.
   btScalar lost_below() const { return lost_below_; }
 
@@ -67,7 +68,7 @@ class BinWorld {
 
   const DropOptions options_;
   const std::vector<const PartShape*> kinds_;
-  double largest_radius_mm_ = 0, thinnest_mm_ = 0;
+  double thinnest_mm_ = 0;
   btScalar lost_below_ = 0;
   const btScalar rolling_friction_;  // per body, also spinning friction
   btDefaultCollisionConfiguration collision_configuration_;

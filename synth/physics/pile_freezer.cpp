@@ -1,9 +1,9 @@
 #include "synth/physics/pile_freezer.hpp"
 
+#include <LinearMath/btAabbUtil2.h>
+
 #include <unordered_set>
 #include <vector>
-
-#include "synth/physics/bullet_units.hpp"
 
 namespace binpick {
 namespace {
@@ -39,25 +39,35 @@ FreezeCounts update_frozen_parts(BinWorld& world) {
     if (!world.at_rest(*a)) unsettled.insert(b);
     if (!world.at_rest(*b)) unsettled.insert(a);
   }
-  // The frozen neighbours of a hit part carry it and may have to give way under the impact:
-  // wake every frozen part within a part diameter (static parts share no contacts to say
-  // which of them touch).
-  std::vector<btVector3> hit_centres;
-  for (const btRigidBody* body : world.parts())
-    if (hit.count(body) > 0 && body->isInWorld())
-      hit_centres.push_back(body->getCenterOfMassPosition());
-  const btScalar reach = btScalar(2 * world.largest_radius_mm() / kMmPerUnit);
+  // The parts hit, and the frozen parts touching them. Boxes first: the collision test is the
+  // costly part.
+  std::vector<btRigidBody*> hit_parts;
+  for (btRigidBody* body : world.parts())
+    if (hit.count(body) > 0 && body->isInWorld()) hit_parts.push_back(body);
+  std::unordered_set<const btCollisionObject*> wake(hit.begin(), hit.end());
+  const btVector3 near(kTouching, kTouching, kTouching);
+  for (btRigidBody* body : world.parts()) {
+    if (!body->isInWorld() || !world.frozen(*body) || wake.count(body) > 0) continue;
+    btVector3 lo, hi;
+    body->getAabb(lo, hi);
+    for (btRigidBody* hit_part : hit_parts) {
+      btVector3 hit_lo, hit_hi;
+      hit_part->getAabb(hit_lo, hit_hi);
+      if (TestAabbAgainstAabb2(lo - near, hi + near, hit_lo, hit_hi) &&
+          world.touching(*hit_part, *body, kTouching)) {
+        wake.insert(body);
+        break;
+      }
+    }
+  }
 
   FreezeCounts counts;
   for (btRigidBody* body : world.parts()) {
     if (!body->isInWorld()) continue;
     if (world.frozen(*body)) {
-      for (const btVector3& centre : hit_centres) {
-        if (body->getCenterOfMassPosition().distance(centre) < reach) {
-          world.thaw(body);
-          ++counts.thawed;
-          break;
-        }
+      if (wake.count(body) > 0) {
+        world.thaw(body);
+        ++counts.thawed;
       }
     } else if (world.at_rest(*body) && unsettled.count(body) == 0) {
       world.freeze(body);

@@ -3,7 +3,16 @@
 // so every landing wave re-simulated the entire pile until all of it slept again: most of a
 // bin's time (docs/synthesis.md). Here a part at rest whose neighbours are at rest too is made
 // static (static bodies do not join islands), and a part hitting the pile makes the frozen
-// parts around the hit dynamic again: a wake-up spreads only as far as parts are pushed.
+// parts it hits dynamic again, and the frozen parts that touch those: they carry the hit part
+// and may have to give way under it. A wake-up spreads further only as far as parts are
+// pushed.
+//
+// Touching, not within a part diameter of the hit part as before (static parts share no
+// contacts, so nearness stood in for touch): a pile shallower than a part is wide lies within
+// a diameter of the whole landing wave. A wave of 35 flat plates (120 mm) on plates made all
+// the plates below it dynamic at once: the 350-plate bin took 73 s of CPU time against 32 s.
+// Waking only the parts hit was faster still (24 s) but let the tests' piles sag more when
+// released (twice as many parts moved over 1 mm); touching ones moved as many as before.
 #pragma once
 
 #include "synth/physics/bin_world.hpp"

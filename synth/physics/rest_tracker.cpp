@@ -42,7 +42,7 @@ void RestTracker::update(std::size_t index, const btTransform& pose, double dt) 
   const double now = m.window.back().time + dt;
   m.window.push_back({now, pose.getOrigin(), pose.getRotation()});
   // Keep the newest poses that span the window (all of them until they do: a part just
-  // released is judged on what it did since).
+  // released is judged on what it did since, a thawed one as still before).
   while (m.window.size() > 2 && now - m.window[1].time >= kWindowSeconds) m.window.pop_front();
   const Sample& first = m.window.front();
   const double seconds = now - first.time;
@@ -54,7 +54,7 @@ void RestTracker::update(std::size_t index, const btTransform& pose, double dt) 
 }
 
 void RestTracker::restart(std::size_t index, const btTransform& pose) {
-  parts_[index] = start_at(pose, false);
+  parts_[index] = start_at(pose, true);
 }
 
 double RestTracker::speed_ratio(std::size_t index) const { return parts_[index].ratio; }

@@ -36,8 +36,11 @@ class RestTracker {
   void add(const btTransform& pose);
   // The pose at the end of a step of length dt (s).
   void update(std::size_t index, const btTransform& pose, double dt);
-  // The part was jolted (or was frozen and is moving again) at `pose`: forget its history; it
-  // has to come to rest again.
+  // The frozen part `index` is dynamic again at `pose` (pile_freezer.hpp): it has to be calm
+  // for rest_seconds again, and its window starts full of that pose, since it was still while
+  // frozen. Judged only on the few steps since, a thawed part that jiggled by a hundredth of a
+  // millimetre read as fast enough to push its frozen neighbours awake, and they theirs: in a
+  // pile of flat plates one landing wave woke the whole pile.
   void restart(std::size_t index, const btTransform& pose);
 
   // The larger of the window's speeds over their rest speeds: below 1 is calm.

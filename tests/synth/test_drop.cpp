@@ -117,6 +117,28 @@ TEST(RestTracker, JitterCancelsDriftCountsAndAStopShowsOneWindowLater) {
   EXPECT_FALSE(rest.at_rest(0));
 }
 
+// A thawed part was still while frozen: a jiggle of a hundredth of a millimetre in its first
+// small step is not a part moving fast (it would push its frozen neighbours awake,
+// pile_freezer.hpp), a real shove still is.
+TEST(RestTracker, ThawedPartStartsFromAStillWindow) {
+  const double dt = 1.0 / 2400;  // the adaptive step at its shortest
+  RestTracker rest(0.5, 0.05, 0.25);
+  const btTransform still(btQuaternion::getIdentity(), btVector3(0, 0, 0));
+  const auto moved = [](double x) {
+    return btTransform(btQuaternion::getIdentity(), btVector3(btScalar(x), 0, 0));
+  };
+  rest.add(still);
+  rest.add(still);
+  rest.update(0, moved(0.001), dt);  // released: judged on the step alone
+  EXPECT_GT(rest.speed_ratio(0), 3.0);
+  rest.restart(1, still);
+  rest.update(1, moved(0.001), dt);
+  EXPECT_LT(rest.speed_ratio(1), 0.1);
+  EXPECT_FALSE(rest.at_rest(1));  // calm, but not yet for rest_seconds
+  for (int step = 2; step <= 60; ++step) rest.update(1, moved(0.001 + 0.01 * step), dt);
+  EXPECT_GT(rest.speed_ratio(1), 3.0);  // 0.6 units in 25 ms
+}
+
 TEST(MassProperties, BoxCentreAndInertia) {
   const auto props = mass_properties(box({10, 20, 40}));
   EXPECT_NEAR(props.volume, 8000.0, 1e-6);
