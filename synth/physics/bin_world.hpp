@@ -69,6 +69,7 @@ class BinWorld {
   const DropOptions options_;
   const std::vector<const PartShape*> kinds_;
   double thinnest_mm_ = 0;
+  double contact_erp_ = 0;  // Bullet's error reduction of contacts at the full step (step())
   btScalar lost_below_ = 0;
   const btScalar rolling_friction_;  // per body, also spinning friction
   btDefaultCollisionConfiguration collision_configuration_;
