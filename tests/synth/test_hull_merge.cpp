@@ -88,6 +88,19 @@ TEST(HullMerge, BuiltinBracketBecomesItsTwoPlatesAndStaysCovered) {
   EXPECT_EQ(decompose_convex(bracket, defaults).hulls.size(), 2u);
 }
 
+// A sheet with holes becomes one slab, holes closed: as overlapping slabs, a plate lying on the
+// plate was pushed sideways by their side faces inside the sheet (hull_merge.hpp).
+TEST(HullMerge, BuiltinPlateBecomesOneSlab) {
+  const Mesh plate = cli::load_part({"builtin:plate", {}}).mesh;
+  const ConvexParts hacd = decompose_convex(plate, hacd_only());
+  ASSERT_GT(hacd.hulls.size(), 4u) << "HACD no longer splits the plate: the test lost its case";
+  const ConvexParts merged = merge_hulls(hacd, {});
+  ASSERT_EQ(merged.hulls.size(), 1u);
+  EXPECT_LT(thinnest_extent(merged.hulls[0]), 2.0);  // still the 1.5 mm sheet, not thickened
+  EXPECT_LE(union_volume(merged), 1.05 * union_volume(hacd));
+  EXPECT_LE(farthest_outside_mm(merged, plate), farthest_outside_mm(hacd, plate) + 1e-4);
+}
+
 TEST(HullMerge, TorusKeepsItsHulls) {
   const ConvexParts hacd = decompose_convex(test::torus(), hacd_only());
   EXPECT_EQ(merge_hulls(hacd, {}).hulls.size(), hacd.hulls.size());
