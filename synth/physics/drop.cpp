@@ -60,9 +60,15 @@ btScalar pile_top(const BinWorld& world, const Eigen::Vector3d* interior_mm = nu
   return top;
 }
 
-bool inside_bin(const Eigen::Vector3d& centre_mm, const Eigen::Vector3d& bin_mm) {
+// Ended in the bin: its centre over the interior, and not fallen through the floor: some of it
+// (its box) above the floor. Not its centre above the floor: a 1.5 mm sheet lying on the floor
+// under a released pile sinks a millimetre into it, and 20 of 350 plates were left out.
+bool inside_bin(const btRigidBody& body, const Eigen::Vector3d& bin_mm) {
+  const Eigen::Vector3d centre_mm = to_mm(body.getCenterOfMassPosition());
+  btVector3 lo, hi;
+  body.getAabb(lo, hi);
   return std::abs(centre_mm.x()) <= 0.5 * bin_mm.x() &&
-         std::abs(centre_mm.y()) <= 0.5 * bin_mm.y() && centre_mm.z() >= 0.0;
+         std::abs(centre_mm.y()) <= 0.5 * bin_mm.y() && hi.z() > 0;
 }
 
 // Runs one bin: the waves, the final settling, the limits, the statistics and the progress.
@@ -211,7 +217,7 @@ DropResult drop_parts(const std::vector<DropKind>& kinds, const std::vector<int>
 
   for (const btRigidBody* body : world.parts()) {
     const Eigen::Isometry3d body_pose = to_mm(body->getWorldTransform());
-    if (!body->isInWorld() || !inside_bin(body_pose.translation(), options.bin_size_mm)) {
+    if (!body->isInWorld() || !inside_bin(*body, options.bin_size_mm)) {
       ++stats.parts_left_bin;
       continue;
     }
