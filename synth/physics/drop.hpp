@@ -31,11 +31,12 @@ struct DropOptions {
   int grid_y = 5;                 // along y; a wave is grid_x * grid_y parts, the last partial
   double drop_height_mm = 600.0;  // of the parts' centres of mass above the floor
   std::uint64_t seed = 1;         // orientations; same seed, same bin, bit for bit
-  // A part is at rest once its velocities, averaged over a quarter second to cancel contact
-  // jitter (rest_tracker.hpp), stayed under both speeds for rest_seconds; a wave is done
-  // when all parts are. 0.1 rad/s turns the rim of the paper's part at 2.6 mm/s, half the
-  // linear speed. At 0.05 tori turning in place in the pile, their centres still, kept
-  // waves going for seconds: the 350-part torus bin took 1.4 times as long (bench).
+  // A part is at rest once how far it moved and turned over a quarter second, over that time
+  // (which cancels contact jitter, rest_tracker.hpp), stayed under both speeds for
+  // rest_seconds; a wave is done when all parts are. 0.1 rad/s turns the rim of the paper's
+  // part at 2.6 mm/s, half the linear speed. At 0.05 tori turning in place in the pile, their
+  // centres still, kept waves going for seconds: the 350-part torus bin took 1.4 times as long
+  // (bench).
   double rest_linear_speed_mm_s = 5.0;
   double rest_angular_speed_rad_s = 0.1;
   double rest_seconds = 0.25;
@@ -54,8 +55,9 @@ struct DropOptions {
   // part pivoting on a corner can roll or spin for a minute. 0.5 mm, a patch of about a
   // millimetre: at 0.1 the 350-part torus bin took 10 to 25 % longer to come to rest.
   double rolling_friction_mm = 0.5;
-  // Parts at rest among parts at rest become static until a falling part hits near them: a
-  // landing wave then wakes only what it pushes, not the whole pile (pile_freezer.hpp).
+  // Parts at rest among parts at rest become static until a falling part hits them or a part
+  // touching them: a landing wave then wakes only what it pushes, not the whole pile
+  // (pile_freezer.hpp).
   // About ten times faster. The price: a frozen part does not feel the weight of parts that
   // land on it later, and one frozen while slowly tipping stays tipped. Released all at once
   // for a second after the last wave (no final settling), a 350-part bin still moves: 50 to
