@@ -198,9 +198,15 @@ TEST(DetectSynthBins, NoisyBinsOfEveryPartKeepTheirPrecision) {
   }
   std::cout << report;
   EXPECT_EQ(images, 15) << report;
-  // Measured with the bin in view: bracket 3/3 top, 14/15 all; bolt 3, 14; tee 3, 14; shaft 3,
+  // Measured with the bin in view: bracket 3/3 top, 14/15 all; bolt 3, 15; tee 3, 12; shaft 3,
   // 15; plate 0, 0 (a flat sheet fits any plane, and upside down: see DetectKnownPose). Without
   // keeping the floor out of the crops, the shaft fell to 0 and 0 (sunk into the floor).
+  // The counts follow the piles of this one seed as well as the detector: when the drop's rest
+  // test went by poses, the freezer woke touching parts and erp2 followed the step
+  // (docs/synthesis.md), these bins changed and bolt went 14 -> 15, tee 13 -> 12, plate 1 -> 0
+  // (57 -> 56), while over more seeds the old and the new piles did alike: tee 171 and 171 of
+  // 180 hypotheses right (seeds 5 to 16), bracket 89 and 88, bolt 89 and 89 of 90 (5 to 10),
+  // plate 2 and 2 of 60 (5 to 8).
   EXPECT_GE(top_right, 12) << report;
-  EXPECT_GE(all_right, 57) << report;
+  EXPECT_GE(all_right, 56) << report;
 }
