@@ -154,7 +154,8 @@ TEST(PoseRefine, ScoreRanksTheRightPoseAboveAMoreVotedWrongOne) {
   auto& dev = binpick::test::test_device();
   const DeviceFitModel model = upload_fit_model(dev, s.model);
   const ocl::Buffer<float> points(dev, std::span<const float>(s.image.xyzw));
-  const std::vector<PoseToRefine> candidates = {off_pose(s, 180, s.R * Eigen::Vector3d::UnitZ(), {}),
+  const std::vector<PoseToRefine> candidates = {off_pose(s, 180, s.R * Eigen::Vector3d::UnitZ(),
+                                                        Eigen::Vector3d::Zero()),
                                                 off_pose(s, 8, {0, 1, 0}, {1, 1, 0})};
   const auto refined = refine_and_verify(device_sums(s, dev, model, points), s.cam, s.geometry,
                                          model.size, candidates);
