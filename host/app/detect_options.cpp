@@ -71,6 +71,10 @@ void add_detect_cli_options(CLI::App* verb, DetectCliOptions& a, const std::stri
       "ray test: a pose whose residuals along the viewing rays spread wider than the image's "
           "best pose's (significance-corrected) by more than this (fraction of the diameter) "
           "has its score multiplied by band / excess, in [0, 1]; 0: off");
+  add("verify-through", p.verify_through,
+      "see-through cost: each visible model point where the sensor sees past the part counts "
+          "against the pose as much as this many agreeing points count for it (the score is "
+          "multiplied by 1 - W * seen-through / support), in [0, 100]; 0: off");
   add("roi", p.roi,
       "only this box may hold hypotheses and crops: camera:x0,y0,z0,x1,y1,z1 (camera frame, "
           "mm) or bin:x0,y0,z0,x1,y1,z1 (the bin's frame: origin at the floor's centre, z up, "

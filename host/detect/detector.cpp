@@ -64,6 +64,7 @@ std::optional<ParamProblem> find_param_problem(const DetectParams& p) {
       {in(p.verify_noise_factor, 0, 100), {"verify-noise-factor", p.verify_noise_factor, "[0, 100]"}},
       {in(p.verify_patch, 0, 1), {"verify-patch", p.verify_patch, "[0, 1]"}},
       {in(p.verify_ray, 0, 1), {"verify-ray", p.verify_ray, "[0, 1]"}},
+      {in(p.verify_through, 0, 100), {"verify-through", p.verify_through, "[0, 100]"}},
       {in(p.bin_margin, 0, 10), {"bin-margin", p.bin_margin, "[0, 10]"}},
       {p.instances <= 1000, {"instances", double(p.instances), "[0, 1000]"}},
   };
@@ -202,6 +203,7 @@ void take_pose(Detection& d, const RefinedPose& r, std::uint64_t votes, std::uin
   d.patches_biased = r.patches_biased;
   d.ray_tested = r.ray_tested;
   d.ray_excess = r.ray_excess;
+  d.see_through = r.see_through;
   d.reason = r.reason;
 }
 
@@ -236,6 +238,7 @@ std::vector<Detection> Detector::refine_and_rank(
   ro.noise_factor = float(params_.verify_noise_factor);
   ro.outline_ratio = outline_ratio_;
   ro.ray_band_ratio = float(params_.verify_ray);
+  ro.through_weight = float(params_.verify_through);
   const auto sums = [&](const std::vector<bp_pose_fit>& fits) {
     return pose_fit_sums(dev_, points, cam, fit_model_, fits);
   };

@@ -52,6 +52,10 @@ struct DetectParams {
   // the image's best pose's by more than this costs score. 0.01 d, the patch test's dead band
   // (a right pose's leftover error); measured in docs/pipeline.md, step 9.
   double verify_ray = 0.01;
+  // See-through cost (0: off, pose_refine.hpp): each visible model point where the sensor sees
+  // past the part counts against the pose as much as this many agreeing points count for it;
+  // measured in docs/pipeline.md, step 9.
+  double verify_through = 1.0;
   // Where hypotheses and crops may be (bin_spec.hpp, docs/cli.md): "" (anywhere),
   // "camera:x0,y0,z0,x1,y1,z1" or "bin:..." (mm).
   std::string roi;
@@ -100,6 +104,7 @@ struct Detection {
   // The ray test's excess RMS along the rays beyond the image's noise (mm; ray_test.hpp), if run.
   bool ray_tested = false;
   double ray_excess = 0;
+  std::uint32_t see_through = 0;    // visible model points the sensor sees past
   std::string reason;               // why the score is 0 or refinement stopped early, or why the
                                     // hypothesis was skipped (Detector::skipped)
   // neighbourhood: points in the crop (from a depth image: pixels with data, whether or not

@@ -52,6 +52,8 @@ void check(const RefineOptions& o) {
     throw InputError(fmt::format("verify noise factor {} must be in [0, 100]", o.noise_factor));
   if (bad(o.outline_ratio, 0, 1))
     throw InputError(fmt::format("outline tolerance {} must be in [0, 1]", o.outline_ratio));
+  if (bad(o.through_weight, 0, 100))
+    throw InputError(fmt::format("see-through weight {} must be in [0, 100]", o.through_weight));
   if (bad(o.ray_band_ratio, 0, 1))
     throw InputError(fmt::format("ray test band {} must be in [0, 1]", o.ray_band_ratio));
   if (bad(o.min_support_ratio, 0, 1))
@@ -183,7 +185,12 @@ std::vector<RefinedPose> refine_and_verify(const FitSumsFn& sums_of, const bp_ca
       // Missing depth counts half: neither for the pose nor fully against it, so that a pose
       // parked over a shadow or beyond the sensor's range is not judged on a few points alone.
       const double support = double(r.visible) - 0.5 * double(r.missing);
-      r.score = s.agreement / std::max(support, std::max(min_support, 1.0));
+      const double denominator = std::max(support, std::max(min_support, 1.0));
+      r.score = s.agreement / denominator;
+      // The see-through cost: the sensor saw past the part where the pose puts it.
+      if (opt.through_weight > 0)
+        r.score *= std::max(0.0, 1.0 - double(opt.through_weight) * double(r.see_through) /
+                                           denominator);
       const std::uint32_t outline = s.outline_continue + s.outline_step;
       if (outline > 0) r.score *= double(s.outline_step) / double(outline);
       if (patch_test_on) {

@@ -61,6 +61,12 @@ struct RefineOptions {
   // noise) by more than this dead band (fraction of the diameter) has its score multiplied by
   // band / excess. 0: off.
   float ray_band_ratio = 0.0f;
+  // > 0: the see-through cost. A visible model point where the sensor measured a surface
+  // farther away, outside the tolerance, is free space where the pose puts the part: evidence
+  // against the pose, not only no evidence for it. The score is multiplied by
+  // max(0, 1 - through_weight * see_through / support) (support: visible minus half the
+  // missing, as in the score). 0: off (such points only fail to agree).
+  float through_weight = 0.0f;
 };
 void check(const RefineOptions& opt);
 

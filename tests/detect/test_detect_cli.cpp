@@ -182,6 +182,12 @@ TEST_F(DetectCli, ParamsFileAppliesAndCommandLineWins) {
                                     (*dir_ / "data").string(), out.string(), params.string()));
   EXPECT_EQ(r.status, 2);
   EXPECT_NE(r.err.find("verify-ray 2 must be in [0, 1]"), std::string::npos) << r.err;
+  // So is the see-through cost's weight.
+  { std::ofstream(params) << R"({"verify_through": -1})"; }
+  r = test::run_binpick(fmt::format("detect --model {} --dataset {} --out {} --params {}", model_,
+                                    (*dir_ / "data").string(), out.string(), params.string()));
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.err.find("verify-through -1 must be in [0, 100]"), std::string::npos) << r.err;
 }
 
 TEST_F(DetectCli, CloudPath) {
