@@ -84,8 +84,9 @@ def main():
         source = f.read()
     for n in names:
         out, k = re.subn(r'"dataset": "[^"]*",', '"dataset": "%s",' % n, source, count=1)
-        out, k2 = re.subn(r'"modality": "[^"]*",', '"modality": None,', out, count=1)
-        out, k3 = re.subn(r'"sensor": "[^"]*",', '"sensor": None,', out, count=1)
+        # Older versions have no sensor or modality parameter: nothing to change there.
+        out = re.sub(r'"modality": "[^"]*",', '"modality": None,', out, count=1)
+        out = re.sub(r'"sensor": "[^"]*",', '"sensor": None,', out, count=1)
         if k != 1:
             sys.exit("bop_toolkit_register: %s: no \"dataset\" parameter" % calc)
         with open(os.path.join(a.toolkit, "scripts", "calc_gt_info_%s.py" % n), "w") as f:
