@@ -9,7 +9,8 @@
  * own partial sums (sums[pose * BP_FIT_GROUP + item]); the host adds the 64 in double, so the
  * result does not depend on a float reduction order. The grid of a pose is touched only by its
  * own group, so the group's barriers are enough. With f.residuals, each model point's residual
- * goes to residuals[pose * n_model + point] (NaN where the point gives no term); residuals may
+ * goes to residuals[pose * n_model + point] (pose_fit_shared.h: infinite where a visible point
+ * with depth gives no term, NaN where it has none); residuals may
  * be a one-element buffer when no fit asks for them. */
 #pragma OPENCL FP_CONTRACT OFF
 #include "binpick_shared.h"
@@ -62,7 +63,10 @@ __kernel void pose_fit(__global const float4* points, const bp_camera cam,
     s.agreement += agree;
     if (cls == BP_FIT_HIDDEN || cls == BP_FIT_MISSING) continue;
     const float w = bp_fit_term(&f, q, nq, p.x, p.y, p.z, a, &r);
-    if (w == 0.0f) continue;
+    if (w == 0.0f) {
+      if (f.residuals != 0u) own[j] = bp_fit_far_residual(q, p.z);
+      continue;
+    }
     if (f.residuals != 0u) own[j] = r;
     ++s.used;
     int e = 0;

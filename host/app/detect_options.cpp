@@ -75,6 +75,11 @@ void add_detect_cli_options(CLI::App* verb, DetectCliOptions& a, const std::stri
       "see-through cost: each visible model point where the sensor sees past the part counts "
           "against the pose as much as this many agreeing points count for it (the score is "
           "multiplied by 1 - W * seen-through / support), in [0, 100]; 0: off");
+  add("verify-twin", p.verify_twin,
+      "twin test: a pose that the sensor sees through, on average over the points where a "
+          "look-alike of the part (a plate turned over) has a hole, by more than this "
+          "(fraction of the diameter, after two standard errors) has its score multiplied by "
+          "band / excess, in [0, 1]; 0: off");
   add("roi", p.roi,
       "only this box may hold hypotheses and crops: camera:x0,y0,z0,x1,y1,z1 (camera frame, "
           "mm) or bin:x0,y0,z0,x1,y1,z1 (the bin's frame: origin at the floor's centre, z up, "

@@ -67,6 +67,7 @@ const std::map<std::string, Field>& fields() {
       {"verify-noise-factor", real(&DetectParams::verify_noise_factor)},
       {"verify-patch", real(&DetectParams::verify_patch)},
       {"verify-ray", real(&DetectParams::verify_ray)},
+      {"verify-twin", real(&DetectParams::verify_twin)},
       {"verify-through", real(&DetectParams::verify_through)},
       {"roi", text(&DetectParams::roi)},
       {"bin", text(&DetectParams::bin)},

@@ -1,5 +1,4 @@
 #include "host/detect/detector.hpp"
-#include "host/detect/near_symmetry.hpp"
 #include "host/detect/floor_check.hpp"
 #include "host/detect/bin_fit.hpp"
 #include "host/detect/instance_select.hpp"
@@ -65,6 +64,7 @@ std::optional<ParamProblem> find_param_problem(const DetectParams& p) {
       {in(p.verify_patch, 0, 1), {"verify-patch", p.verify_patch, "[0, 1]"}},
       {in(p.verify_ray, 0, 1), {"verify-ray", p.verify_ray, "[0, 1]"}},
       {in(p.verify_through, 0, 100), {"verify-through", p.verify_through, "[0, 100]"}},
+      {in(p.verify_twin, 0, 1), {"verify-twin", p.verify_twin, "[0, 1]"}},
       {in(p.bin_margin, 0, 10), {"bin-margin", p.bin_margin, "[0, 10]"}},
       {p.instances <= 1000, {"instances", double(p.instances), "[0, 1000]"}},
   };
@@ -136,7 +136,18 @@ Detector::Detector(const PpfModel& model, const DetectParams& params, ocl::Devic
   fit_geometry_.diameter = model_.diameter;
   fit_geometry_.voxel_size = model_.voxel_size;
   fit_geometry_.centroid = model_centroid(model_.cloud);
-  near_symmetries_ = find_near_symmetries(model_.cloud, model_.voxel_size, model_.symmetries);
+  if (params_.verify_twin > 0 && !model_.twin_probes.points.empty()) {
+    twin_probes_.fit_points = fit_model_.size;
+    twin_probes_.probes = model_.twin_probes;
+    twin_probes_.probe_twin = model_.probe_twin;
+    twin_probes_.twins = static_cast<std::uint32_t>(model_.near_symmetries.size());
+    PointCloud both = fit_cloud;
+    both.points.insert(both.points.end(), model_.twin_probes.points.begin(),
+                       model_.twin_probes.points.end());
+    both.normals.insert(both.normals.end(), model_.twin_probes.normals.begin(),
+                        model_.twin_probes.normals.end());
+    twin_model_ = upload_fit_model(dev_, both);
+  }
   outline_ratio_ = outline_ratio_for(model_.cloud, model_.diameter, params_.verify_tolerance);
 }
 
@@ -203,6 +214,8 @@ void take_pose(Detection& d, const RefinedPose& r, std::uint64_t votes, std::uin
   d.patches_biased = r.patches_biased;
   d.ray_tested = r.ray_tested;
   d.ray_excess = r.ray_excess;
+  d.twin_tested = r.twin_tested;
+  d.twin_excess = r.twin_excess;
   d.see_through = r.see_through;
   d.reason = r.reason;
 }
@@ -226,8 +239,8 @@ std::vector<Detection> Detector::refine_and_rank(
       poses.push_back({R, t});
       owner.push_back({k, c, 0});
       // The pose's look-alikes: model x -> S x, then the pose.
-      for (std::uint32_t s = 0; s < near_symmetries_.size(); ++s) {
-        const Eigen::Isometry3d& S = near_symmetries_[s];
+      for (std::uint32_t s = 0; s < model_.near_symmetries.size(); ++s) {
+        const Eigen::Isometry3d& S = model_.near_symmetries[s];
         poses.push_back({R * S.linear(), R * S.translation() + t});
         owner.push_back({k, c, s + 1});
       }
@@ -244,6 +257,15 @@ std::vector<Detection> Detector::refine_and_rank(
   };
   std::vector<RefinedPose> refined =
       refine_and_verify(sums, cam, fit_geometry_, fit_model_.size, poses, ro);
+  if (!twin_probes_.probes.points.empty()) {
+    TwinTestOptions to;
+    to.band_ratio = float(params_.verify_twin);
+    twin_test(
+        [&](const std::vector<bp_pose_fit>& fits) {
+          return pose_fit_sums(dev_, points, cam, twin_model_, fits);
+        },
+        cam, fit_geometry_, twin_probes_, refined, to);
+  }
   if (bin && bin->found) {
     // Below the floor by more than the larger of the verification tolerance and a tenth of the
     // diameter: a right pose's error or a thin part's, and the floor fit's, stay inside it.

@@ -18,6 +18,7 @@
 #include "host/detect/ppf_vote.hpp"
 #include "host/detect/pose_cluster.hpp"
 #include "host/detect/pose_fit.hpp"
+#include "host/detect/twin_test.hpp"
 #include "host/core/timing.hpp"
 #include "host/core/mesh.hpp"
 #include "host/train/ppf_model.hpp"
@@ -56,6 +57,10 @@ struct DetectParams {
   // past the part counts against the pose as much as this many agreeing points count for it;
   // measured in docs/pipeline.md, step 9.
   double verify_through = 1.0;
+  // Twin test's dead band (fraction; 0: off, twin_test.hpp): a pose whose surface the sensor
+  // sees through where a look-alike of it has a hole, by more than this on average, costs
+  // score. Measured in docs/pipeline.md, step 9.
+  double verify_twin = 0.005;
   // Where hypotheses and crops may be (bin_spec.hpp, docs/cli.md): "" (anywhere),
   // "camera:x0,y0,z0,x1,y1,z1" or "bin:..." (mm).
   std::string roi;
@@ -104,6 +109,9 @@ struct Detection {
   // The ray test's excess RMS along the rays beyond the image's noise (mm; ray_test.hpp), if run.
   bool ray_tested = false;
   double ray_excess = 0;
+  // The twin test's largest mean depth excess at a look-alike's probes (mm; twin_test.hpp).
+  bool twin_tested = false;
+  double twin_excess = 0;
   std::uint32_t see_through = 0;    // visible model points the sensor sees past
   std::string reason;               // why the score is 0 or refinement stopped early, or why the
                                     // hypothesis was skipped (Detector::skipped)
@@ -196,7 +204,9 @@ class Detector {
   DetectParams params_;
   DeviceModel device_model_;
   DeviceFitModel fit_model_;
-  std::vector<Eigen::Isometry3d> near_symmetries_;  // model frame (near_symmetry.hpp)
+  // The fit points followed by the look-alikes' probes (twin_test.hpp); empty without probes.
+  DeviceFitModel twin_model_;
+  TwinProbeModel twin_probes_;
   FitGeometry fit_geometry_;
   float outline_ratio_ = 0;  // the verification's outline test, 0 for thin parts (outline_test.hpp)
 };

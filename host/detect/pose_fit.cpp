@@ -180,7 +180,10 @@ std::vector<FitSums> pose_fit_sums_reference(const PointImage& image, const bp_c
       s.agreement += agree;
       if (cls == BP_FIT_HIDDEN || cls == BP_FIT_MISSING) continue;
       const float w = bp_fit_term(&f, q, nq, p[0], p[1], p[2], a, &r);
-      if (w == 0.0f) continue;
+      if (w == 0.0f) {
+        if (f.residuals != 0) s.residuals[j] = bp_fit_far_residual(q, p[2]);
+        continue;
+      }
       if (f.residuals != 0) s.residuals[j] = r;
       ++s.used;
       const Eigen::Map<const Eigen::Matrix<float, 6, 1>> av(a);

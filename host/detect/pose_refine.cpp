@@ -203,7 +203,7 @@ std::vector<RefinedPose> refine_and_verify(const FitSumsFn& sums_of, const bp_ca
       if (ray_test_on && ray_noise.n > 0 && ray[k].n >= opt.min_pairs) {
         r.ray_tested = true;
         r.ray_excess = ray_excess(ray[k], ray_noise);
-        r.score *= ray_factor(r.ray_excess, double(opt.ray_band_ratio) * g.diameter);
+        r.score *= excess_factor(r.ray_excess, double(opt.ray_band_ratio) * g.diameter);
       }
     }
   }

@@ -79,6 +79,8 @@ struct RefinedPose {
   std::uint32_t patches_tested = 0, patches_biased = 0;  // the patch test (0 without it)
   bool ray_tested = false;       // the ray test ran on this pose
   double ray_excess = 0;        // mm, its excess RMS along the rays (0 without it)
+  bool twin_tested = false;      // the twin test ran on this pose (twin_test.hpp)
+  double twin_excess = 0;        // mm, its largest depth excess at a look-alike's probes
   std::uint32_t iterations = 0;  // ICP steps taken
   float tolerance = 0;           // mm, the verification tolerance used (the same for all poses)
   std::string reason;          // why the score is 0 or refinement stopped early; empty if neither

@@ -51,8 +51,9 @@ RaySpread ray_floor(std::span<const RaySpread> poses, std::size_t min_points = 5
 // has no residuals.
 double ray_excess(const RaySpread& pose, const RaySpread& floor);
 
-// The score's factor for an excess past a dead band (both mm): 1 within it, band / excess past.
-inline double ray_factor(double excess, double band) {
+// The score's factor for an excess past a dead band (both mm): 1 within it, band / excess past
+// (the twin test, twin_test.hpp, uses it too).
+inline double excess_factor(double excess, double band) {
   return excess > band ? band / excess : 1.0;
 }
 

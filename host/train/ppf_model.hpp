@@ -3,6 +3,9 @@
 #pragma once
 
 #include <cstdint>
+#include <vector>
+
+#include <Eigen/Geometry>
 
 #include "host/core/mesh.hpp"
 #include "host/core/symmetry.hpp"
@@ -25,6 +28,14 @@ struct PpfModel {
   // more pixels (at 5 % noise, half the rotation error). Empty in files before version 3:
   // detection then uses `cloud`.
   PointCloud fit_cloud;
+  // Look-alike poses (near_symmetry.hpp): model-frame transforms x -> S x under which most of
+  // the surface, but not all of it, maps onto itself; detection verifies each candidate's
+  // look-alikes too. Found on `cloud`, also when reading a file before version 4.
+  std::vector<Eigen::Isometry3d> near_symmetries;
+  // The points that tell a pose from each look-alike (twin_probes.hpp); probe_twin[i] indexes
+  // near_symmetries. Empty in files before version 4: detection then has no twin test.
+  PointCloud twin_probes;
+  std::vector<std::uint32_t> probe_twin;
 };
 
 struct PpfTrainParams {

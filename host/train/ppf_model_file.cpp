@@ -11,7 +11,9 @@
 #include "host/core/error.hpp"
 #include "host/core/atomic_file.hpp"
 #include "host/core/read_file.hpp"
+#include "host/train/near_symmetry.hpp"
 #include "host/train/ppf_features.hpp"
+#include "host/train/twin_probes.hpp"
 
 namespace binpick {
 namespace {
@@ -72,6 +74,28 @@ std::uint64_t symmetry_size(std::uint64_t continuous, std::uint64_t discrete) {
 // A bound on the counts a file may claim, so that a corrupt count is reported as such.
 constexpr std::uint32_t kMaxFileSymmetries = 1024;
 constexpr std::uint32_t kMaxFitPoints = 8 * kMaxPpfModelPoints;
+
+// Version 4: a look-alike is 12 doubles (the rows of [R t]); a probe 6 floats and its index.
+constexpr std::uint64_t kNearSymmetryBytes = 96, kProbeBytes = 28;
+
+void append_isometry(std::string& out, const Eigen::Isometry3d& S) {
+  double v[12];
+  for (int r = 0; r < 3; ++r)
+    for (int c = 0; c < 4; ++c) v[4 * r + c] = S.matrix()(r, c);
+  append(out, v, 12);
+}
+
+// False unless the 12 values are a finite rigid transform.
+bool take_isometry(std::string_view& in, Eigen::Isometry3d& S) {
+  double v[12];
+  take(in, v, 12);
+  S = Eigen::Isometry3d::Identity();
+  for (int r = 0; r < 3; ++r)
+    for (int c = 0; c < 4; ++c) S.matrix()(r, c) = v[4 * r + c];
+  const Eigen::Matrix3d R = S.linear();
+  return S.matrix().allFinite() && (R.transpose() * R).isApprox(Eigen::Matrix3d::Identity(), 1e-6) &&
+         R.determinant() > 0;
+}
 
 void append_symmetries(std::string& out, const PartSymmetries& s) {
   const std::uint32_t counts[2] = {static_cast<std::uint32_t>(s.continuous.size()),
@@ -135,6 +159,19 @@ std::string serialize_ppf_model(const PpfModel& m, std::uint32_t version) {
     append(payload, &fit, 1);
     for (const auto& p : m.fit_cloud.points) append(payload, p.data(), 3);
     for (const auto& v : m.fit_cloud.normals) append(payload, v.data(), 3);
+  }
+  if (version >= 4) {
+    if (m.probe_twin.size() != m.twin_probes.points.size() ||
+        m.twin_probes.normals.size() != m.twin_probes.points.size())
+      throw std::logic_error("serialize_ppf_model: one look-alike index and normal per probe");
+    const auto near = static_cast<std::uint32_t>(m.near_symmetries.size());
+    append(payload, &near, 1);
+    for (const auto& S : m.near_symmetries) append_isometry(payload, S);
+    const auto probes = static_cast<std::uint32_t>(m.twin_probes.points.size());
+    append(payload, &probes, 1);
+    for (const auto& p : m.twin_probes.points) append(payload, p.data(), 3);
+    for (const auto& v : m.twin_probes.normals) append(payload, v.data(), 3);
+    append(payload, m.probe_twin.data(), m.probe_twin.size());
   }
 
   Header h{};
@@ -205,6 +242,23 @@ PpfModel parse_ppf_model(std::string_view bytes, const std::string& name) {
     if (fit_count > kMaxFitPoints) throw corrupt("fit point count");
     expected += 4 + std::uint64_t(fit_count) * 24;
   }
+  std::uint32_t near_count = 0, probe_count = 0;
+  if (h.version >= 4) {
+    const auto count_at = [&](std::uint64_t at) {
+      if (bytes.size() < at + 4)
+        throw InputError(file + " is truncated (" + std::to_string(bytes.size()) + " of at least " +
+                         std::to_string(at + 4) + " bytes)");
+      std::uint32_t n = 0;
+      std::memcpy(&n, bytes.data() + at, 4);
+      return n;
+    };
+    near_count = count_at(expected);
+    if (near_count > kMaxNearSymmetries) throw corrupt("look-alike count");
+    expected += 4 + near_count * kNearSymmetryBytes;
+    probe_count = count_at(expected);
+    if (probe_count > near_count * kMaxProbesPerTwin) throw corrupt("probe count");
+    expected += 4 + probe_count * kProbeBytes;
+  }
   if (bytes.size() < expected)
     throw InputError(file + " is truncated (" + std::to_string(bytes.size()) + " of " +
                      std::to_string(expected) + " bytes)");
@@ -237,6 +291,26 @@ PpfModel parse_ppf_model(std::string_view bytes, const std::string& name) {
     for (std::size_t i = 0; i < fit_count; ++i)
       if (!m.fit_cloud.points[i].allFinite() || !m.fit_cloud.normals[i].allFinite())
         throw corrupt("fit point " + std::to_string(i));
+  }
+  if (h.version >= 4) {
+    payload.remove_prefix(4);
+    m.near_symmetries.resize(near_count);
+    for (auto& S : m.near_symmetries)
+      if (!take_isometry(payload, S)) throw corrupt("look-alike");
+    payload.remove_prefix(4);
+    m.twin_probes.points.resize(probe_count);
+    m.twin_probes.normals.resize(probe_count);
+    m.probe_twin.resize(probe_count);
+    for (auto& p : m.twin_probes.points) take(payload, p.data(), 3);
+    for (auto& v : m.twin_probes.normals) take(payload, v.data(), 3);
+    take(payload, m.probe_twin.data(), probe_count);
+    for (std::size_t i = 0; i < probe_count; ++i)
+      if (!m.twin_probes.points[i].allFinite() || !m.twin_probes.normals[i].allFinite() ||
+          m.probe_twin[i] >= near_count)
+        throw corrupt("probe " + std::to_string(i));
+  } else {
+    // Older files: the look-alikes as training finds them (the model's points suffice); no probes.
+    m.near_symmetries = find_near_symmetries(m.cloud, m.voxel_size, m.symmetries);
   }
 
   // A consistent table, so that detection can index it without checks.

@@ -6,8 +6,10 @@
 #include "host/core/diameter.hpp"
 #include "host/core/cloud_input.hpp"
 #include "host/train/ppf_model.hpp"
+#include "host/train/near_symmetry.hpp"
 #include "host/train/surface_sampling.hpp"
 #include "host/train/symmetry_detect.hpp"
+#include "host/train/twin_probes.hpp"
 #include "host/train/voxel_subsample.hpp"
 
 namespace binpick {
@@ -57,6 +59,10 @@ PpfModel train_ppf_model(const Mesh& mesh, const PpfTrainParams& params, PpfTrai
   model.table = build_ppf_table(dev, model.cloud, model.quant, &st.table);
   clock.lap_seconds();
   model.symmetries = find_symmetries(mesh);
+  model.near_symmetries = find_near_symmetries(model.cloud, model.voxel_size, model.symmetries);
+  const TwinProbes probes = find_twin_probes(mesh, model.voxel_size, model.near_symmetries, dev);
+  model.twin_probes = probes.cloud;
+  model.probe_twin = probes.twin;
   st.symmetry_s = clock.lap_seconds();
   st.points = model.cloud.points.size();
   st.pairs = st.points * (st.points > 0 ? st.points - 1 : 0);

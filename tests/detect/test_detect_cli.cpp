@@ -188,6 +188,16 @@ TEST_F(DetectCli, ParamsFileAppliesAndCommandLineWins) {
                                     (*dir_ / "data").string(), out.string(), params.string()));
   EXPECT_EQ(r.status, 2);
   EXPECT_NE(r.err.find("verify-through -1 must be in [0, 100]"), std::string::npos) << r.err;
+  // And the twin test's band, from a file and as an option.
+  { std::ofstream(params) << R"({"verify_twin": 1.5})"; }
+  r = test::run_binpick(fmt::format("detect --model {} --dataset {} --out {} --params {}", model_,
+                                    (*dir_ / "data").string(), out.string(), params.string()));
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.err.find("verify-twin 1.5 must be in [0, 1]"), std::string::npos) << r.err;
+  r = test::run_binpick(fmt::format("detect --model {} --dataset {} --out {} --verify-twin -0.1",
+                                    model_, (*dir_ / "data").string(), out.string()));
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.err.find("verify-twin -0.1 must be in [0, 1]"), std::string::npos) << r.err;
 }
 
 TEST_F(DetectCli, CloudPath) {

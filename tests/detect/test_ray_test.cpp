@@ -69,8 +69,8 @@ TEST(RayTest, NoiseAloneHasNoExcessASpreadBeyondItIs) {
   // sqrt(4 + 9 - 4 (1 + 2 sqrt(2 / 300 + 2 / 400))) = 2.85 with exact mean squares.
   EXPECT_GT(excess, 2.3);
   EXPECT_LT(excess, 3.4);
-  EXPECT_DOUBLE_EQ(ray_factor(excess, 0.5), 0.5 / excess);
-  EXPECT_DOUBLE_EQ(ray_factor(0.4, 0.5), 1.0);  // within the dead band: a right pose's leftovers
+  EXPECT_DOUBLE_EQ(excess_factor(excess, 0.5), 0.5 / excess);
+  EXPECT_DOUBLE_EQ(excess_factor(0.4, 0.5), 1.0);  // within the dead band: a right pose's leftovers
   // Nothing to compare: no excess.
   EXPECT_DOUBLE_EQ(ray_excess(ray_spread(wrong), RaySpread{}), 0.0);
   EXPECT_DOUBLE_EQ(ray_excess(RaySpread{}, noise), 0.0);

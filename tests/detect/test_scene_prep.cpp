@@ -377,7 +377,9 @@ TEST(Crop, PixelsMatchReferenceExactlyInPixelOrder) {
         EXPECT_GE(p / cam.width, rect[1]);
         EXPECT_LT(p / cam.width, rect[3]);
       }
-      if (t == 2) EXPECT_EQ(rect, (std::array<std::uint32_t, 4>{0, 0, cam.width, cam.height}));
+      if (t == 2) {
+        EXPECT_EQ(rect, (std::array<std::uint32_t, 4>{0, 0, cam.width, cam.height}));
+      }
     }
   }
 }
@@ -388,7 +390,6 @@ TEST(Crop, PixelsMatchReferenceExactlyInPixelOrder) {
 TEST(SampleNeighbourhood, EqualsCropThenSubsampleWithNormalsEverywhere) {
   std::mt19937 rng(13);
   std::uniform_real_distribution<float> U(-1.0f, 1.0f);
-  auto& dev = ocl::Device::shared();
   std::size_t multi_round = 0, saved = 0;
   for (int img = 0; img < 4; ++img) {
     const bp_camera cam = camera(240, 180, 200.0f);

@@ -1,7 +1,7 @@
 // The PPF model: point pair features and alpha (kernels/ppf_features.cl), the device hash table
 // (kernels/ppf_table.cl) against their C++/Eigen references, degenerate input, training (with the
-// part's symmetries) and the .ppfm file (version 3 with symmetries and refinement points;
-// versions 1 and 2 still read).
+// part's symmetries) and the .ppfm file (version 4 with symmetries, refinement points and the
+// look-alikes' probes, test_twin_probes.cpp; versions 1 to 3 still read).
 #include <gtest/gtest.h>
 
 #include <limits>
@@ -15,6 +15,7 @@
 #include <Eigen/Geometry>
 
 #include "host/core/error.hpp"
+#include "host/train/near_symmetry.hpp"
 #include "host/train/ppf_features.hpp"
 #include "host/train/ppf_model.hpp"
 #include "host/train/ppf_model_file.hpp"
@@ -150,10 +151,18 @@ TEST(PpfFeatures, MatchReferenceExceptAtBinEdges) {
           continue;
         }
         const KeyParts a = split(got.keys[k], q), b = split(want.keys[k], q);
-        if (a.d != b.d) EXPECT_TRUE(near_edge(f.f[0], q.dist_step, eps * 50)) << f.f[0];
-        if (a.a1 != b.a1) EXPECT_TRUE(near_edge(f.f[1], q.angle_step, eps)) << f.f[1];
-        if (a.a2 != b.a2) EXPECT_TRUE(near_edge(f.f[2], q.angle_step, eps)) << f.f[2];
-        if (a.a3 != b.a3) EXPECT_TRUE(near_edge(f.f[3], q.angle_step, eps)) << f.f[3];
+        if (a.d != b.d) {
+          EXPECT_TRUE(near_edge(f.f[0], q.dist_step, eps * 50)) << f.f[0];
+        }
+        if (a.a1 != b.a1) {
+          EXPECT_TRUE(near_edge(f.f[1], q.angle_step, eps)) << f.f[1];
+        }
+        if (a.a2 != b.a2) {
+          EXPECT_TRUE(near_edge(f.f[2], q.angle_step, eps)) << f.f[2];
+        }
+        if (a.a3 != b.a3) {
+          EXPECT_TRUE(near_edge(f.f[3], q.angle_step, eps)) << f.f[3];
+        }
       }
       if (want.keys[k] != BP_PPF_NO_KEY) {
         EXPECT_LT(circular_distance(got.alphas[k], want.alphas[k]), eps) << r << " " << i;
@@ -345,7 +354,7 @@ TEST(PpfModelFile, RoundTripAndRefusals) {
   wrong = bytes;
   wrong[8] = 7;  // version 7
   EXPECT_NE(parse_message(wrong).find(
-                "was written by format version 7, this binpick reads versions 1 to 3: retrain"),
+                "was written by format version 7, this binpick reads versions 1 to 4: retrain"),
             std::string::npos)
       << parse_message(wrong);
   wrong = bytes;
@@ -400,13 +409,18 @@ TEST(PpfModelFile, SymmetriesRoundTripAndVersionOneIsStillRead) {
   PpfModel without = m;
   without.symmetries = {};
   without.fit_cloud = {};
+  // Read from a file without look-alikes, they are found again on the points (with no exact
+  // symmetries known, the box's half turns are look-alikes); there are no probes.
+  without.near_symmetries = find_near_symmetries(m.cloud, m.voxel_size, {});
+  without.twin_probes = {};
+  without.probe_twin = {};
   EXPECT_TRUE(serialize_ppf_model(old) == serialize_ppf_model(without));  // (no byte dump)
-  EXPECT_THROW(serialize_ppf_model(m, 4), std::logic_error);
+  EXPECT_THROW(serialize_ppf_model(m, 5), std::logic_error);
   EXPECT_THROW(serialize_ppf_model(m, 0), std::logic_error);
 
   // Cut inside the symmetries, or right after the table (no counts): truncated.
   EXPECT_NE(parse_message(bytes.substr(0, bytes.size() - 50)).find("is truncated"), std::string::npos);
-  std::string relabelled = bytes;  // version 3 bytes called version 1: the symmetries are extra
+  std::string relabelled = bytes;  // version 4 bytes called version 1: the symmetries are extra
   relabelled[8] = 1;
   EXPECT_NE(parse_message(relabelled).find("bytes after the end"), std::string::npos);
   // Not a rotation, a zero axis, an absurd count: corrupt.
@@ -441,7 +455,9 @@ TEST(PpfModelFile, RefinementPointsRoundTripAndVersionTwoIsStillRead) {
 
   // A count beyond any model, or a cut inside the points: corrupt, truncated.
   std::string huge = bytes;
-  const std::size_t count_at = bytes.size() - 24 * m.fit_cloud.points.size() - 4;
+  // After the points: the look-alike and probe counts (8 bytes), both 0 for the box.
+  ASSERT_TRUE(m.near_symmetries.empty());
+  const std::size_t count_at = bytes.size() - 8 - 24 * m.fit_cloud.points.size() - 4;
   huge[count_at + 3] = 0x7f;
   EXPECT_NE(parse_message(huge).find("is corrupt (fit point count)"), std::string::npos)
       << parse_message(huge);

@@ -1,4 +1,4 @@
-#include "host/detect/near_symmetry.hpp"
+#include "host/train/near_symmetry.hpp"
 
 #include <algorithm>
 #include <cmath>

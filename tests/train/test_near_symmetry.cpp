@@ -1,10 +1,10 @@
-// Near symmetries (host/detect/near_symmetry.hpp): the look-alike poses of a part that voting
+// Near symmetries (host/train/near_symmetry.hpp): the look-alike poses of a part that voting
 // confuses and verification must tell apart.
 #include <gtest/gtest.h>
 
 #include <cmath>
 
-#include "host/detect/near_symmetry.hpp"
+#include "host/train/near_symmetry.hpp"
 #include "host/train/surface_sampling.hpp"
 #include "host/train/symmetry_detect.hpp"
 #include "host/train/voxel_subsample.hpp"

@@ -1,0 +1,71 @@
+// The twin test of verification: is the pose the part, or one of its look-alikes?
+// (docs/pipeline.md, step 9; host/train/twin_probes.hpp says what a probe is.)
+//
+// A plate turned over lies on the same outline and faces as the right pose: every other score
+// term agrees with both. Only where one of the two has material and the other a hole does the
+// depth image tell them apart, and there only by the depth of what lies behind the hole, often
+// the plate beneath, one sheet thickness deeper: less than any tolerance, far less than the
+// sensor's noise at one pixel. So the test averages: at a pose P, the probes of a look-alike S
+// are the points of P's surface where P S has a hole. If P is right, the sensor sees surface
+// there (depth excess about 0); if P S is right, it sees through P's surface (a positive
+// excess: the sheet beneath, or beyond the gate). Per look-alike, the mean excess along the
+// rays, less two standard errors, is the pose's evidence against it; the largest over its
+// look-alikes, past a dead band, multiplies its score by band / excess (as the ray test).
+//
+// Probes where something lies in front (nearer than the gate), without depth, facing away or
+// hidden say nothing. The excess of a probe is clamped to the gate (the verification
+// tolerance), and one beyond it on the far side counts as the gate: one probe over an empty
+// bin does not outweigh a hundred on the sheet beneath.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "host/core/mesh.hpp"
+#include "host/detect/pose_refine.hpp"
+
+namespace binpick {
+
+// A look-alike's evidence at one pose: the mean (mm) and its standard error over n probes.
+struct TwinEvidence {
+  double mean = 0, standard_error = 0;
+  std::size_t n = 0;
+};
+
+// The evidence about look-alike `which` from a probe pass's residuals (pose_fit_shared.h: one
+// per probe, infinite beyond the gate, NaN for none) at pose (R, t): each probe's
+// depth excess along its ray, clamped to [-gate, gate]. Probes of other look-alikes are skipped.
+TwinEvidence twin_evidence(std::span<const float> residuals, const Eigen::Matrix3d& R,
+                           const Eigen::Vector3d& t, const PointCloud& probes,
+                           std::span<const std::uint32_t> probe_twin, std::uint32_t which,
+                           double gate);
+
+// max(0, mean - 2 standard errors); 0 with fewer than min_probes probes (untested).
+double twin_excess(const TwinEvidence& e, std::size_t min_probes);
+
+// The probes on the device side: the fit points followed by the probes, so that the probe pass's
+// z-buffer holds the whole model (a probe behind the part's own near side is hidden).
+struct TwinProbeModel {
+  std::uint32_t fit_points = 0;  // residuals [0, fit_points) belong to the fit points
+  PointCloud probes;             // model frame
+  std::vector<std::uint32_t> probe_twin;
+  std::uint32_t twins = 0;       // look-alike count
+};
+
+struct TwinTestOptions {
+  float band_ratio = 0;          // dead band, fraction of the diameter; 0: no test
+  std::size_t min_probes = 10;   // fewer visible probes with depth: that look-alike is untested
+};
+
+// One probe pass (sums: pose_fit_sums on fit points + probes, or the reference) for every pose
+// with a positive score, at its verification tolerance as the gate; multiplies the scores by
+// the factor and records twin_excess / twin_tested. No-op without probes or with band 0.
+void twin_test(const FitSumsFn& sums, const bp_camera& cam, const FitGeometry& geometry,
+               const TwinProbeModel& model, std::vector<RefinedPose>& poses,
+               const TwinTestOptions& opt);
+
+}  // namespace binpick

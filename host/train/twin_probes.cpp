@@ -1,0 +1,56 @@
+#include "host/train/twin_probes.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "host/core/cloud_input.hpp"
+#include "host/train/oriented_point_grid.hpp"
+#include "host/train/surface_sampling.hpp"
+#include "host/train/voxel_subsample.hpp"
+
+namespace binpick {
+namespace {
+
+// Surface samples per probe voxel area for the surface the probes are tested against.
+constexpr double kSurfaceSamplesPerProbeArea = 16.0;
+// The dense surface is never larger than this (a part whose probe voxel is tiny against its
+// area: the probes then thin out, and the margin still holds, since it scales with the voxel).
+constexpr std::size_t kMaxSurfaceSamples = std::size_t(1) << 22;
+// A surface agrees with a probe's normal within 30 degrees, as near_symmetry.cpp asks.
+constexpr double kSameFacingCos = 0.8660254037844386;
+
+}  // namespace
+
+TwinProbes find_twin_probes(const Mesh& mesh, float voxel_size,
+                            const std::vector<Eigen::Isometry3d>& near, ocl::Device& dev) {
+  TwinProbes out;
+  if (near.empty() || !(voxel_size > 0)) return out;
+  const float probe_voxel = voxel_size / kProbeVoxelDivisor;
+  const double areas = surface_area(mesh) / (double(probe_voxel) * probe_voxel);
+  const auto samples = static_cast<std::size_t>(
+      std::clamp(std::ceil(kSurfaceSamplesPerProbeArea * areas), 1.0, double(kMaxSurfaceSamples)));
+  // Another seed than training's sample: the probes need not coincide with the model's points.
+  const PointCloud surface = with_unit_normals(sample_surface(mesh, samples, kSurfaceSamplingSeed + 1));
+  const PointCloud candidates =
+      with_unit_normals(voxel_subsample(dev, surface, probe_voxel, VoxelFaces::both).cloud);
+  const OrientedPointGrid grid(surface, kProbeMarginVoxels * probe_voxel, float(kSameFacingCos));
+  for (std::uint32_t s = 0; s < near.size(); ++s) {
+    const Eigen::Isometry3d inverse = near[s].inverse();
+    std::vector<std::size_t> found;
+    for (std::size_t i = 0; i < candidates.points.size(); ++i) {
+      const Eigen::Vector3d p = inverse * candidates.points[i].cast<double>();
+      const Eigen::Vector3d n = inverse.linear() * candidates.normals[i].cast<double>();
+      if (!grid.matches(p.cast<float>(), n.cast<float>())) found.push_back(i);
+    }
+    // Evenly thinned: every k-th in the subsample's order, which is the same on every run.
+    const std::size_t step = (found.size() + kMaxProbesPerTwin - 1) / kMaxProbesPerTwin;
+    for (std::size_t k = 0; k < found.size(); k += std::max<std::size_t>(step, 1)) {
+      out.cloud.points.push_back(candidates.points[found[k]]);
+      out.cloud.normals.push_back(candidates.normals[found[k]]);
+      out.twin.push_back(s);
+    }
+  }
+  return out;
+}
+
+}  // namespace binpick

@@ -1,0 +1,181 @@
+// The twin test of verification (host/detect/twin_test.hpp): the evidence of a look-alike's
+// probes from a probe pass's residuals (mean and standard error of the depth excess along the
+// rays, the clamp, the infinite residuals of probes beyond the gate, probes that say nothing),
+// and, on an image of the built-in plate lying on a surface one sheet thickness below it (a
+// plate on a plate), the right pose and its three turned look-alikes: every other score term
+// finds them alike, the twin test costs the look-alikes and leaves the right pose alone.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+#include <span>
+
+#include "host/detect/twin_test.hpp"
+#include "host/train/ppf_model.hpp"
+#include "host/train/surface_sampling.hpp"
+#include "synth/parts/builtin_parts.hpp"
+#include "tests/support/test_device.hpp"
+
+using namespace binpick;
+
+namespace {
+
+// n probes of look-alike 0 on a plane facing the camera 500 mm ahead (so the cosine is 1).
+PointCloud facing_probes(std::size_t n) {
+  PointCloud c;
+  for (std::size_t i = 0; i < n; ++i) {
+    c.points.emplace_back(float(i % 10), float(i / 10), 0.0f);
+    c.normals.emplace_back(0.0f, 0.0f, -1.0f);
+  }
+  return c;
+}
+
+const Eigen::Vector3d kAhead(0, 0, 500);
+
+}  // namespace
+
+TEST(TwinTest, EvidenceIsTheMeanDepthExcessAlongTheRays) {
+  const PointCloud probes = facing_probes(4);
+  const std::vector<std::uint32_t> twin = {0, 0, 0, 1};
+  // r = n . (p - q): -1.5 where the sensor saw 1.5 mm farther (facing the camera: the excess).
+  const std::vector<float> r = {-1.0f, -2.0f, -3.0f, -100.0f};
+  const TwinEvidence e = twin_evidence(r, Eigen::Matrix3d::Identity(), kAhead, probes, twin, 0, 10.0);
+  ASSERT_EQ(e.n, 3u);  // the fourth probe is another look-alike's
+  EXPECT_NEAR(e.mean, 2.0, 1e-5);
+  EXPECT_NEAR(e.standard_error, 1.0 / std::sqrt(3.0), 1e-5);  // sample sd 1
+  EXPECT_NEAR(twin_excess(e, 3), 2.0 - 2.0 / std::sqrt(3.0), 1e-5);
+  EXPECT_EQ(twin_excess(e, 4), 0.0);  // too few probes: untested
+}
+
+TEST(TwinTest, BeyondTheGateCountsAsTheGateFarSideOnlyAndNothingSaysNothing) {
+  const PointCloud probes = facing_probes(6);
+  const std::vector<std::uint32_t> twin(6, 0);
+  const float nan = std::numeric_limits<float>::quiet_NaN();
+  // Seen through beyond the gate, something in front beyond it, no depth or hidden, a finite
+  // residual past the clamp on either side.
+  const std::vector<float> r = {-INFINITY, INFINITY, nan, -50.0f, 50.0f, 0.0f};
+  const TwinEvidence e = twin_evidence(r, Eigen::Matrix3d::Identity(), kAhead, probes, twin, 0, 5.0);
+  ASSERT_EQ(e.n, 4u);
+  EXPECT_NEAR(e.mean, (5.0 + 5.0 - 5.0 + 0.0) / 4.0, 1e-9);
+  // A probe facing away from the camera gives no distance along its ray.
+  PointCloud away = facing_probes(1);
+  away.normals[0] = {0.0f, 0.0f, 1.0f};
+  EXPECT_EQ(twin_evidence(std::vector<float>{-1.0f}, Eigen::Matrix3d::Identity(), kAhead, away,
+                          std::vector<std::uint32_t>{0}, 0, 5.0)
+                .n,
+            0u);
+  // No probe: nothing, and the test is off.
+  const TwinEvidence none = twin_evidence({}, Eigen::Matrix3d::Identity(), kAhead, PointCloud{}, {}, 0, 5.0);
+  EXPECT_EQ(none.n, 0u);
+  EXPECT_EQ(twin_excess(none, 1), 0.0);
+  // One residual per probe, or a logic error.
+  EXPECT_THROW(twin_evidence(std::vector<float>{0.0f}, Eigen::Matrix3d::Identity(), kAhead,
+                             probes, twin, 0, 5.0),
+               std::logic_error);
+}
+
+TEST(TwinTest, ThePlateTurnedOverLosesToTheRightPoseOnAPlateBeneath) {
+  auto& dev = test::test_device();
+  const PpfModel model = train_ppf_model(make_builtin_part("plate"), PpfTrainParams{}, nullptr, dev);
+  ASSERT_EQ(model.near_symmetries.size(), 3u);
+  // The plate face up 500 mm ahead, a little tilted; f = 500 px: a pixel is a millimetre.
+  const bp_camera cam{500.0f, 500.0f, 160.0f, 120.0f, 1.0f, 320, 240, 0};
+  const Eigen::Matrix3d R =
+      (Eigen::AngleAxisd(0.1, Eigen::Vector3d(1, 1, 0).normalized()) *
+       Eigen::AngleAxisd(3.14159265358979, Eigen::Vector3d::UnitX()))
+          .toRotationMatrix();
+  const Eigen::Vector3d t(0, 0, 500);
+  // The image: the plate's dense surface over its own plane one thickness (1.5 mm) farther
+  // along its normal, where the plate beneath lies; 0.5 mm noise.
+  const Eigen::Vector3d up = R * Eigen::Vector3d::UnitZ();  // towards the camera
+  const Eigen::Vector3d beneath = t - 0.75 * up;           // the plate beneath's top face
+  PointImage image;
+  image.width = cam.width;
+  image.height = cam.height;
+  image.xyzw.assign(std::size_t(cam.width) * cam.height * 4, 0.0f);
+  std::vector<float> zbuf(std::size_t(cam.width) * cam.height, INFINITY);
+  const PointCloud dense = sample_surface(make_builtin_part("plate"), 200000);
+  for (const Eigen::Vector3f& m : dense.points) {
+    const Eigen::Vector3d q = R * m.cast<double>() + t;
+    const long u = std::lround(cam.fx * q.x() / q.z() + cam.cx);
+    const long v = std::lround(cam.fy * q.y() / q.z() + cam.cy);
+    if (u < 0 || v < 0 || u >= long(cam.width) || v >= long(cam.height)) continue;
+    float& z = zbuf[std::size_t(v) * cam.width + std::size_t(u)];
+    z = std::min(z, float(q.z()));
+  }
+  std::mt19937 rng(3);
+  std::normal_distribution<float> N(0.0f, 0.5f);
+  for (std::uint32_t v = 0; v < cam.height; ++v)
+    for (std::uint32_t u = 0; u < cam.width; ++u) {
+      const std::size_t i = std::size_t(v) * cam.width + u;
+      const Eigen::Vector3d ray((u - cam.cx) / cam.fx, (v - cam.cy) / cam.fy, 1.0);
+      const double plane = up.dot(beneath) / up.dot(ray);  // depth of the plane at this pixel
+      const float z = std::min(zbuf[i], float(plane)) + N(rng);
+      float* p = &image.xyzw[i * 4];
+      p[0] = float(ray.x()) * z, p[1] = float(ray.y()) * z, p[2] = z, p[3] = 1.0f;
+    }
+
+  FitGeometry g;
+  g.diameter = model.diameter;
+  g.voxel_size = model.voxel_size;
+  g.centroid = model_centroid(model.cloud);
+  const DeviceFitModel fit = upload_fit_model(dev, model.fit_cloud);
+  const ocl::Buffer<float> points(dev, std::span<const float>(image.xyzw));
+  std::vector<PoseToRefine> poses = {{R, t}};
+  for (const Eigen::Isometry3d& S : model.near_symmetries)
+    poses.push_back({R * S.linear(), R * S.translation() + t});
+  RefineOptions ro;
+  ro.iterations = 0;  // the poses as given: the look-alikes lie exactly on the outline
+  ro.noise_factor = 3.5f;
+  std::vector<RefinedPose> refined = refine_and_verify(
+      [&](const std::vector<bp_pose_fit>& f) { return pose_fit_sums(dev, points, cam, fit, f); },
+      cam, g, fit.size, poses, ro);
+  // Without the test the look-alikes score within a few hundredths of the right pose.
+  for (std::size_t k = 1; k < refined.size(); ++k)
+    EXPECT_GT(refined[k].score, refined[0].score - 0.05) << k;
+
+  TwinProbeModel tm;
+  tm.fit_points = fit.size;
+  tm.probes = model.twin_probes;
+  tm.probe_twin = model.probe_twin;
+  tm.twins = 3;
+  PointCloud both = model.fit_cloud;
+  both.points.insert(both.points.end(), tm.probes.points.begin(), tm.probes.points.end());
+  both.normals.insert(both.normals.end(), tm.probes.normals.begin(), tm.probes.normals.end());
+  const DeviceFitModel with_probes = upload_fit_model(dev, both);
+  const std::vector<RefinedPose> before = refined;
+  TwinTestOptions to;
+  to.band_ratio = 0.005f;
+  twin_test(
+      [&](const std::vector<bp_pose_fit>& f) {
+        return pose_fit_sums(dev, points, cam, with_probes, f);
+      },
+      cam, g, tm, refined, to);
+  const double band = 0.005 * model.diameter;
+  ASSERT_TRUE(refined[0].twin_tested);
+  EXPECT_LT(refined[0].twin_excess, band);
+  EXPECT_DOUBLE_EQ(refined[0].score, before[0].score);
+  for (std::size_t k = 1; k < refined.size(); ++k) {
+    ASSERT_TRUE(refined[k].twin_tested) << k;
+    // The sheet beneath: about its thickness deeper, less the standard errors.
+    EXPECT_GT(refined[k].twin_excess, 1.0) << k;
+    EXPECT_LT(refined[k].twin_excess, 1.6) << k;
+    EXPECT_NEAR(refined[k].score, before[k].score * band / refined[k].twin_excess, 1e-6) << k;
+    EXPECT_LT(refined[k].score, 0.8 * refined[0].score) << k;
+  }
+  // The same pass with the C++ reference gives the same excesses (the classes are exact).
+  std::vector<RefinedPose> again = before;
+  twin_test(
+      [&](const std::vector<bp_pose_fit>& f) {
+        return pose_fit_sums_reference(image, cam, both, f);
+      },
+      cam, g, tm, again, to);
+  for (std::size_t k = 0; k < again.size(); ++k)
+    EXPECT_NEAR(again[k].twin_excess, refined[k].twin_excess, 1e-3) << k;
+  // Band 0, or no probes: the scores are untouched.
+  std::vector<RefinedPose> off = before;
+  to.band_ratio = 0;
+  twin_test([&](const std::vector<bp_pose_fit>& f) { return pose_fit_sums(dev, points, cam, with_probes, f); },
+            cam, g, tm, off, to);
+  for (std::size_t k = 0; k < off.size(); ++k) EXPECT_EQ(off[k].score, before[k].score);
+}
