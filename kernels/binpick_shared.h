@@ -9,7 +9,6 @@
 typedef uint bp_u32;
 typedef int bp_i32;
 #define BP_FLOOR floor
-#define BP_INFINITY INFINITY
 #else
 #include <cmath>
 #include <cstdint>
@@ -17,7 +16,6 @@ typedef int bp_i32;
 typedef std::uint32_t bp_u32;
 typedef std::int32_t bp_i32;
 #define BP_FLOOR std::floor
-#define BP_INFINITY INFINITY
 #endif
 
 /* Pinhole camera, OpenCV/BOP convention: pixel (u, v) has its centre at integer coordinates,

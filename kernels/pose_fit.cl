@@ -9,8 +9,8 @@
  * own partial sums (sums[pose * BP_FIT_GROUP + item]); the host adds the 64 in double, so the
  * result does not depend on a float reduction order. The grid of a pose is touched only by its
  * own group, so the group's barriers are enough. With f.residuals, each model point's residual
- * goes to residuals[pose * n_model + point] (pose_fit_shared.h: infinite where a visible point
- * with depth gives no term, NaN where it has none); residuals may
+ * goes to residuals[pose * n_model + point] (NaN where the point gives no term) and its class to
+ * classes[pose * n_model + point]; residuals and classes may
  * be a one-element buffer when no fit asks for them. */
 #pragma OPENCL FP_CONTRACT OFF
 #include "binpick_shared.h"
@@ -20,7 +20,7 @@ __kernel void pose_fit(__global const float4* points, const bp_camera cam,
                        __global const float4* model_points, __global const float4* model_normals,
                        const uint n_model, __global const bp_pose_fit* fits, const uint n_fits,
                        __global uint* grids, __global bp_fit_sums* sums,
-                       __global float* residuals) {
+                       __global float* residuals, __global uchar* classes) {
   const uint k = get_group_id(0);
   const uint lid = get_local_id(0);
   if (k >= n_fits) return; /* the whole group: the launch is n_fits groups exactly */
@@ -52,21 +52,23 @@ __kernel void pose_fit(__global const float4* points, const bp_camera cam,
   float a[6];
   float r = 0.0f;
   __global float* own = residuals + (size_t)k * n_model;
+  __global uchar* own_class = classes + (size_t)k * n_model;
   for (uint j = lid; j < n_model; j += BP_FIT_GROUP) {
-    if (f.residuals != 0u) own[j] = NAN;
+    if (f.residuals != 0u) {
+      own[j] = NAN;
+      own_class[j] = (uchar)BP_FIT_HIDDEN;
+    }
     const float4 m = model_points[j], n = model_normals[j];
     if (bp_fit_project(&f, &c, m.x, m.y, m.z, n.x, n.y, n.z, q, nq, &pixel, &cell) != 2) continue;
     const float4 p = points[pixel];
     float agree = 0.0f;
     const uint cls = bp_fit_classify(&f, q, nq, as_float(grid[cell]), p.x, p.y, p.z, p.w, &agree);
+    if (f.residuals != 0u) own_class[j] = (uchar)cls;
     ++s.count[cls];
     s.agreement += agree;
     if (cls == BP_FIT_HIDDEN || cls == BP_FIT_MISSING) continue;
     const float w = bp_fit_term(&f, q, nq, p.x, p.y, p.z, a, &r);
-    if (w == 0.0f) {
-      if (f.residuals != 0u) own[j] = bp_fit_far_residual(q, p.z);
-      continue;
-    }
+    if (w == 0.0f) continue;
     if (f.residuals != 0u) own[j] = r;
     ++s.used;
     int e = 0;

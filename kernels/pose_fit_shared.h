@@ -22,11 +22,10 @@
  * or no depth).
  *
  * Residuals (with `residuals` != 0): the point-to-plane residual of every point that gives an
- * ICP term, one per model point (the patch test, host/detect/patch_test.hpp, looks for model
- * regions whose residuals do not average out). A visible point with a measured point but no term
- * (beyond the gate) gets an infinite one of the side the sensor saw (bp_fit_far_residual: the
- * twin test, host/detect/twin_test.hpp, needs to tell seeing through from something in front);
- * hidden points and points without depth get NaN. */
+ * ICP term, NaN for the others, and the class of every point (BP_FIT_HIDDEN also for points that
+ * face away or fall outside the image or grid), one each per model point (the patch test,
+ * host/detect/patch_test.hpp, looks for model regions whose residuals do not average out; the
+ * twin test, host/detect/twin_test.hpp, needs to tell no depth from something in front). */
 #ifndef BINPICK_POSE_FIT_SHARED_H
 #define BINPICK_POSE_FIT_SHARED_H
 
@@ -57,7 +56,8 @@ typedef struct {
   float cell;       /* z-buffer cell side, pixels */
   bp_u32 dim;       /* cells per side, <= BP_FIT_MAX_DIM; 0: nothing can be visible */
   float outline;    /* mm: the outline test's depth tolerance; 0: no outline test */
-  bp_u32 residuals; /* != 0: write each model point's residual (NaN where it gives no term) */
+  bp_u32 residuals; /* != 0: write each model point's residual (NaN where it gives no term) and
+                     * class */
 } bp_pose_fit;
 
 /* What one work item (kernel) or one pose (reference) adds up. */
@@ -142,13 +142,6 @@ BP_FN float bp_fit_term(const bp_pose_fit* f, const float* q, const float* nq, f
   *r = res;
   const float b = 1.0f - u * u;
   return b * b;
-}
-
-/* The residual of a visible point q with a measured point at depth pz but no ICP term: as r's
- * sign, r = nq . (p - q) being negative where the sensor saw farther along the ray than the model
- * surface: -infinity there (the sensor sees through the part), +infinity where it saw nearer. */
-BP_FN float bp_fit_far_residual(const float* q, float pz) {
-  return pz > q[2] ? -BP_INFINITY : BP_INFINITY;
 }
 
 /* The pixel at the centre of z-buffer cell (gu, gv); 0 if it falls outside the image. */

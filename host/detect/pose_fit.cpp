@@ -130,20 +130,25 @@ std::vector<FitSums> pose_fit_sums(ocl::Device& dev, const ocl::Buffer<float>& p
   // Residuals only when a fit asks for them (the verification pass, not every ICP step).
   const bool any_residuals =
       std::any_of(fits.begin(), fits.end(), [](const bp_pose_fit& f) { return f.residuals != 0; });
-  ocl::Buffer<float> residuals(dev, any_residuals ? std::max<std::size_t>(1, fits.size() * model.size) : 1);
+  const std::size_t per_point = any_residuals ? std::max<std::size_t>(1, fits.size() * model.size) : 1;
+  ocl::Buffer<float> residuals(dev, per_point);
+  ocl::Buffer<std::uint8_t> classes(dev, per_point);
   cl::Kernel kernel = dev.kernel("pose_fit.cl", "pose_fit");
   ocl::launch_local(dev, kernel, fits.size() * BP_FIT_GROUP, BP_FIT_GROUP, points, cam,
                     model.points, model.normals, model.size, fb,
-                    static_cast<std::uint32_t>(fits.size()), grids, sums, residuals);
+                    static_cast<std::uint32_t>(fits.size()), grids, sums, residuals, classes);
   const std::vector<bp_fit_sums> partial = sums.read(dev);
   for (std::size_t k = 0; k < fits.size(); ++k)
     for (std::size_t i = 0; i < BP_FIT_GROUP; ++i) add_partial(partial[k * BP_FIT_GROUP + i], out[k]);
   if (any_residuals) {
     const std::vector<float> all = residuals.read(dev);
+    const std::vector<std::uint8_t> all_classes = classes.read(dev);
     for (std::size_t k = 0; k < fits.size(); ++k)
-      if (fits[k].residuals != 0)
-        out[k].residuals.assign(all.begin() + std::ptrdiff_t(k * model.size),
-                                all.begin() + std::ptrdiff_t((k + 1) * model.size));
+      if (fits[k].residuals != 0) {
+        const auto from = std::ptrdiff_t(k * model.size), to = std::ptrdiff_t((k + 1) * model.size);
+        out[k].residuals.assign(all.begin() + from, all.begin() + to);
+        out[k].classes.assign(all_classes.begin() + from, all_classes.begin() + to);
+      }
   }
   return out;
 }
@@ -169,21 +174,21 @@ std::vector<FitSums> pose_fit_sums_reference(const PointImage& image, const bp_c
     for (std::size_t j = 0; j < model.points.size(); ++j)
       if (project(j) != 0) grid[cell] = std::min(grid[cell], q[2]);
     FitSums& s = out[k];
-    if (f.residuals != 0)
+    if (f.residuals != 0) {
       s.residuals.assign(model.points.size(), std::numeric_limits<float>::quiet_NaN());
+      s.classes.assign(model.points.size(), std::uint8_t(BP_FIT_HIDDEN));
+    }
     for (std::size_t j = 0; j < model.points.size(); ++j) {
       if (project(j) != 2) continue;
       const float* p = &image.xyzw[std::size_t(pixel) * 4];
       float agree = 0;
       const unsigned cls = bp_fit_classify(&f, q, nq, grid[cell], p[0], p[1], p[2], p[3], &agree);
+      if (f.residuals != 0) s.classes[j] = std::uint8_t(cls);
       ++s.count[cls];
       s.agreement += agree;
       if (cls == BP_FIT_HIDDEN || cls == BP_FIT_MISSING) continue;
       const float w = bp_fit_term(&f, q, nq, p[0], p[1], p[2], a, &r);
-      if (w == 0.0f) {
-        if (f.residuals != 0) s.residuals[j] = bp_fit_far_residual(q, p[2]);
-        continue;
-      }
+      if (w == 0.0f) continue;
       if (f.residuals != 0) s.residuals[j] = r;
       ++s.used;
       const Eigen::Map<const Eigen::Matrix<float, 6, 1>> av(a);

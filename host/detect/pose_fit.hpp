@@ -37,9 +37,10 @@ struct FitSums {
   std::array<std::uint32_t, BP_FIT_CLASSES> count{};  // indexed by BP_FIT_HIDDEN ...
   std::uint32_t used = 0;
   std::uint32_t outline_continue = 0, outline_step = 0;  // outline cells (pose_fit_shared.h)
-  // With bp_pose_fit::residuals: one per model point; infinite (the side the sensor saw) where a
-  // visible point with depth gives no ICP term, NaN where it has no depth or is hidden.
+  // With bp_pose_fit::residuals: one per model point, NaN where it gives no ICP term, and each
+  // model point's class (BP_FIT_HIDDEN ...; hidden also where it faces away or falls outside).
   std::vector<float> residuals;
+  std::vector<std::uint8_t> classes;
 
   std::uint32_t visible() const;  // all but hidden
 };

@@ -8,46 +8,51 @@
 
 namespace binpick {
 
-TwinEvidence twin_evidence(std::span<const float> residuals, const Eigen::Matrix3d& R,
-                           const Eigen::Vector3d& t, const PointCloud& probes,
-                           std::span<const std::uint32_t> probe_twin, std::uint32_t which,
-                           double gate) {
-  if (residuals.size() != probes.points.size() || probe_twin.size() != probes.points.size() ||
-      probes.normals.size() != probes.points.size())
-    throw std::logic_error("twin test: one residual, normal and look-alike per probe expected");
+TwinEvidence twin_evidence(std::span<const float> residuals, std::span<const std::uint8_t> classes,
+                           const Eigen::Matrix3d& R, const Eigen::Vector3d& t,
+                           const PointCloud& probes, std::span<const std::uint32_t> probe_twin,
+                           std::uint32_t which, double gate) {
+  const std::size_t n_probes = probes.points.size();
+  if (residuals.size() != n_probes || classes.size() != n_probes || probe_twin.size() != n_probes ||
+      probes.normals.size() != n_probes)
+    throw std::logic_error("twin test: one residual, class, normal and look-alike per probe expected");
   double sum = 0, sum2 = 0;
-  std::size_t n = 0;
-  for (std::size_t j = 0; j < residuals.size(); ++j) {
+  TwinEvidence e;
+  for (std::size_t j = 0; j < n_probes; ++j) {
     if (probe_twin[j] != which) continue;
     const float r = residuals[j];
+    const std::uint8_t cls = classes[j];
     double excess = 0;
-    if (std::isnan(r) || r == INFINITY) continue;  // nothing seen, or something in front
-    if (r == -INFINITY) {
-      excess = gate;  // seen through, beyond the gate
-    } else {
+    if (cls == BP_FIT_HIDDEN) continue;
+    if (cls == BP_FIT_MISSING) {
+      excess = gate;
+      ++e.missing;
+    } else if (std::isfinite(r)) {
       const Eigen::Vector3d q = R * probes.points[j].cast<double>() + t;
       const Eigen::Vector3d nq = R * probes.normals[j].cast<double>();
       const double c = -nq.dot(q) / (q.norm() * nq.norm());
       if (!(c > 0.0)) continue;  // the kernel gives terms only to probes facing the camera
       // r = nq . (p - q) is negative where the sensor saw farther along the ray.
       excess = std::clamp(-double(r) / c, -gate, gate);
+    } else if (cls == BP_FIT_SEE_THROUGH) {
+      excess = gate;  // seen through, beyond the gate
+    } else {
+      continue;  // something in front, beyond the gate (or an inlier at the gate's edge)
     }
     sum += excess;
     sum2 += excess * excess;
-    ++n;
+    ++e.n;
   }
-  TwinEvidence e;
-  e.n = n;
-  if (n == 0) return e;
-  e.mean = sum / double(n);
-  const double variance = n > 1 ? std::max(0.0, (sum2 - sum * e.mean) / double(n - 1)) : 0.0;
-  e.standard_error = std::sqrt(variance / double(n));
+  if (e.n == 0) return e;
+  e.mean = sum / double(e.n);
+  const double variance = e.n > 1 ? std::max(0.0, (sum2 - sum * e.mean) / double(e.n - 1)) : 0.0;
+  e.standard_error = std::sqrt(variance / double(e.n));
   return e;
 }
 
-double twin_excess(const TwinEvidence& e, std::size_t min_probes) {
+double twin_excess(const TwinEvidence& e, std::size_t min_probes, double missing_rate, double gate) {
   if (e.n < std::max<std::size_t>(min_probes, 1)) return 0;
-  return std::max(0.0, e.mean - 2.0 * e.standard_error);
+  return std::max(0.0, e.mean - missing_rate * gate - 2.0 * e.standard_error);
 }
 
 void twin_test(const FitSumsFn& sums_of, const bp_camera& cam, const FitGeometry& g,
@@ -71,16 +76,21 @@ void twin_test(const FitSumsFn& sums_of, const bp_camera& cam, const FitGeometry
   for (std::size_t i = 0; i < fits.size(); ++i) {
     RefinedPose& r = poses[index[i]];
     const std::vector<float>& all = sums[i].residuals;
-    if (all.size() != model.fit_points + model.probes.points.size())
+    if (all.size() != model.fit_points + model.probes.points.size() ||
+        sums[i].classes.size() != all.size())
       throw std::logic_error("twin test: the probe pass gave no residual per point");
-    const std::span<const float> probe_residuals(all.data() + model.fit_points,
-                                                 model.probes.points.size());
+    const std::size_t probes = model.probes.points.size();
+    const std::span<const float> probe_residuals(all.data() + model.fit_points, probes);
+    const std::span<const std::uint8_t> probe_classes(sums[i].classes.data() + model.fit_points,
+                                                      probes);
+    const double missing_rate = r.visible > 0 ? double(r.missing) / double(r.visible) : 0.0;
     for (std::uint32_t s = 0; s < model.twins; ++s) {
-      const TwinEvidence e = twin_evidence(probe_residuals, r.R, r.t, model.probes,
+      const TwinEvidence e = twin_evidence(probe_residuals, probe_classes, r.R, r.t, model.probes,
                                            model.probe_twin, s, r.tolerance);
       if (e.n < opt.min_probes) continue;
       r.twin_tested = true;
-      r.twin_excess = std::max(r.twin_excess, twin_excess(e, opt.min_probes));
+      r.twin_excess =
+          std::max(r.twin_excess, twin_excess(e, opt.min_probes, missing_rate, r.tolerance));
     }
     r.score *= excess_factor(r.twin_excess, band);
   }

@@ -12,10 +12,15 @@
 // rays, less two standard errors, is the pose's evidence against it; the largest over its
 // look-alikes, past a dead band, multiplies its score by band / excess (as the ray test).
 //
-// Probes where something lies in front (nearer than the gate), without depth, facing away or
-// hidden say nothing. The excess of a probe is clamped to the gate (the verification
-// tolerance), and one beyond it on the far side counts as the gate: one probe over an empty
-// bin does not outweigh a hundred on the sheet beneath.
+// A hole often shows no depth at all: a structured-light sensor's projector cannot light the
+// bottom of a hole its camera looks into. So a probe without depth counts as seen through, and
+// the share of the pose's own visible points without depth (shadows, grazing, range: what the
+// sensor misses on real surface there) is taken off the mean in the same units: a right pose
+// in a shadow is not blamed for it, a pose over holes that give no depth is.
+// Probes where something lies in front (nearer than the gate), facing away or hidden say
+// nothing. The excess of a probe is clamped to the gate (the verification tolerance), and one
+// beyond it on the far side counts as the gate: one probe over an empty bin does not outweigh a
+// hundred on the sheet beneath.
 #pragma once
 
 #include <cstddef>
@@ -30,22 +35,26 @@
 
 namespace binpick {
 
-// A look-alike's evidence at one pose: the mean (mm) and its standard error over n probes.
+// A look-alike's evidence at one pose: the mean (mm) and its standard error over n probes, of
+// which `missing` had no depth.
 struct TwinEvidence {
   double mean = 0, standard_error = 0;
-  std::size_t n = 0;
+  std::size_t n = 0, missing = 0;
 };
 
-// The evidence about look-alike `which` from a probe pass's residuals (pose_fit_shared.h: one
-// per probe, infinite beyond the gate, NaN for none) at pose (R, t): each probe's
-// depth excess along its ray, clamped to [-gate, gate]. Probes of other look-alikes are skipped.
-TwinEvidence twin_evidence(std::span<const float> residuals, const Eigen::Matrix3d& R,
-                           const Eigen::Vector3d& t, const PointCloud& probes,
-                           std::span<const std::uint32_t> probe_twin, std::uint32_t which,
-                           double gate);
+// The evidence about look-alike `which` from a probe pass (pose_fit_shared.h: one residual,
+// NaN where a probe gives no ICP term, and one class per probe) at pose (R, t): each probe's
+// depth excess along its ray, clamped to [-gate, gate]; seen through without a term and no
+// depth count as gate; hidden, and in front without a term, are skipped. Probes of other
+// look-alikes are skipped.
+TwinEvidence twin_evidence(std::span<const float> residuals, std::span<const std::uint8_t> classes,
+                           const Eigen::Matrix3d& R, const Eigen::Vector3d& t,
+                           const PointCloud& probes, std::span<const std::uint32_t> probe_twin,
+                           std::uint32_t which, double gate);
 
-// max(0, mean - 2 standard errors); 0 with fewer than min_probes probes (untested).
-double twin_excess(const TwinEvidence& e, std::size_t min_probes);
+// max(0, mean - missing_rate x gate - 2 standard errors): missing_rate is the share of the
+// pose's visible points without depth. 0 with fewer than min_probes probes (untested).
+double twin_excess(const TwinEvidence& e, std::size_t min_probes, double missing_rate, double gate);
 
 // The probes on the device side: the fit points followed by the probes, so that the probe pass's
 // z-buffer holds the whole model (a probe behind the part's own near side is hidden).

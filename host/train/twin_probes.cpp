@@ -18,6 +18,22 @@ constexpr double kSurfaceSamplesPerProbeArea = 16.0;
 constexpr std::size_t kMaxSurfaceSamples = std::size_t(1) << 22;
 // A surface agrees with a probe's normal within 30 degrees, as near_symmetry.cpp asks.
 constexpr double kSameFacingCos = 0.8660254037844386;
+constexpr double kPi = 3.14159265358979323846;
+
+// Whether the surface facing n runs on for the margin around p in every direction along it (six
+// points a margin away in p's tangent plane all lie on it, within half a probe voxel): a probe
+// on a wall narrower than the margin (a sheet's hole wall, seen edge on over the hole) or at
+// the margin of an edge would see the hole or what lies beyond the edge at a right pose as
+// soon as the pose is a little off.
+bool on_broad_surface(const OrientedPointGrid& fine, const Eigen::Vector3f& p,
+                      const Eigen::Vector3f& n, float margin) {
+  const Eigen::Vector3f u = n.unitOrthogonal(), v = n.cross(u);
+  for (int k = 0; k < 6; ++k) {
+    const float a = float(k * kPi / 3);
+    if (!fine.matches(p + margin * (std::cos(a) * u + std::sin(a) * v), n)) return false;
+  }
+  return true;
+}
 
 }  // namespace
 
@@ -33,14 +49,18 @@ TwinProbes find_twin_probes(const Mesh& mesh, float voxel_size,
   const PointCloud surface = with_unit_normals(sample_surface(mesh, samples, kSurfaceSamplingSeed + 1));
   const PointCloud candidates =
       with_unit_normals(voxel_subsample(dev, surface, probe_voxel, VoxelFaces::both).cloud);
-  const OrientedPointGrid grid(surface, kProbeMarginVoxels * probe_voxel, float(kSameFacingCos));
+  const float margin = kProbeMarginVoxels * probe_voxel;
+  const OrientedPointGrid grid(surface, margin, float(kSameFacingCos));
+  const OrientedPointGrid fine(surface, 0.5f * probe_voxel, float(kSameFacingCos));
   for (std::uint32_t s = 0; s < near.size(); ++s) {
     const Eigen::Isometry3d inverse = near[s].inverse();
     std::vector<std::size_t> found;
     for (std::size_t i = 0; i < candidates.points.size(); ++i) {
       const Eigen::Vector3d p = inverse * candidates.points[i].cast<double>();
       const Eigen::Vector3d n = inverse.linear() * candidates.normals[i].cast<double>();
-      if (!grid.matches(p.cast<float>(), n.cast<float>())) found.push_back(i);
+      if (!grid.matches(p.cast<float>(), n.cast<float>()) &&
+          on_broad_surface(fine, candidates.points[i], candidates.normals[i], margin))
+        found.push_back(i);
     }
     // Evenly thinned: every k-th in the subsample's order, which is the same on every run.
     const std::size_t step = (found.size() + kMaxProbesPerTwin - 1) / kMaxProbesPerTwin;

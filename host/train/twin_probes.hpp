@@ -6,6 +6,10 @@
 // At a pose P, the look-alike P S has no surface at P p, so the sensor sees the part there
 // if P is right and looks through the part's hole if P S is (host/detect/twin_test.hpp).
 //
+// A probe must also lie inside a surface at least the margin wide around it (not on a sheet's
+// hole wall, seen edge on over the hole, nor within the margin of an edge), so that a right pose
+// a little off still has surface there.
+//
 // Density: the probes are the mesh voxel-subsampled at a quarter of the model's voxel (both
 // faces of a thin wall); the surface they are tested against is sampled 16 times as densely,
 // so that a point on the surface always finds a sample well inside the margin (1.5 probe

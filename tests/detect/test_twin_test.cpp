@@ -37,44 +37,62 @@ const Eigen::Vector3d kAhead(0, 0, 500);
 TEST(TwinTest, EvidenceIsTheMeanDepthExcessAlongTheRays) {
   const PointCloud probes = facing_probes(4);
   const std::vector<std::uint32_t> twin = {0, 0, 0, 1};
+  const std::vector<std::uint8_t> cls(4, BP_FIT_INLIER);
   // r = n . (p - q): -1.5 where the sensor saw 1.5 mm farther (facing the camera: the excess).
   const std::vector<float> r = {-1.0f, -2.0f, -3.0f, -100.0f};
-  const TwinEvidence e = twin_evidence(r, Eigen::Matrix3d::Identity(), kAhead, probes, twin, 0, 10.0);
+  const TwinEvidence e =
+      twin_evidence(r, cls, Eigen::Matrix3d::Identity(), kAhead, probes, twin, 0, 10.0);
   ASSERT_EQ(e.n, 3u);  // the fourth probe is another look-alike's
+  EXPECT_EQ(e.missing, 0u);
   EXPECT_NEAR(e.mean, 2.0, 1e-5);
   EXPECT_NEAR(e.standard_error, 1.0 / std::sqrt(3.0), 1e-5);  // sample sd 1
-  EXPECT_NEAR(twin_excess(e, 3), 2.0 - 2.0 / std::sqrt(3.0), 1e-5);
-  EXPECT_EQ(twin_excess(e, 4), 0.0);  // too few probes: untested
+  EXPECT_NEAR(twin_excess(e, 3, 0.0, 10.0), 2.0 - 2.0 / std::sqrt(3.0), 1e-5);
+  // The pose's own share of points without depth comes off in the gate's units.
+  EXPECT_NEAR(twin_excess(e, 3, 0.05, 10.0), 2.0 - 0.5 - 2.0 / std::sqrt(3.0), 1e-5);
+  EXPECT_EQ(twin_excess(e, 3, 0.5, 10.0), 0.0);
+  EXPECT_EQ(twin_excess(e, 4, 0.0, 10.0), 0.0);  // too few probes: untested
 }
 
-TEST(TwinTest, BeyondTheGateCountsAsTheGateFarSideOnlyAndNothingSaysNothing) {
-  const PointCloud probes = facing_probes(6);
-  const std::vector<std::uint32_t> twin(6, 0);
+TEST(TwinTest, SeenThroughAndNoDepthCountAsTheGateInFrontAndHiddenSayNothing) {
+  const PointCloud probes = facing_probes(7);
+  const std::vector<std::uint32_t> twin(7, 0);
   const float nan = std::numeric_limits<float>::quiet_NaN();
-  // Seen through beyond the gate, something in front beyond it, no depth or hidden, a finite
-  // residual past the clamp on either side.
-  const std::vector<float> r = {-INFINITY, INFINITY, nan, -50.0f, 50.0f, 0.0f};
-  const TwinEvidence e = twin_evidence(r, Eigen::Matrix3d::Identity(), kAhead, probes, twin, 0, 5.0);
-  ASSERT_EQ(e.n, 4u);
-  EXPECT_NEAR(e.mean, (5.0 + 5.0 - 5.0 + 0.0) / 4.0, 1e-9);
+  // Seen through beyond the gate, something in front beyond it, no depth, hidden, and finite
+  // residuals past the clamp on either side and at 0.
+  const std::vector<std::uint8_t> cls = {BP_FIT_SEE_THROUGH, BP_FIT_OCCLUDED, BP_FIT_MISSING,
+                                         BP_FIT_HIDDEN,      BP_FIT_SEE_THROUGH, BP_FIT_OCCLUDED,
+                                         BP_FIT_INLIER};
+  const std::vector<float> r = {nan, nan, nan, nan, -50.0f, 50.0f, 0.0f};
+  const TwinEvidence e = twin_evidence(r, cls, Eigen::Matrix3d::Identity(), kAhead, probes, twin, 0, 5.0);
+  ASSERT_EQ(e.n, 5u);
+  EXPECT_EQ(e.missing, 1u);
+  EXPECT_NEAR(e.mean, (5.0 + 5.0 + 5.0 - 5.0 + 0.0) / 5.0, 1e-9);
   // A probe facing away from the camera gives no distance along its ray.
   PointCloud away = facing_probes(1);
   away.normals[0] = {0.0f, 0.0f, 1.0f};
-  EXPECT_EQ(twin_evidence(std::vector<float>{-1.0f}, Eigen::Matrix3d::Identity(), kAhead, away,
-                          std::vector<std::uint32_t>{0}, 0, 5.0)
+  EXPECT_EQ(twin_evidence(std::vector<float>{-1.0f}, std::vector<std::uint8_t>{BP_FIT_INLIER},
+                          Eigen::Matrix3d::Identity(), kAhead, away, std::vector<std::uint32_t>{0},
+                          0, 5.0)
                 .n,
             0u);
   // No probe: nothing, and the test is off.
-  const TwinEvidence none = twin_evidence({}, Eigen::Matrix3d::Identity(), kAhead, PointCloud{}, {}, 0, 5.0);
+  const TwinEvidence none =
+      twin_evidence({}, {}, Eigen::Matrix3d::Identity(), kAhead, PointCloud{}, {}, 0, 5.0);
   EXPECT_EQ(none.n, 0u);
-  EXPECT_EQ(twin_excess(none, 1), 0.0);
-  // One residual per probe, or a logic error.
-  EXPECT_THROW(twin_evidence(std::vector<float>{0.0f}, Eigen::Matrix3d::Identity(), kAhead,
+  EXPECT_EQ(twin_excess(none, 1, 0.0, 5.0), 0.0);
+  // One residual and class per probe, or a logic error.
+  EXPECT_THROW(twin_evidence(std::vector<float>{0.0f}, cls, Eigen::Matrix3d::Identity(), kAhead,
                              probes, twin, 0, 5.0),
                std::logic_error);
 }
 
-TEST(TwinTest, ThePlateTurnedOverLosesToTheRightPoseOnAPlateBeneath) {
+namespace {
+
+// The plate's right pose and its three look-alikes (turned over) against an image of the plate
+// over its own plane one thickness (1.5 mm) farther along its normal, where the plate beneath
+// lies, or (holes_without_depth) with no depth wherever the plate is not: what a structured-light
+// sensor gives when its projector cannot light the bottom of a hole.
+void plate_and_its_look_alikes(bool holes_without_depth) {
   auto& dev = test::test_device();
   const PpfModel model = train_ppf_model(make_builtin_part("plate"), PpfTrainParams{}, nullptr, dev);
   ASSERT_EQ(model.near_symmetries.size(), 3u);
@@ -85,8 +103,7 @@ TEST(TwinTest, ThePlateTurnedOverLosesToTheRightPoseOnAPlateBeneath) {
        Eigen::AngleAxisd(3.14159265358979, Eigen::Vector3d::UnitX()))
           .toRotationMatrix();
   const Eigen::Vector3d t(0, 0, 500);
-  // The image: the plate's dense surface over its own plane one thickness (1.5 mm) farther
-  // along its normal, where the plate beneath lies; 0.5 mm noise.
+  // The image: the plate's dense surface, and beneath it the plane or no depth; 0.5 mm noise.
   const Eigen::Vector3d up = R * Eigen::Vector3d::UnitZ();  // towards the camera
   const Eigen::Vector3d beneath = t - 0.75 * up;           // the plate beneath's top face
   PointImage image;
@@ -112,7 +129,8 @@ TEST(TwinTest, ThePlateTurnedOverLosesToTheRightPoseOnAPlateBeneath) {
       const double plane = up.dot(beneath) / up.dot(ray);  // depth of the plane at this pixel
       const float z = std::min(zbuf[i], float(plane)) + N(rng);
       float* p = &image.xyzw[i * 4];
-      p[0] = float(ray.x()) * z, p[1] = float(ray.y()) * z, p[2] = z, p[3] = 1.0f;
+      p[0] = float(ray.x()) * z, p[1] = float(ray.y()) * z, p[2] = z;
+      p[3] = holes_without_depth && !std::isfinite(zbuf[i]) ? 0.0f : 1.0f;
     }
 
   FitGeometry g;
@@ -157,9 +175,10 @@ TEST(TwinTest, ThePlateTurnedOverLosesToTheRightPoseOnAPlateBeneath) {
   EXPECT_DOUBLE_EQ(refined[0].score, before[0].score);
   for (std::size_t k = 1; k < refined.size(); ++k) {
     ASSERT_TRUE(refined[k].twin_tested) << k;
-    // The sheet beneath: about its thickness deeper, less the standard errors.
+    // The sheet beneath: about its thickness deeper, less the standard errors; no depth: as
+    // far as the gate, less the look-alike's own share of points without depth.
     EXPECT_GT(refined[k].twin_excess, 1.0) << k;
-    EXPECT_LT(refined[k].twin_excess, 1.6) << k;
+    if (!holes_without_depth) EXPECT_LT(refined[k].twin_excess, 1.6) << k;
     EXPECT_NEAR(refined[k].score, before[k].score * band / refined[k].twin_excess, 1e-6) << k;
     EXPECT_LT(refined[k].score, 0.8 * refined[0].score) << k;
   }
@@ -178,4 +197,14 @@ TEST(TwinTest, ThePlateTurnedOverLosesToTheRightPoseOnAPlateBeneath) {
   twin_test([&](const std::vector<bp_pose_fit>& f) { return pose_fit_sums(dev, points, cam, with_probes, f); },
             cam, g, tm, off, to);
   for (std::size_t k = 0; k < off.size(); ++k) EXPECT_EQ(off[k].score, before[k].score);
+}
+
+}  // namespace
+
+TEST(TwinTest, ThePlateTurnedOverLosesToTheRightPoseOnAPlateBeneath) {
+  plate_and_its_look_alikes(false);
+}
+
+TEST(TwinTest, ThePlateTurnedOverLosesToTheRightPoseOverHolesWithoutDepth) {
+  plate_and_its_look_alikes(true);
 }
