@@ -18,10 +18,16 @@ struct DecomposeOptions {
   double compacity_weight = 0.1;  // HACD's alpha: prefers compact clusters
   double volume_weight = 0.0;     // HACD's beta
   std::size_t min_clusters = 2;   // HACD stops merging at this many hulls
-  // At most this many hulls (0 = no limit): a part that HACD cuts into more is decomposed again
-  // without the concavity limit. Off by default: capping the torus (8 hulls) at 6 coarsened its
-  // hulls beyond the span and stability tests; the merging below is the default way to fewer.
-  std::size_t max_hulls = 0;
+  // At most this many hulls after the merging below (0 = no limit): a part that still has more is
+  // decomposed again without the concavity limit, down to this many, and merged again. Contact
+  // cost grows with the pairs of hulls that touch: the built-in tee's 15 hulls (long slivers
+  // around its bore, whose boxes overlap the neighbours' in every orientation) made its
+  // 350-part drop ten times as costly per moving part as the bracket's 2, about two minutes;
+  // at 8 it takes about half as long. Its 8 hulls fill about half of the bore (the 15 a fifth),
+  // where another tee's wall could reach only at a rim, and stand out of the part's outline
+  // as far as the 15. 8 keeps the tests' torus as it is: capping it at 6 coarsened its hulls
+  // beyond the span and stability tests. The other built-in parts have 1 to 4.
+  std::size_t max_hulls = 8;
   // Then hulls that one hull covers almost as well are merged (hull_merge.hpp): the built-in
   // bracket's 11 become its two plates, holes filled (1.6 % of its volume), and its 350-part
   // drop takes a sixth of the time; the torus, whose first merge would fill 2.3 %, keeps 8.

@@ -122,10 +122,10 @@ ConvexParts decompose_convex_uncached(const Mesh& part, const DecomposeOptions& 
   triangles.reserve(mesh.triangles.size());
   for (const auto& t : mesh.triangles) triangles.emplace_back(t[0], t[1], t[2]);
 
-  // HACD merges clusters while the concavity stays under the threshold, down to NClusters. With
-  // max_hulls set and more hulls than that, decompose again with no concavity limit down to
-  // max_hulls, letting the hulls bridge small holes. (By default, merge_hulls does that job
-  // below, with a bound on the volume it adds.)
+  // HACD merges clusters while the concavity stays under the threshold, down to NClusters;
+  // merge_hulls then joins the hulls that one hull covers almost as well. A part that still
+  // has more than max_hulls (the built-in tee: 15) is decomposed again with no concavity limit
+  // down to max_hulls, letting the hulls bridge its concavities (decompose.hpp).
   std::unique_ptr<HACD::HACD> hacd;
   std::vector<HACD::Vec3<HACD::Real>> in;  // HACD rescales its input in place: a fresh copy
   const auto run = [&](std::size_t clusters, double concavity) {
@@ -145,26 +145,32 @@ ConvexParts decompose_convex_uncached(const Mesh& part, const DecomposeOptions& 
     hacd->SetAddFacesPoints(options.add_faces_points);
     if (!hacd->Compute()) throw InputError("HACD could not decompose the mesh");
   };
+  // The hulls of the last run, in mm, thin ones left out, merged.
+  const auto hulls = [&] {
+    ConvexParts parts;
+    for (std::size_t c = 0; c < hacd->GetNClusters(); ++c) {
+      std::vector<HACD::Vec3<HACD::Real>> hull_points(hacd->GetNPointsCH(c));
+      std::vector<HACD::Vec3<long>> hull_triangles(hacd->GetNTrianglesCH(c));
+      if (hull_points.size() < 4 || !hacd->GetCH(c, hull_points.data(), hull_triangles.data()))
+        continue;  // an empty cluster, or a flat one with no volume to collide with
+      std::vector<Eigen::Vector3d> mm;
+      mm.reserve(hull_points.size());
+      for (const auto& q : hull_points)
+        mm.push_back(Eigen::Vector3d(q.X(), q.Y(), q.Z()) * diagonal + centre);
+      ConvexHull hull{extreme_points(mm)};
+      if (hull.vertices.size() >= 4 && thinnest_extent(hull) >= kMinThickness * diagonal)
+        parts.hulls.push_back(std::move(hull));
+    }
+    if (parts.hulls.empty()) throw InputError("HACD produced no convex hull with volume");
+    if (options.merge.max_added_per_merge > 0.0) parts = merge_hulls(parts, options.merge);
+    return parts;
+  };
   run(options.min_clusters, options.concavity);
-  if (options.max_hulls > 0 && hacd->GetNClusters() > options.max_hulls)
+  ConvexParts parts = hulls();
+  if (options.max_hulls > 0 && parts.hulls.size() > options.max_hulls) {
     run(std::max(options.max_hulls, options.min_clusters), std::numeric_limits<double>::max());
-
-  ConvexParts parts;
-  for (std::size_t c = 0; c < hacd->GetNClusters(); ++c) {
-    std::vector<HACD::Vec3<HACD::Real>> hull_points(hacd->GetNPointsCH(c));
-    std::vector<HACD::Vec3<long>> hull_triangles(hacd->GetNTrianglesCH(c));
-    if (hull_points.size() < 4 || !hacd->GetCH(c, hull_points.data(), hull_triangles.data()))
-      continue;  // an empty cluster, or a flat one with no volume to collide with
-    std::vector<Eigen::Vector3d> mm;
-    mm.reserve(hull_points.size());
-    for (const auto& q : hull_points)
-      mm.push_back(Eigen::Vector3d(q.X(), q.Y(), q.Z()) * diagonal + centre);
-    ConvexHull hull{extreme_points(mm)};
-    if (hull.vertices.size() >= 4 && thinnest_extent(hull) >= kMinThickness * diagonal)
-      parts.hulls.push_back(std::move(hull));
+    parts = hulls();
   }
-  if (parts.hulls.empty()) throw InputError("HACD produced no convex hull with volume");
-  if (options.merge.max_added_per_merge > 0.0) parts = merge_hulls(parts, options.merge);
   if (options.max_uncovered > 0.0) parts = cover_mesh(parts, part, options.max_uncovered * diagonal);
   return parts;
 }

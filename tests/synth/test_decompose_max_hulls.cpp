@@ -1,11 +1,13 @@
 // DecomposeOptions::max_hulls: a part HACD cuts into many pieces (the built-in bracket's holes)
 // is decomposed again down to the limit, and the hulls still cover the part. (Parts under the
-// limit are untouched by construction: the second run happens only above it.)
+// limit are untouched by construction: the second run happens only above it.) The default
+// cap counts the hulls after merging.
 #include <gtest/gtest.h>
 
 #include "host/app/model_options.hpp"
 #include "host/formats/mesh/load_model.hpp"
 #include "synth/decompose/decompose.hpp"
+#include "synth/decompose/hull_cover.hpp"
 
 using namespace binpick;
 
@@ -48,4 +50,28 @@ TEST(DecomposeMaxHulls, a_part_with_holes_is_capped_and_still_covered) {
   EXPECT_GE(few.hulls.size(), 1u);
   EXPECT_LT(outside_all_boxes(bracket, few), 0.5f);
   for (const auto& h : few.hulls) EXPECT_LE(h.vertices.size(), capped.max_hull_vertices);
+}
+
+// The default cap applies after merging: the built-in tee, which merging leaves at 15 hulls
+// around its bore, comes out with at most max_hulls, and they still cover the mesh to the
+// covering tolerance (hull_cover.hpp). The bracket, which merging brings to 2, keeps its 2.
+TEST(DecomposeMaxHulls, the_default_caps_the_merged_tee_and_keeps_it_covered) {
+  const Mesh tee = cli::load_part({"builtin:tee", {}}).mesh;
+  DecomposeOptions uncapped;
+  uncapped.use_cache = false;
+  uncapped.max_hulls = 0;
+  ASSERT_GT(decompose_convex(tee, uncapped).hulls.size(), DecomposeOptions{}.max_hulls)
+      << "merging alone brings the tee under the cap: the test lost its case";
+
+  DecomposeOptions defaults;
+  defaults.use_cache = false;
+  const ConvexParts capped = decompose_convex(tee, defaults);
+  EXPECT_LE(capped.hulls.size(), defaults.max_hulls);
+  EXPECT_GE(capped.hulls.size(), 2u);
+  Eigen::Vector3f lo = tee.positions.front(), hi = lo;
+  for (const auto& p : tee.positions) lo = lo.cwiseMin(p), hi = hi.cwiseMax(p);
+  EXPECT_LE(farthest_outside_mm(capped, tee), defaults.max_uncovered * (hi - lo).norm() + 1e-3);
+
+  const Mesh bracket = cli::load_part({"builtin:bracket", {}}).mesh;
+  EXPECT_EQ(decompose_convex(bracket, defaults).hulls.size(), 2u);
 }
