@@ -23,7 +23,7 @@ namespace {
 constexpr char kMagic[8] = {'B', 'P', 'H', 'U', 'L', 'L', 'S', '\0'};
 // Also hashed into every key: bumped when the decomposition itself changes, so entries made
 // by an older one are not served (2: flat hulls left out).
-constexpr std::uint32_t kVersion = 3;  // 3: hulls merged and grown to cover the mesh
+constexpr std::uint32_t kVersion = 4;  // 3: hulls merged and grown to cover the mesh; 4: max_hulls after merging
 // A larger file is not one of ours; refusing it keeps a corrupt size from exhausting memory.
 constexpr std::uintmax_t kMaxFileBytes = std::uintmax_t{1} << 30;
 
