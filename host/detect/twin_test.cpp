@@ -7,6 +7,12 @@
 #include "host/detect/ray_test.hpp"
 
 namespace binpick {
+namespace {
+
+// A probe without depth counts only where it faces the camera within 60 degrees.
+constexpr double kMissingCos = 0.5;
+
+}  // namespace
 
 TwinEvidence twin_evidence(std::span<const float> residuals, std::span<const std::uint8_t> classes,
                            const Eigen::Matrix3d& R, const Eigen::Vector3d& t,
@@ -24,14 +30,18 @@ TwinEvidence twin_evidence(std::span<const float> residuals, std::span<const std
     const std::uint8_t cls = classes[j];
     double excess = 0;
     if (cls == BP_FIT_HIDDEN) continue;
+    const Eigen::Vector3d q = R * probes.points[j].cast<double>() + t;
+    const Eigen::Vector3d nq = R * probes.normals[j].cast<double>();
+    // The cosine between the probe's normal and the ray to the camera (> 0.17 for a visible one).
+    const double c = -nq.dot(q) / (q.norm() * nq.norm());
+    if (!(c > 0.0)) continue;
     if (cls == BP_FIT_MISSING) {
+      // A surface seen obliquely often gives no depth on real material; one facing the camera
+      // gives depth unless shadowed, which the pose's own share without depth stands for.
+      if (c < kMissingCos) continue;
       excess = gate;
       ++e.missing;
     } else if (std::isfinite(r)) {
-      const Eigen::Vector3d q = R * probes.points[j].cast<double>() + t;
-      const Eigen::Vector3d nq = R * probes.normals[j].cast<double>();
-      const double c = -nq.dot(q) / (q.norm() * nq.norm());
-      if (!(c > 0.0)) continue;  // the kernel gives terms only to probes facing the camera
       // r = nq . (p - q) is negative where the sensor saw farther along the ray.
       excess = std::clamp(-double(r) / c, -gate, gate);
     } else if (cls == BP_FIT_SEE_THROUGH) {

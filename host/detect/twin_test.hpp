@@ -13,7 +13,9 @@
 // look-alikes, past a dead band, multiplies its score by band / excess (as the ray test).
 //
 // A hole often shows no depth at all: a structured-light sensor's projector cannot light the
-// bottom of a hole its camera looks into. So a probe without depth counts as seen through, and
+// bottom of a hole its camera looks into. So a probe without depth that faces the camera
+// (within 60 degrees: obliquely seen surfaces, a shaft's flanks, often give no depth on real
+// material) counts as seen through, and
 // the share of the pose's own visible points without depth (shadows, grazing, range: what the
 // sensor misses on real surface there) is taken off the mean in the same units: a right pose
 // in a shadow is not blamed for it, a pose over holes that give no depth is.

@@ -67,6 +67,15 @@ TEST(TwinTest, SeenThroughAndNoDepthCountAsTheGateInFrontAndHiddenSayNothing) {
   ASSERT_EQ(e.n, 5u);
   EXPECT_EQ(e.missing, 1u);
   EXPECT_NEAR(e.mean, (5.0 + 5.0 + 5.0 - 5.0 + 0.0) / 5.0, 1e-9);
+  // A probe without depth seen obliquely (70 degrees) says nothing: such surfaces often give
+  // none on real material.
+  PointCloud oblique = facing_probes(1);
+  oblique.normals[0] = {0.0f, std::sin(1.22f), -std::cos(1.22f)};
+  EXPECT_EQ(twin_evidence(std::vector<float>{nan}, std::vector<std::uint8_t>{BP_FIT_MISSING},
+                          Eigen::Matrix3d::Identity(), kAhead, oblique,
+                          std::vector<std::uint32_t>{0}, 0, 5.0)
+                .n,
+            0u);
   // A probe facing away from the camera gives no distance along its ray.
   PointCloud away = facing_probes(1);
   away.normals[0] = {0.0f, 0.0f, 1.0f};
