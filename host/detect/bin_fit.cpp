@@ -47,6 +47,11 @@ double focal_estimate(const PlaneSamples& s) {
 // How far beyond `known` (along dir * axis) the points more than 3 tol below the rim reach: the
 // 99.5th percentile of their distances beyond it (a stray point does not stretch the interior);
 // 0 if there are too few.
+// Planes tried as the floor's (see "up" in fit_bin), and rim fits per plane (each after the
+// first with up from the previous one's rim).
+constexpr std::size_t kUpCandidates = 3;
+constexpr int kRimPasses = 3;
+
 double farthest_below_rim(const PlaneSamples& s, const Eigen::Vector3d& up,
                           const Eigen::Vector3d& axis, double dir, double known, double rim_height,
                           double tol) {
@@ -87,36 +92,46 @@ BinFit fit_bin(ocl::Device& dev, const std::vector<float>& xyzw, std::uint32_t w
   ps.seed = opt.seed;
   const std::vector<FoundPlane> planes = find_planes(dev, s, ps);
   bin.planes = planes.size();
-  Eigen::Vector3d up(0, 0, -1);
-  std::size_t best = 0;
+  // "Up" is the normal of a large plane facing the camera that spans much of the image: the floor
+  // with flat parts on it, or a layer of parts. With the camera tilted far (30 degrees) the near
+  // wall's outer face is such a plane too, often the largest, and heights along its normal put
+  // the rim and that face at one "height". So the candidates are tried largest first, at most
+  // kUpCandidates, and up is the first whose rim is found.
+  std::vector<const FoundPlane*> candidates;
   for (const FoundPlane& p : planes)
-    if (p.normal.z() <= -std::cos(60 * kDeg) && p.inliers.size() > best &&
-        image_span(s, p) >= 0.25) {
-      best = p.inliers.size();
-      up = p.normal;
-    }
+    if (p.normal.z() <= -std::cos(60 * kDeg) && image_span(s, p) >= 0.25) candidates.push_back(&p);
+  std::stable_sort(candidates.begin(), candidates.end(), [](const FoundPlane* a, const FoundPlane* b) {
+    return a->inliers.size() > b->inliers.size();
+  });
+  if (candidates.size() > kUpCandidates) candidates.resize(kUpCandidates);
+  std::vector<Eigen::Vector3d> ups;
+  for (const FoundPlane* p : candidates) ups.push_back(p->normal);
+  if (ups.empty()) ups.push_back(Eigen::Vector3d(0, 0, -1));
   RimOptions ro;
   ro.tol = bin.tol;
   ro.focal = focal_estimate(s);
-  Eigen::Vector3d e1, e2;
+  Eigen::Vector3d up, e1, e2;
   RimFit rim;
-  // Twice at most: then once more with up from the rim's own plane (rim_normal), which is level
-  // where the first plane may lean.
-  for (int pass = 0; pass < 2; ++pass) {
-    e1 = Eigen::Vector3d::UnitX() - up.x() * up;
-    if (e1.norm() < 1e-6) e1 = Eigen::Vector3d::UnitY() - up.y() * up;
-    e1.normalize();
-    e2 = up.cross(e1);
-    rim = fit_rim(s, up, e1, e2, ro);
-    if (!rim.found) {
-      bin.why = rim.why;
-      return bin;
+  for (std::size_t c = 0; c < ups.size() && !rim.found; ++c) {
+    up = ups[c];
+    // Then again with up from the rim's own plane (rim_normal), which is level where the first
+    // plane may lean; also when no frame was found at the first up: a floor plane found on
+    // leaning parts, a few degrees off, puts the far rim a few centimetres off the near one's
+    // height, but the rim's samples at that height still give the level.
+    for (int pass = 0; pass < kRimPasses; ++pass) {
+      e1 = Eigen::Vector3d::UnitX() - up.x() * up;
+      if (e1.norm() < 1e-6) e1 = Eigen::Vector3d::UnitY() - up.y() * up;
+      e1.normalize();
+      e2 = up.cross(e1);
+      rim = fit_rim(s, up, e1, e2, ro);
+      if (c == 0 && pass == 0 && !rim.found) bin.why = rim.why;  // the largest plane's reason
+      if (pass + 1 == kRimPasses) break;
+      const std::optional<Eigen::Vector3d> level = rim_normal(s, rim, up, bin.tol);
+      if (!level || std::acos(std::min(1.0, level->dot(up))) < 0.1 * kDeg) break;
+      up = *level;
     }
-    if (pass == 1) break;
-    const std::optional<Eigen::Vector3d> level = rim_normal(s, rim, up, bin.tol);
-    if (!level || std::acos(std::min(1.0, level->dot(up))) < 0.1 * kDeg) break;
-    up = *level;
   }
+  if (!rim.found) return bin;
   bin.rim_points = rim.points;
   const Eigen::Vector3d a1 = std::cos(rim.angle) * e1 + std::sin(rim.angle) * e2;
   const Eigen::Vector3d a2 = up.cross(a1);
@@ -128,6 +143,29 @@ BinFit fit_bin(ocl::Device& dev, const std::vector<float>& xyzw, std::uint32_t w
   for (int k = 0; k < 2; ++k) {
     const bool lo = rim.seen[2 * k], hi = rim.seen[2 * k + 1];
     if (lo && hi) continue;
+    if (!lo && !hi) {
+      // No side on this axis (only the near side of the rim stands out, bin_rim.cpp): the
+      // interior runs to the farthest points seen below the rim both ways from the rim's
+      // middle, so that all it holds stays in.
+      if (sized) {
+        bin.why = "two sides of the rim are out of view";
+        return bin;
+      }
+      std::vector<double> along;
+      for (std::size_t i : rim.samples) along.push_back(axis[k].dot(s.points[i].cast<double>()));
+      const double middle = quantile(along, 0.5);
+      const double to_lo = farthest_below_rim(s, up, axis[k], -1.0, middle, rim.height, bin.tol),
+                   to_hi = farthest_below_rim(s, up, axis[k], 1.0, middle, rim.height, bin.tol);
+      if (!(to_lo > 4 * bin.tol) || !(to_hi > 4 * bin.tol)) {
+        bin.why = "only one side of the rim was found and no points below it on either hand";
+        return bin;
+      }
+      edge[2 * k] = middle - to_lo;
+      edge[2 * k + 1] = middle + to_hi;
+      for (const char* sign : {"-", "+"})
+        bin.unseen_sides.push_back(fmt::format("{}{}", sign, k == 0 ? "a1" : "a2"));
+      continue;
+    }
     const int known = lo ? 2 * k : 2 * k + 1, missing = lo ? 2 * k + 1 : 2 * k;
     const double dir = lo ? 1.0 : -1.0;  // from the edge seen toward the one missing
     if (sized) {

@@ -182,8 +182,34 @@ RimFit fit_rim(const PlaneSamples& s, const Eigen::Vector3d& up, const Eigen::Ve
   for (std::size_t j = 0; j < x.size(); ++j) xr[j] = c * x[j] + sn * y[j], yr[j] = -sn * x[j] + c * y[j];
   // Coarse sides first; then each side's edge from the points off the other axis' sides (a
   // corner's points belong to both, and the other sides' points run up to the edge).
-  const Sides cx = find_sides(xr, width, 0.0, 0.3, 0, true, NAN),
-              cy = find_sides(yr, width, 0.0, 0.3, 0, true, NAN);
+  Sides cx = find_sides(xr, width, 0.0, 0.3, 0, true, NAN),
+        cy = find_sides(yr, width, 0.0, 0.3, 0, true, NAN);
+  // With the camera tilted far, the near side of the rim may be all there is at its height:
+  // along the axis across it the points then form one band, no wider than a quarter of their
+  // spread along it, and the coarse pass, which asks a side to stand out of the rest, sees
+  // nothing. The band is then the side away from which the points below the rim lie.
+  const double spread_x = quantile(xr, 0.98) - quantile(xr, 0.02),
+               spread_y = quantile(yr, 0.98) - quantile(yr, 0.02);
+  const auto one_band = [&](const std::vector<double>& along, double spread, double spread_other,
+                            const Eigen::Vector3d& axis, Sides& sides) {
+    if (sides.lo_seen || sides.hi_seen || !(spread < 0.25 * spread_other)) return false;
+    std::vector<double> below;
+    for (const Eigen::Vector3f& pf : s.points) {
+      const Eigen::Vector3d p = pf.cast<double>();
+      if (up.dot(p) < rim.height - 3 * opt.tol) below.push_back(axis.dot(p));
+    }
+    if (below.size() < 20) return false;
+    const double lo = quantile(along, 0.02), hi = quantile(along, 0.98);
+    const double inside = quantile(below, 0.5);
+    if (inside > hi) sides.lo_seen = true, sides.lo = quantile(along, 1.0);
+    else if (inside < lo) sides.hi_seen = true, sides.hi = quantile(along, 0.0);
+    else return false;
+    sides.mid = 0.5 * (lo + hi);
+    return true;
+  };
+  const Eigen::Vector3d a1 = c * e1 + sn * e2, a2 = up.cross(a1);
+  const bool band_x = one_band(xr, spread_x, spread_y, a1, cx),
+             band_y = one_band(yr, spread_y, spread_x, a2, cy);
   const auto off = [&](const Sides& other, double v) {
     return (!other.lo_seen || v > other.lo + width) && (!other.hi_seen || v < other.hi - width);
   };
@@ -194,13 +220,21 @@ RimFit fit_rim(const PlaneSamples& s, const Eigen::Vector3d& up, const Eigen::Ve
   }
   for (std::size_t i : on_rim) depth.push_back(s.points[i].z());
   const double spacing = opt.focal > 0 ? s.stride * quantile(depth, 0.5) / opt.focal : 0.0;
-  const Sides fx = find_sides(xs, width, 0.5 * spacing, 0.05, 1, false, cx.mid);
-  const Sides fy = find_sides(ys, width, 0.5 * spacing, 0.05, 1, false, cy.mid);
+  // A band's inner edge is its innermost point (a fine pass would split it at its middle),
+  // moved in by half a sample spacing as find_sides does.
+  Sides fx = band_x ? cx : find_sides(xs, width, 0.5 * spacing, 0.05, 1, false, cx.mid);
+  Sides fy = band_y ? cy : find_sides(ys, width, 0.5 * spacing, 0.05, 1, false, cy.mid);
+  for (Sides* f : {band_x ? &fx : nullptr, band_y ? &fy : nullptr})
+    if (f) f->lo_seen ? f->lo += 0.5 * spacing : f->hi -= 0.5 * spacing;
   rim.edge = {fx.lo, fx.hi, fy.lo, fy.hi};
   // A side counts when both passes saw it.
   rim.seen = {cx.lo_seen && fx.lo_seen, cx.hi_seen && fx.hi_seen, cy.lo_seen && fy.lo_seen,
               cy.hi_seen && fy.hi_seen};
-  if (!(rim.seen[0] || rim.seen[1]) || !(rim.seen[2] || rim.seen[3])) {
+  // A side on at least one axis. With the camera tilted far, the near side may be all that
+  // stands out: the far side is beyond the image and the two others are slivers at its border,
+  // no denser than the near side's own points along that axis (bin_fit.cpp then takes the
+  // interior to the farthest points seen below the rim along the axis without a side).
+  if (!(rim.seen[0] || rim.seen[1]) && !(rim.seen[2] || rim.seen[3])) {
     rim.found = false;
     rim.why = "the structure at the rim's height is not a rectangular frame";
   }
@@ -209,7 +243,7 @@ RimFit fit_rim(const PlaneSamples& s, const Eigen::Vector3d& up, const Eigen::Ve
 
 std::optional<Eigen::Vector3d> rim_normal(const PlaneSamples& s, const RimFit& rim,
                                           const Eigen::Vector3d& up, double tol) {
-  if (!rim.found || rim.samples.size() < 100) return std::nullopt;
+  if (rim.samples.size() < 100) return std::nullopt;
   Eigen::Vector3d mean = Eigen::Vector3d::Zero();
   for (std::size_t i : rim.samples) mean += s.points[i].cast<double>();
   mean /= double(rim.samples.size());
@@ -222,7 +256,7 @@ std::optional<Eigen::Vector3d> rim_normal(const PlaneSamples& s, const RimFit& r
   const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(cov);  // ascending eigenvalues
   Eigen::Vector3d n = eig.eigenvectors().col(0);
   if (n.dot(up) < 0) n = -n;
-  const bool spread = std::sqrt(std::max(0.0, eig.eigenvalues()(1))) > 10 * tol;
+  const bool spread = std::sqrt(std::max(0.0, eig.eigenvalues()(1))) > 5 * tol;
   const bool flat = std::sqrt(std::max(0.0, eig.eigenvalues()(0))) <= tol;
   const bool near = n.dot(up) >= std::cos(10 * std::numbers::pi / 180);
   if (!(spread && flat && near)) return std::nullopt;

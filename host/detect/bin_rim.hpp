@@ -52,7 +52,8 @@ RimFit fit_rim(const PlaneSamples& samples, const Eigen::Vector3d& up, const Eig
                const Eigen::Vector3d& e2, const RimOptions& opt);
 
 // The normal of the plane through the rim's samples (least squares), facing the camera, if it is
-// a sound plane near `up`: at least 100 samples spread over a frame, not a line (the in-plane
+// a sound plane near `up` (also when the frame was not found: the structure at one height along
+// the border then gives the level to try again with): at least 100 samples spread over a frame, not a line (the in-plane
 // spread both ways over 10 tol), RMS distance within tol, within 10 degrees of up. The rim is
 // level by construction, while the plane "up" was first taken from (the floor with flat parts
 // on it, or a layer of parts) may lean: measured 1.7-2.8 degrees on plate-filled bins.

@@ -182,6 +182,50 @@ TEST(BinFit, GivenSizeNeedsNoFloor) {
 
 // A full bin seen tilted: the floor is hidden under the parts, so "up" comes from the walls
 // (or the rim's plane); with the size given the floor is the rim minus H.
+// Tilted far and near: the far rim is beyond the image and the side rims are cut to slivers at
+// its border, so only the near side of the rim stands out; the near wall's outer face, a large
+// plane facing the camera, must not be taken for the floor. The interior runs to the farthest
+// points seen below the rim along the near side; its depth across ends at the far wall.
+TEST(BinFit, OnlyTheNearRimStandsOut) {
+  for (auto [tilt, distance] : {std::pair{30.0, 700.0}, {35.0, 650.0}}) {
+    SCOPED_TRACE(testing::Message() << "tilt " << tilt << " distance " << distance);
+    BinSceneSpec s;
+    s.tilt_deg = tilt, s.distance = distance;
+    s.wall = 35;  // a rim as wide as the built-in bin's lip and wall together
+    const BinScene scene = make_bin_scene(s);
+    const BinFit b = fit(scene, {BinSpec::Mode::find, {}});
+    ASSERT_TRUE(b.found) << b.why;
+    SCOPED_TRACE(describe(b));
+    // One band of rim levels up less surely than a frame: within 2 degrees and 6 mm.
+    EXPECT_LT(angle_deg(b.axes.col(2), scene.bin_to_cam.col(2)), 2.0);
+    EXPECT_NEAR(b.interior.z(), s.H, 6.0);
+    EXPECT_FALSE(b.unseen_sides.empty());
+    // Whatever the interior holds in view: every point below the rim inside the true interior
+    // lies inside the found one, and the near rim outside it.
+    const PointImage pts = depth_to_points_reference(scene.depth, scene.cam);
+    std::size_t in_true = 0, in_both = 0, near_rim = 0, near_rim_in = 0;
+    for (std::size_t i = 0; i < pts.xyzw.size() / 4; ++i) {
+      if (pts.xyzw[4 * i + 3] == 0.0f) continue;
+      const Eigen::Vector3d p(pts.xyzw[4 * i], pts.xyzw[4 * i + 1], pts.xyzw[4 * i + 2]);
+      const Eigen::Vector3d q = scene.to_bin(p), f = b.axes.transpose() * (p - b.origin);
+      const bool inside_found = std::abs(f.x()) <= b.interior.x() / 2 + 1 &&
+                                std::abs(f.y()) <= b.interior.y() / 2 + 1;
+      if (std::abs(q.x()) < s.W / 2 - 5 && std::abs(q.y()) < s.D / 2 - 5 && q.z() < s.H - 5) {
+        ++in_true;
+        in_both += inside_found;
+      }
+      if (q.y() < -s.D / 2 - 2 && q.z() > s.H - 1) {
+        ++near_rim;
+        near_rim_in += inside_found;
+      }
+    }
+    ASSERT_GT(in_true, 1000u);
+    ASSERT_GT(near_rim, 100u);
+    EXPECT_GT(double(in_both), 0.99 * double(in_true));
+    EXPECT_EQ(near_rim_in, 0u);
+  }
+}
+
 TEST(BinFit, FullBinTiltedCamera) {
   BinSceneSpec s;
   s.tilt_deg = 20;
