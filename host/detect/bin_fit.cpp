@@ -125,8 +125,12 @@ BinFit fit_bin(ocl::Device& dev, const std::vector<float>& xyzw, std::uint32_t w
       e2 = up.cross(e1);
       rim = fit_rim(s, up, e1, e2, ro);
       if (c == 0 && pass == 0 && !rim.found) bin.why = rim.why;  // the largest plane's reason
-      if (pass + 1 == kRimPasses) break;
-      const std::optional<Eigen::Vector3d> level = rim_normal(s, rim, up, bin.tol);
+      // A frame found at a level up is the answer; a frame found at the first up is levelled
+      // once, as before (samples spread over 10 tolerances both ways); a structure that is no
+      // frame yet is levelled from samples spread over 5 (one side and slivers of two others).
+      if (pass + 1 == kRimPasses || (rim.found && pass > 0)) break;
+      const std::optional<Eigen::Vector3d> level =
+          rim_normal(s, rim, up, bin.tol, rim.found ? 10.0 : 5.0);
       if (!level || std::acos(std::min(1.0, level->dot(up))) < 0.1 * kDeg) break;
       up = *level;
     }

@@ -242,7 +242,8 @@ RimFit fit_rim(const PlaneSamples& s, const Eigen::Vector3d& up, const Eigen::Ve
 }
 
 std::optional<Eigen::Vector3d> rim_normal(const PlaneSamples& s, const RimFit& rim,
-                                          const Eigen::Vector3d& up, double tol) {
+                                          const Eigen::Vector3d& up, double tol,
+                                          double min_spread) {
   if (rim.samples.size() < 100) return std::nullopt;
   Eigen::Vector3d mean = Eigen::Vector3d::Zero();
   for (std::size_t i : rim.samples) mean += s.points[i].cast<double>();
@@ -256,7 +257,7 @@ std::optional<Eigen::Vector3d> rim_normal(const PlaneSamples& s, const RimFit& r
   const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(cov);  // ascending eigenvalues
   Eigen::Vector3d n = eig.eigenvectors().col(0);
   if (n.dot(up) < 0) n = -n;
-  const bool spread = std::sqrt(std::max(0.0, eig.eigenvalues()(1))) > 5 * tol;
+  const bool spread = std::sqrt(std::max(0.0, eig.eigenvalues()(1))) > min_spread * tol;
   const bool flat = std::sqrt(std::max(0.0, eig.eigenvalues()(0))) <= tol;
   const bool near = n.dot(up) >= std::cos(10 * std::numbers::pi / 180);
   if (!(spread && flat && near)) return std::nullopt;

@@ -47,18 +47,21 @@ struct RimOptions {
 //    its peak: a first, coarse edge. Then again with only the points off the other sides (which
 //    run up to the edge): a side runs inward over the bins holding 5 % of its peak (one empty
 //    bin allowed), and its inner edge is the innermost point of that run, moved in by half a
-//    sample spacing. found needs at least one side on each axis.
+//    sample spacing. found needs a side on at least one axis; where the rim's points form one
+//    band (only the near side of a bin seen from far off to one side), that band is a side.
 RimFit fit_rim(const PlaneSamples& samples, const Eigen::Vector3d& up, const Eigen::Vector3d& e1,
                const Eigen::Vector3d& e2, const RimOptions& opt);
 
 // The normal of the plane through the rim's samples (least squares), facing the camera, if it is
 // a sound plane near `up` (also when the frame was not found: the structure at one height along
-// the border then gives the level to try again with): at least 100 samples spread over a frame, not a line (the in-plane
-// spread both ways over 10 tol), RMS distance within tol, within 10 degrees of up. The rim is
+// the border then gives the level to try again with): at least 100 samples spread over a
+// frame, not a line (the in-plane spread both ways over min_spread tol), RMS distance within
+// tol, within 10 degrees of up. The rim is
 // level by construction, while the plane "up" was first taken from (the floor with flat parts
 // on it, or a layer of parts) may lean: measured 1.7-2.8 degrees on plate-filled bins.
 std::optional<Eigen::Vector3d> rim_normal(const PlaneSamples& samples, const RimFit& rim,
-                                          const Eigen::Vector3d& up, double tol);
+                                          const Eigen::Vector3d& up, double tol,
+                                          double min_spread = 10.0);
 
 // A frame, not a layer: of the samples at the rim's height, at most this share may lie inside
 // the interior. A layer of parts at one height over the whole view is not a rim; a bin filled up
