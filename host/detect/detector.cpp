@@ -224,7 +224,8 @@ void take_pose(Detection& d, const RefinedPose& r, std::uint64_t votes, std::uin
 
 std::vector<Detection> Detector::refine_and_rank(
     std::vector<Detection> detections, const std::vector<std::vector<PoseCluster>>& candidates,
-    const ocl::Buffer<float>& points, const bp_camera& cam, DetectTimes& t, const BinFit* bin) {
+    const ocl::Buffer<float>& points, const bp_camera& cam, DetectTimes& t, bool sensor,
+    const BinFit* bin) {
   Stopwatch clock;
   std::vector<PoseToRefine> poses;
   struct Owner {
@@ -257,7 +258,7 @@ std::vector<Detection> Detector::refine_and_rank(
   };
   std::vector<RefinedPose> refined =
       refine_and_verify(sums, cam, fit_geometry_, fit_model_.size, poses, ro);
-  if (!twin_probes_.probes.points.empty()) {
+  if (sensor && !twin_probes_.probes.points.empty()) {
     TwinTestOptions to;
     to.band_ratio = float(params_.verify_twin);
     twin_test(
@@ -424,7 +425,7 @@ std::vector<Detection> Detector::detect(const DepthImage& depth, const bp_camera
     detections.push_back(d);
   }
   t.hypotheses += hyps.size();
-  detections = refine_and_rank(std::move(detections), candidates, scene.device->points, cam, t,
+  detections = refine_and_rank(std::move(detections), candidates, scene.device->points, cam, t, true,
                                masked.bin ? &*masked.bin : nullptr);
   if (times) *times += t;
   return detections;
@@ -480,7 +481,7 @@ std::vector<Detection> Detector::detect(const PointCloud& input, DetectTimes* ti
   const ocl::Buffer<float> points(dev_, std::span<const float>(image.points.xyzw),
                                   CL_MEM_READ_ONLY);
   t.prepare_ms += clock.lap();
-  detections = refine_and_rank(std::move(detections), candidates, points, image.camera, t);
+  detections = refine_and_rank(std::move(detections), candidates, points, image.camera, t, false);
   if (times) *times += t;
   return detections;
 }

@@ -187,11 +187,16 @@ class Detector {
                                             DetectTimes& t);
   // Refines and verifies every hypothesis' candidates against a point image on the device
   // (one batch for all), keeps each hypothesis' best and ranks them. With a bin found, a pose
-  // that sinks the part into its floor scores 0 (floor_check.hpp).
+  // that sinks the part into its floor scores 0 (floor_check.hpp). sensor: the points are a
+  // sensor's depth image. Not for a cloud seen through a virtual camera (scene_cloud.hpp),
+  // whose empty pixels are only gaps between points and whose depths are the nearest point's
+  // in a pixel, not the surface along the ray: the twin test (twin_test.hpp), which weighs
+  // millimetres of depth at a few hundred points, runs only on a sensor's image (measured: on
+  // the shaft's cloud it turned a right pose end for end).
   std::vector<Detection> refine_and_rank(std::vector<Detection> detections,
                                          const std::vector<std::vector<PoseCluster>>& candidates,
                                          const ocl::Buffer<float>& points, const bp_camera& cam,
-                                         DetectTimes& t, const BinFit* bin = nullptr);
+                                         DetectTimes& t, bool sensor, const BinFit* bin = nullptr);
 
   ocl::Device& dev_;
   double program_build_s_ = 0;
