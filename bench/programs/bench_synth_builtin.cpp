@@ -28,7 +28,8 @@ constexpr int kSeeds = 3;
 
 void drop_builtin(benchmark::State& state, const std::string& name, std::uint64_t seed) {
   const Mesh part = make_builtin_part(name);
-  DecomposeOptions decompose;  // the default cache, as `binpick synth` (HACD once per part)
+  DecomposeOptions decompose;  // HACD once per part, in bench_synth_physics's cache
+  decompose.cache_dir = std::filesystem::temp_directory_path() / "binpick-bench-cache";
   const ConvexParts hulls = decompose_convex(part, decompose);
   DropOptions options;
   if (smoke()) options.objects = 20;
