@@ -18,8 +18,10 @@
 #include "synth/physics/penetration.hpp"
 #include "synth/physics/settle_drift.hpp"
 #include "bench/programs/bench_common.hpp"
+#include "bench/programs/pile_counters.hpp"
 
 namespace binpick {
+using binpick::bench::add_pile_counters;
 using binpick::bench::smoke;
 
 namespace {
@@ -44,15 +46,10 @@ void drop_builtin(benchmark::State& state, const std::string& name, std::uint64_
   const DropStats& stats = result.stats;
   state.SetLabel(name + (stats.settled ? "" : ", NOT SETTLED: " + stats.message));
   state.counters["wall_s"] = wall;
-  state.counters["sim_s"] = stats.simulated_seconds;
   state.counters["placed"] = static_cast<double>(result.poses.size());
   state.counters["not_at_rest"] = static_cast<double>(stats.unsettled.size());
   state.counters["thawed"] = stats.parts_thawed;
-  state.counters["overlap_mm"] = deepest_penetration_mm(hulls, result.poses);
-  const SettleDrift drift = settle_drift(hulls, part, options, result.poses);
-  state.counters["drift_1mm"] = drift.moved_over_1mm;
-  state.counters["drift_5mm"] = drift.moved_over_5mm;
-  state.counters["drift_max_mm"] = drift.worst_mm;
+  add_pile_counters(state, hulls, part, options, result);
 }
 
 const bool registered = [] {

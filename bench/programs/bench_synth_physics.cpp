@@ -21,8 +21,10 @@
 #include "synth/physics/settle_drift.hpp"
 #include "tests/support/test_meshes.hpp"
 #include "bench/programs/bench_common.hpp"
+#include "bench/programs/pile_counters.hpp"
 
 namespace binpick {
+using binpick::bench::add_pile_counters;
 using binpick::bench::smoke;
 
 namespace {
@@ -80,15 +82,9 @@ void BM_DropBin(benchmark::State& state) {
                  (stats.settled ? "" : ", NOT SETTLED: " + stats.message));
   state.counters["parts"] = options.objects;
   state.counters["hulls"] = static_cast<double>(hulls.hulls.size());
-  state.counters["sim_s"] = stats.simulated_seconds;
   state.counters["frozen"] = stats.parts_frozen;
   state.counters["left_bin"] = stats.parts_left_bin;
-  state.counters["overlap_mm"] = deepest_penetration_mm(hulls, result.poses);
-  // Is the bin at rest? Every part dynamic for one more simulated second (after the timed loop).
-  const SettleDrift drift = settle_drift(hulls, part, options, result.poses);
-  state.counters["drift_1mm"] = drift.moved_over_1mm;
-  state.counters["drift_5mm"] = drift.moved_over_5mm;
-  state.counters["drift_max_mm"] = drift.worst_mm;
+  add_pile_counters(state, hulls, part, options, result);
   state.counters["seed"] = static_cast<double>(options.seed);
 }
 

@@ -3,6 +3,7 @@
 // drives it: ICP iterations, then the verified score.
 #pragma once
 
+#include <algorithm>
 #include <array>
 #include <cstdint>
 #include <vector>
@@ -60,6 +61,12 @@ struct FitThresholds {
   float outline = 0;  // mm, the outline test's tolerance; 0: no outline test
   bool residuals = false;  // read back each model point's residual (the patch test)
 };
+// The z-buffer's slack for a tolerance: the cell is about 1.5 voxels wide, so a sloped surface
+// spans about that much depth in it, while a surface hidden behind the part's near side lies
+// farther back.
+inline float zbuffer_slack(const FitGeometry& g, float tolerance) {
+  return std::max(2.0f * g.voxel_size, tolerance);
+}
 bp_pose_fit make_pose_fit(const Eigen::Matrix3d& R, const Eigen::Vector3d& t,
                           const bp_camera& cam, const FitGeometry& geometry,
                           const FitThresholds& thresholds);

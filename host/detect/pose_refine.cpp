@@ -20,9 +20,7 @@ FitThresholds thresholds(const FitGeometry& g, float tolerance, float gate) {
   FitThresholds th;
   th.gate = gate;
   th.tolerance = tolerance;
-  // The z-buffer cell is about 1.5 voxels wide: a sloped surface spans about that much depth in
-  // it, a surface hidden behind the part's near side lies farther back.
-  th.slack = std::max(2.0f * g.voxel_size, th.tolerance);
+  th.slack = zbuffer_slack(g, th.tolerance);
   return th;
 }
 

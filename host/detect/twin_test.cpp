@@ -75,7 +75,7 @@ void twin_test(const FitSumsFn& sums_of, const bp_camera& cam, const FitGeometry
     if (!(poses[k].score > 0)) continue;
     FitThresholds th;
     th.gate = th.tolerance = poses[k].tolerance;
-    th.slack = std::max(2.0f * g.voxel_size, th.tolerance);  // as refinement's z-buffer
+    th.slack = zbuffer_slack(g, th.tolerance);
     th.residuals = true;
     fits.push_back(make_pose_fit(poses[k].R, poses[k].t, cam, g, th));
     index.push_back(k);

@@ -187,7 +187,9 @@ void plate_and_its_look_alikes(bool holes_without_depth) {
     // The sheet beneath: about its thickness deeper, less the standard errors; no depth: as
     // far as the gate, less the look-alike's own share of points without depth.
     EXPECT_GT(refined[k].twin_excess, 1.0) << k;
-    if (!holes_without_depth) EXPECT_LT(refined[k].twin_excess, 1.6) << k;
+    if (!holes_without_depth) {
+      EXPECT_LT(refined[k].twin_excess, 1.6) << k;
+    }
     EXPECT_NEAR(refined[k].score, before[k].score * band / refined[k].twin_excess, 1e-6) << k;
     EXPECT_LT(refined[k].score, 0.8 * refined[0].score) << k;
   }

@@ -59,7 +59,9 @@ TEST(TwinProbes, ThePlatesProbesLieWhereItsLookAlikesHaveHoles) {
     if (std::fabs(m.twin_probes.normals[i].z()) < 0.1f) {
       const bool outline = std::fabs(p.x()) > 53.5 || std::fabs(p.y()) > 23.5;
       // (A voxel's mean of points on a round wall lies a little inside the circle.)
-      if (!outline) EXPECT_NEAR(inside_hole(p.x(), p.y()), 0.0, 0.5) << i << " at " << p.transpose();
+      if (!outline) {
+        EXPECT_NEAR(inside_hole(p.x(), p.y()), 0.0, 0.5) << i << " at " << p.transpose();
+      }
       ++walls;
       continue;
     }
