@@ -80,6 +80,11 @@ void add_detect_cli_options(CLI::App* verb, DetectCliOptions& a, const std::stri
           "look-alike of the part (a plate turned over) has a hole, by more than this "
           "(fraction of the diameter, after two standard errors) has its score multiplied by "
           "band / excess, in [0, 1]; 0: off");
+  add("verify-edge", p.verify_edge,
+      "edge test, for thin parts (sheet metal): the score is multiplied by the depth the "
+          "sensor sees the part's edges step down by (mean over points just beyond them, plus "
+          "two standard errors) over this many verification tolerances, at most 1, in [0, 10]; "
+          "0: off");
   add("roi", p.roi,
       "only this box may hold hypotheses and crops: camera:x0,y0,z0,x1,y1,z1 (camera frame, "
           "mm) or bin:x0,y0,z0,x1,y1,z1 (the bin's frame: origin at the floor's centre, z up, "

@@ -136,6 +136,7 @@ std::string detection_line(std::size_t rank, const Detection& d) {
     line += fmt::format("; {:.2f} mm spread along the rays beyond the noise", d.ray_excess);
   if (d.twin_tested)
     line += fmt::format("; {:.2f} mm seen through where a look-alike has a hole", d.twin_excess);
+  if (d.edge_tested) line += fmt::format("; edges step down by {:.2f} mm", d.edge_step);
   if (d.see_through > 0) line += fmt::format("; {} seen through", d.see_through);
   if (!d.reason.empty()) line += "; " + d.reason;
   return line;

@@ -68,6 +68,7 @@ const std::map<std::string, Field>& fields() {
       {"verify-patch", real(&DetectParams::verify_patch)},
       {"verify-ray", real(&DetectParams::verify_ray)},
       {"verify-twin", real(&DetectParams::verify_twin)},
+      {"verify-edge", real(&DetectParams::verify_edge)},
       {"verify-through", real(&DetectParams::verify_through)},
       {"roi", text(&DetectParams::roi)},
       {"bin", text(&DetectParams::bin)},

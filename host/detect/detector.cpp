@@ -65,6 +65,7 @@ std::optional<ParamProblem> find_param_problem(const DetectParams& p) {
       {in(p.verify_ray, 0, 1), {"verify-ray", p.verify_ray, "[0, 1]"}},
       {in(p.verify_through, 0, 100), {"verify-through", p.verify_through, "[0, 100]"}},
       {in(p.verify_twin, 0, 1), {"verify-twin", p.verify_twin, "[0, 1]"}},
+      {in(p.verify_edge, 0, 10), {"verify-edge", p.verify_edge, "[0, 10]"}},
       {in(p.bin_margin, 0, 10), {"bin-margin", p.bin_margin, "[0, 10]"}},
       {p.instances <= 1000, {"instances", double(p.instances), "[0, 1000]"}},
   };
@@ -136,19 +137,32 @@ Detector::Detector(const PpfModel& model, const DetectParams& params, ocl::Devic
   fit_geometry_.diameter = model_.diameter;
   fit_geometry_.voxel_size = model_.voxel_size;
   fit_geometry_.centroid = model_centroid(model_.cloud);
-  if (params_.verify_twin > 0 && !model_.twin_probes.points.empty()) {
-    twin_probes_.fit_points = fit_model_.size;
+  outline_ratio_ = outline_ratio_for(model_.cloud, model_.diameter, params_.verify_tolerance);
+  // The probes of one extra pass: the look-alikes' (twin test), then, for a thin part (no
+  // outline test), the edge probes (edge test).
+  twin_probes_.twins = static_cast<std::uint32_t>(model_.near_symmetries.size());
+  if (params_.verify_twin > 0) {
     twin_probes_.probes = model_.twin_probes;
     twin_probes_.probe_twin = model_.probe_twin;
-    twin_probes_.twins = static_cast<std::uint32_t>(model_.near_symmetries.size());
-    PointCloud both = fit_cloud;
-    both.points.insert(both.points.end(), model_.twin_probes.points.begin(),
-                       model_.twin_probes.points.end());
-    both.normals.insert(both.normals.end(), model_.twin_probes.normals.begin(),
-                        model_.twin_probes.normals.end());
-    twin_model_ = upload_fit_model(dev_, both);
   }
-  outline_ratio_ = outline_ratio_for(model_.cloud, model_.diameter, params_.verify_tolerance);
+  if (params_.verify_edge > 0 && outline_ratio_ == 0) {
+    const PointCloud& edges = model_.edge_probes;
+    twin_probes_.edge_probes = static_cast<std::uint32_t>(edges.points.size());
+    twin_probes_.probes.points.insert(twin_probes_.probes.points.end(), edges.points.begin(),
+                                      edges.points.end());
+    twin_probes_.probes.normals.insert(twin_probes_.probes.normals.end(), edges.normals.begin(),
+                                       edges.normals.end());
+    twin_probes_.probe_twin.resize(twin_probes_.probes.points.size(), twin_probes_.twins);
+  }
+  if (!twin_probes_.probes.points.empty()) {
+    twin_probes_.fit_points = fit_model_.size;
+    PointCloud all = fit_cloud;
+    all.points.insert(all.points.end(), twin_probes_.probes.points.begin(),
+                      twin_probes_.probes.points.end());
+    all.normals.insert(all.normals.end(), twin_probes_.probes.normals.begin(),
+                       twin_probes_.probes.normals.end());
+    twin_model_ = upload_fit_model(dev_, all);
+  }
 }
 
 std::vector<PoseCluster> Detector::vote_and_cluster(const PointCloud& subsampled, Detection& d,
@@ -216,6 +230,8 @@ void take_pose(Detection& d, const RefinedPose& r, std::uint64_t votes, std::uin
   d.ray_excess = r.ray_excess;
   d.twin_tested = r.twin_tested;
   d.twin_excess = r.twin_excess;
+  d.edge_tested = r.edge_tested;
+  d.edge_step = r.edge_step;
   d.see_through = r.see_through;
   d.reason = r.reason;
 }
@@ -261,6 +277,7 @@ std::vector<Detection> Detector::refine_and_rank(
   if (sensor && !twin_probes_.probes.points.empty()) {
     TwinTestOptions to;
     to.band_ratio = float(params_.verify_twin);
+    to.edge_scale = float(params_.verify_edge);
     twin_test(
         [&](const std::vector<bp_pose_fit>& fits) {
           return pose_fit_sums(dev_, points, cam, twin_model_, fits);

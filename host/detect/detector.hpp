@@ -61,6 +61,10 @@ struct DetectParams {
   // sees through where a look-alike of it has a hole, by more than this on average, costs
   // score. Measured in docs/pipeline.md, step 9.
   double verify_twin = 0.005;
+  // Edge test's scale (0: off; twin_test.hpp, edge_test.hpp), for thin parts only: the score is
+  // multiplied by the depth the sensor sees the part's edges step down by (an upper bound) over
+  // this many verification tolerances, at most 1. Measured in docs/pipeline.md, step 9.
+  double verify_edge = 1.0;
   // Where hypotheses and crops may be (bin_spec.hpp, docs/cli.md): "" (anywhere),
   // "camera:x0,y0,z0,x1,y1,z1" or "bin:..." (mm).
   std::string roi;
@@ -112,6 +116,9 @@ struct Detection {
   // The twin test's largest mean depth excess at a look-alike's probes (mm; twin_test.hpp).
   bool twin_tested = false;
   double twin_excess = 0;
+  // The edge test's step down at the part's edges (mm, an upper bound; edge_test.hpp), if run.
+  bool edge_tested = false;
+  double edge_step = 0;
   std::uint32_t see_through = 0;    // visible model points the sensor sees past
   std::string reason;               // why the score is 0 or refinement stopped early, or why the
                                     // hypothesis was skipped (Detector::skipped)
@@ -209,7 +216,8 @@ class Detector {
   DetectParams params_;
   DeviceModel device_model_;
   DeviceFitModel fit_model_;
-  // The fit points followed by the look-alikes' probes (twin_test.hpp); empty without probes.
+  // The fit points followed by the look-alikes' probes and the edge probes (twin_test.hpp);
+  // empty without probes.
   DeviceFitModel twin_model_;
   TwinProbeModel twin_probes_;
   FitGeometry fit_geometry_;

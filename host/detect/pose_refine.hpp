@@ -81,6 +81,8 @@ struct RefinedPose {
   double ray_excess = 0;        // mm, its excess RMS along the rays (0 without it)
   bool twin_tested = false;      // the twin test ran on this pose (twin_test.hpp)
   double twin_excess = 0;        // mm, its largest depth excess at a look-alike's probes
+  bool edge_tested = false;      // the edge test ran on this pose (edge_test.hpp)
+  double edge_step = 0;          // mm, the step down at its edges (an upper bound)
   std::uint32_t iterations = 0;  // ICP steps taken
   float tolerance = 0;           // mm, the verification tolerance used (the same for all poses)
   std::string reason;          // why the score is 0 or refinement stopped early; empty if neither

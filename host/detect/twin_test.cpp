@@ -4,6 +4,7 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "host/detect/edge_test.hpp"
 #include "host/detect/ray_test.hpp"
 
 namespace binpick {
@@ -68,7 +69,9 @@ double twin_excess(const TwinEvidence& e, std::size_t min_probes, double missing
 void twin_test(const FitSumsFn& sums_of, const bp_camera& cam, const FitGeometry& g,
                const TwinProbeModel& model, std::vector<RefinedPose>& poses,
                const TwinTestOptions& opt) {
-  if (!(opt.band_ratio > 0) || model.probes.points.empty() || model.twins == 0) return;
+  const bool twins_on = opt.band_ratio > 0 && model.twins > 0;
+  const bool edges_on = opt.edge_scale > 0 && model.edge_probes > 0;
+  if (model.probes.points.empty() || !(twins_on || edges_on)) return;
   std::vector<bp_pose_fit> fits;
   std::vector<std::size_t> index;
   for (std::size_t k = 0; k < poses.size(); ++k) {
@@ -94,7 +97,7 @@ void twin_test(const FitSumsFn& sums_of, const bp_camera& cam, const FitGeometry
     const std::span<const std::uint8_t> probe_classes(sums[i].classes.data() + model.fit_points,
                                                       probes);
     const double missing_rate = r.visible > 0 ? double(r.missing) / double(r.visible) : 0.0;
-    for (std::uint32_t s = 0; s < model.twins; ++s) {
+    for (std::uint32_t s = 0; twins_on && s < model.twins; ++s) {
       const TwinEvidence e = twin_evidence(probe_residuals, probe_classes, r.R, r.t, model.probes,
                                            model.probe_twin, s, r.tolerance);
       if (e.n < opt.min_probes) continue;
@@ -103,6 +106,13 @@ void twin_test(const FitSumsFn& sums_of, const bp_camera& cam, const FitGeometry
           std::max(r.twin_excess, twin_excess(e, opt.min_probes, missing_rate, r.tolerance));
     }
     r.score *= excess_factor(r.twin_excess, band);
+    if (!edges_on) continue;
+    const TwinEvidence e = twin_evidence(probe_residuals, probe_classes, r.R, r.t, model.probes,
+                                         model.probe_twin, model.twins, r.tolerance);
+    if (e.n < opt.min_probes) continue;
+    r.edge_tested = true;
+    r.edge_step = edge_step(e, missing_rate, r.tolerance);
+    r.score *= edge_factor(r.edge_step, opt.edge_scale, r.tolerance);
   }
 }
 

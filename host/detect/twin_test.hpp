@@ -23,6 +23,9 @@
 // nothing. The excess of a probe is clamped to the gate (the verification tolerance), and one
 // beyond it on the far side counts as the gate: one probe over an empty bin does not outweigh a
 // hundred on the sheet beneath.
+//
+// The same pass carries the edge probes of a thin part (edge_probes.hpp, edge_test.hpp): points
+// just beyond its edges, where a right pose's sensor sees the surface step down.
 #pragma once
 
 #include <cstddef>
@@ -59,22 +62,27 @@ TwinEvidence twin_evidence(std::span<const float> residuals, std::span<const std
 double twin_excess(const TwinEvidence& e, std::size_t min_probes, double missing_rate, double gate);
 
 // The probes on the device side: the fit points followed by the probes, so that the probe pass's
-// z-buffer holds the whole model (a probe behind the part's own near side is hidden).
+// z-buffer holds the whole model (a probe behind the part's own near side is hidden). The
+// probes are the look-alikes' (probe_twin < twins) followed by `edge_probes` edge probes
+// (probe_twin == twins).
 struct TwinProbeModel {
   std::uint32_t fit_points = 0;  // residuals [0, fit_points) belong to the fit points
   PointCloud probes;             // model frame
   std::vector<std::uint32_t> probe_twin;
   std::uint32_t twins = 0;       // look-alike count
+  std::uint32_t edge_probes = 0;
 };
 
 struct TwinTestOptions {
-  float band_ratio = 0;          // dead band, fraction of the diameter; 0: no test
-  std::size_t min_probes = 10;   // fewer visible probes with depth: that look-alike is untested
+  float band_ratio = 0;          // twin test's dead band, fraction of the diameter; 0: no test
+  float edge_scale = 0;          // edge test's scale, in tolerances (edge_test.hpp); 0: no test
+  std::size_t min_probes = 10;   // fewer visible probes with depth: untested
 };
 
 // One probe pass (sums: pose_fit_sums on fit points + probes, or the reference) for every pose
 // with a positive score, at its verification tolerance as the gate; multiplies the scores by
-// the factor and records twin_excess / twin_tested. No-op without probes or with band 0.
+// the twin and edge factors and records twin_excess / twin_tested, edge_step / edge_tested.
+// No-op without probes or with both tests off.
 void twin_test(const FitSumsFn& sums, const bp_camera& cam, const FitGeometry& geometry,
                const TwinProbeModel& model, std::vector<RefinedPose>& poses,
                const TwinTestOptions& opt);

@@ -36,6 +36,9 @@ struct PpfModel {
   // near_symmetries. Empty in files before version 4: detection then has no twin test.
   PointCloud twin_probes;
   std::vector<std::uint32_t> probe_twin;
+  // Points just beyond the part's edges, in the planes of its faces (edge_probes.hpp), for the
+  // edge test of thin parts. Empty in files before version 5: detection then has no edge test.
+  PointCloud edge_probes;
 };
 
 struct PpfTrainParams {

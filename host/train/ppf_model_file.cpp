@@ -13,6 +13,7 @@
 #include "host/core/read_file.hpp"
 #include "host/train/near_symmetry.hpp"
 #include "host/train/ppf_features.hpp"
+#include "host/train/edge_probes.hpp"
 #include "host/train/twin_probes.hpp"
 
 namespace binpick {
@@ -173,6 +174,14 @@ std::string serialize_ppf_model(const PpfModel& m, std::uint32_t version) {
     for (const auto& v : m.twin_probes.normals) append(payload, v.data(), 3);
     append(payload, m.probe_twin.data(), m.probe_twin.size());
   }
+  if (version >= 5) {
+    if (m.edge_probes.normals.size() != m.edge_probes.points.size())
+      throw std::logic_error("serialize_ppf_model: one normal per edge probe");
+    const auto edges = static_cast<std::uint32_t>(m.edge_probes.points.size());
+    append(payload, &edges, 1);
+    for (const auto& p : m.edge_probes.points) append(payload, p.data(), 3);
+    for (const auto& v : m.edge_probes.normals) append(payload, v.data(), 3);
+  }
 
   Header h{};
   std::memcpy(h.magic, kMagic, 8);
@@ -259,6 +268,15 @@ PpfModel parse_ppf_model(std::string_view bytes, const std::string& name) {
     if (probe_count > near_count * kMaxProbesPerTwin) throw corrupt("probe count");
     expected += 4 + probe_count * kProbeBytes;
   }
+  std::uint32_t edge_count = 0;
+  if (h.version >= 5) {
+    if (bytes.size() < expected + 4)
+      throw InputError(file + " is truncated (" + std::to_string(bytes.size()) + " of at least " +
+                       std::to_string(expected + 4) + " bytes)");
+    std::memcpy(&edge_count, bytes.data() + expected, 4);
+    if (edge_count > kMaxEdgeProbes) throw corrupt("edge probe count");
+    expected += 4 + std::uint64_t(edge_count) * 24;
+  }
   if (bytes.size() < expected)
     throw InputError(file + " is truncated (" + std::to_string(bytes.size()) + " of " +
                      std::to_string(expected) + " bytes)");
@@ -311,6 +329,16 @@ PpfModel parse_ppf_model(std::string_view bytes, const std::string& name) {
   } else {
     // Older files: the look-alikes as training finds them (the model's points suffice); no probes.
     m.near_symmetries = find_near_symmetries(m.cloud, m.voxel_size, m.symmetries);
+  }
+  if (h.version >= 5) {
+    payload.remove_prefix(4);
+    m.edge_probes.points.resize(edge_count);
+    m.edge_probes.normals.resize(edge_count);
+    for (auto& p : m.edge_probes.points) take(payload, p.data(), 3);
+    for (auto& v : m.edge_probes.normals) take(payload, v.data(), 3);
+    for (std::size_t i = 0; i < edge_count; ++i)
+      if (!m.edge_probes.points[i].allFinite() || !m.edge_probes.normals[i].allFinite())
+        throw corrupt("edge probe " + std::to_string(i));
   }
 
   // A consistent table, so that detection can index it without checks.

@@ -13,9 +13,11 @@
 //   each), normals (3 floats each); from version 4 on, the look-alikes (near_symmetry.hpp):
 //   count (uint32), each as the top three rows of its 4x4 transform (12 doubles, row-major), and
 //   their probes (twin_probes.hpp): count (uint32), points (3 floats each), normals (3 floats
-//   each), the look-alike of each (uint32 each).
-// Version 1 to 3 files (before symmetries, refinement points, probes) are still read, without
-// them (the look-alikes found again from the points): the table is the same. Readers refuse other versions: a changed format or feature
+//   each), the look-alike of each (uint32 each); from version 5 on, the edge probes
+//   (edge_probes.hpp): count (uint32), points (3 floats each), normals (3 floats each).
+// Version 1 to 4 files (before symmetries, refinement points, probes, edge probes) are still
+// read, without them (the look-alikes found again from the points): the table is the same.
+// Readers refuse other versions: a changed format or feature
 // convention needs a retrain.
 #pragma once
 
@@ -28,7 +30,7 @@
 
 namespace binpick {
 
-inline constexpr std::uint32_t kPpfModelFormatVersion = 4;
+inline constexpr std::uint32_t kPpfModelFormatVersion = 5;
 inline constexpr std::uint32_t kPpfModelOldestReadVersion = 1;
 
 // The file's bytes; identical for identical models. Older versions (tests of old files) leave
@@ -38,7 +40,7 @@ std::string serialize_ppf_model(const PpfModel& model,
 
 // Parses bytes read from `name` (used in messages). Throws InputError: "model file NAME is
 // truncated", "... is not a binpick PPF model", "... was written by format version N, this
-// binpick reads versions 1 to 4: retrain", "... is corrupt (...)".
+// binpick reads versions 1 to 5: retrain", "... is corrupt (...)".
 PpfModel parse_ppf_model(std::string_view bytes, const std::string& name);
 
 // Writes through write_file_atomically (no partial file on error).

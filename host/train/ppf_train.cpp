@@ -9,6 +9,7 @@
 #include "host/train/near_symmetry.hpp"
 #include "host/train/surface_sampling.hpp"
 #include "host/train/symmetry_detect.hpp"
+#include "host/train/edge_probes.hpp"
 #include "host/train/twin_probes.hpp"
 #include "host/train/voxel_subsample.hpp"
 
@@ -63,6 +64,7 @@ PpfModel train_ppf_model(const Mesh& mesh, const PpfTrainParams& params, PpfTrai
   const TwinProbes probes = find_twin_probes(mesh, model.voxel_size, model.near_symmetries, dev);
   model.twin_probes = probes.cloud;
   model.probe_twin = probes.twin;
+  model.edge_probes = find_edge_probes(mesh, model.voxel_size, dev);
   st.symmetry_s = clock.lap_seconds();
   st.points = model.cloud.points.size();
   st.pairs = st.points * (st.points > 0 ? st.points - 1 : 0);

@@ -3,19 +3,12 @@
 #include <algorithm>
 #include <cmath>
 
-#include "host/core/cloud_input.hpp"
 #include "host/train/oriented_point_grid.hpp"
-#include "host/train/surface_sampling.hpp"
-#include "host/train/voxel_subsample.hpp"
+#include "host/train/probe_surface.hpp"
 
 namespace binpick {
 namespace {
 
-// Surface samples per probe voxel area for the surface the probes are tested against.
-constexpr double kSurfaceSamplesPerProbeArea = 16.0;
-// The dense surface is never larger than this (a part whose probe voxel is tiny against its
-// area: the probes then thin out, and the margin still holds, since it scales with the voxel).
-constexpr std::size_t kMaxSurfaceSamples = std::size_t(1) << 22;
 // A surface agrees with a probe's normal within 30 degrees, as near_symmetry.cpp asks.
 constexpr double kSameFacingCos = 0.8660254037844386;
 constexpr double kPi = 3.14159265358979323846;
@@ -41,14 +34,10 @@ TwinProbes find_twin_probes(const Mesh& mesh, float voxel_size,
                             const std::vector<Eigen::Isometry3d>& near, ocl::Device& dev) {
   TwinProbes out;
   if (near.empty() || !(voxel_size > 0)) return out;
-  const float probe_voxel = voxel_size / kProbeVoxelDivisor;
-  const double areas = surface_area(mesh) / (double(probe_voxel) * probe_voxel);
-  const auto samples = static_cast<std::size_t>(
-      std::clamp(std::ceil(kSurfaceSamplesPerProbeArea * areas), 1.0, double(kMaxSurfaceSamples)));
-  // Another seed than training's sample: the probes need not coincide with the model's points.
-  const PointCloud surface = with_unit_normals(sample_surface(mesh, samples, kSurfaceSamplingSeed + 1));
-  const PointCloud candidates =
-      with_unit_normals(voxel_subsample(dev, surface, probe_voxel, VoxelFaces::both).cloud);
+  const ProbeSurface dense = probe_surface(mesh, voxel_size, dev);
+  const float probe_voxel = dense.probe_voxel;
+  const PointCloud& surface = dense.surface;
+  const PointCloud& candidates = dense.candidates;
   const float margin = kProbeMarginVoxels * probe_voxel;
   const OrientedPointGrid grid(surface, margin, float(kSameFacingCos));
   const OrientedPointGrid fine(surface, 0.5f * probe_voxel, float(kSameFacingCos));

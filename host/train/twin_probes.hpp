@@ -23,11 +23,11 @@
 #include <Eigen/Geometry>
 
 #include "host/core/mesh.hpp"
+#include "host/train/probe_surface.hpp"
 #include "host/runtime/cl/cl_device.hpp"
 
 namespace binpick {
 
-inline constexpr float kProbeVoxelDivisor = 4.0f;
 inline constexpr float kProbeMarginVoxels = 1.5f;     // in probe voxels
 inline constexpr std::size_t kMaxProbesPerTwin = 1024;  // evenly thinned beyond this
 

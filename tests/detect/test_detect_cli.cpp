@@ -198,6 +198,16 @@ TEST_F(DetectCli, ParamsFileAppliesAndCommandLineWins) {
                                     model_, (*dir_ / "data").string(), out.string()));
   EXPECT_EQ(r.status, 2);
   EXPECT_NE(r.err.find("verify-twin -0.1 must be in [0, 1]"), std::string::npos) << r.err;
+  // And the edge test's scale.
+  { std::ofstream(params) << R"({"verify_edge": 11})"; }
+  r = test::run_binpick(fmt::format("detect --model {} --dataset {} --out {} --params {}", model_,
+                                    (*dir_ / "data").string(), out.string(), params.string()));
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.err.find("verify-edge 11 must be in [0, 10]"), std::string::npos) << r.err;
+  r = test::run_binpick(fmt::format("detect --model {} --dataset {} --out {} --verify-edge nan",
+                                    model_, (*dir_ / "data").string(), out.string()));
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.err.find("verify-edge"), std::string::npos) << r.err;
 }
 
 TEST_F(DetectCli, CloudPath) {

@@ -7,13 +7,12 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <random>
 #include <span>
 
 #include "host/detect/twin_test.hpp"
 #include "host/train/ppf_model.hpp"
-#include "host/train/surface_sampling.hpp"
 #include "synth/parts/builtin_parts.hpp"
+#include "tests/support/plate_scene.hpp"
 #include "tests/support/test_device.hpp"
 
 using namespace binpick;
@@ -105,42 +104,11 @@ void plate_and_its_look_alikes(bool holes_without_depth) {
   auto& dev = test::test_device();
   const PpfModel model = train_ppf_model(make_builtin_part("plate"), PpfTrainParams{}, nullptr, dev);
   ASSERT_EQ(model.near_symmetries.size(), 3u);
-  // The plate face up 500 mm ahead, a little tilted; f = 500 px: a pixel is a millimetre.
-  const bp_camera cam{500.0f, 500.0f, 160.0f, 120.0f, 1.0f, 320, 240, 0};
-  const Eigen::Matrix3d R =
-      (Eigen::AngleAxisd(0.1, Eigen::Vector3d(1, 1, 0).normalized()) *
-       Eigen::AngleAxisd(3.14159265358979, Eigen::Vector3d::UnitX()))
-          .toRotationMatrix();
-  const Eigen::Vector3d t(0, 0, 500);
-  // The image: the plate's dense surface, and beneath it the plane or no depth; 0.5 mm noise.
-  const Eigen::Vector3d up = R * Eigen::Vector3d::UnitZ();  // towards the camera
-  const Eigen::Vector3d beneath = t - 0.75 * up;           // the plate beneath's top face
-  PointImage image;
-  image.width = cam.width;
-  image.height = cam.height;
-  image.xyzw.assign(std::size_t(cam.width) * cam.height * 4, 0.0f);
-  std::vector<float> zbuf(std::size_t(cam.width) * cam.height, INFINITY);
-  const PointCloud dense = sample_surface(make_builtin_part("plate"), 200000);
-  for (const Eigen::Vector3f& m : dense.points) {
-    const Eigen::Vector3d q = R * m.cast<double>() + t;
-    const long u = std::lround(cam.fx * q.x() / q.z() + cam.cx);
-    const long v = std::lround(cam.fy * q.y() / q.z() + cam.cy);
-    if (u < 0 || v < 0 || u >= long(cam.width) || v >= long(cam.height)) continue;
-    float& z = zbuf[std::size_t(v) * cam.width + std::size_t(u)];
-    z = std::min(z, float(q.z()));
-  }
-  std::mt19937 rng(3);
-  std::normal_distribution<float> N(0.0f, 0.5f);
-  for (std::uint32_t v = 0; v < cam.height; ++v)
-    for (std::uint32_t u = 0; u < cam.width; ++u) {
-      const std::size_t i = std::size_t(v) * cam.width + u;
-      const Eigen::Vector3d ray((u - cam.cx) / cam.fx, (v - cam.cy) / cam.fy, 1.0);
-      const double plane = up.dot(beneath) / up.dot(ray);  // depth of the plane at this pixel
-      const float z = std::min(zbuf[i], float(plane)) + N(rng);
-      float* p = &image.xyzw[i * 4];
-      p[0] = float(ray.x()) * z, p[1] = float(ray.y()) * z, p[2] = z;
-      p[3] = holes_without_depth && !std::isfinite(zbuf[i]) ? 0.0f : 1.0f;
-    }
+  const bp_camera cam = test::plate_camera();
+  const Eigen::Isometry3d pose = test::plate_pose();
+  const Eigen::Matrix3d R = pose.linear();
+  const Eigen::Vector3d t = pose.translation();
+  const PointImage image = test::plate_over_plane(cam, pose, holes_without_depth);
 
   FitGeometry g;
   g.diameter = model.diameter;

@@ -354,7 +354,7 @@ TEST(PpfModelFile, RoundTripAndRefusals) {
   wrong = bytes;
   wrong[8] = 7;  // version 7
   EXPECT_NE(parse_message(wrong).find(
-                "was written by format version 7, this binpick reads versions 1 to 4: retrain"),
+                "was written by format version 7, this binpick reads versions 1 to 5: retrain"),
             std::string::npos)
       << parse_message(wrong);
   wrong = bytes;
@@ -414,13 +414,14 @@ TEST(PpfModelFile, SymmetriesRoundTripAndVersionOneIsStillRead) {
   without.near_symmetries = find_near_symmetries(m.cloud, m.voxel_size, {});
   without.twin_probes = {};
   without.probe_twin = {};
+  without.edge_probes = {};
   EXPECT_TRUE(serialize_ppf_model(old) == serialize_ppf_model(without));  // (no byte dump)
-  EXPECT_THROW(serialize_ppf_model(m, 5), std::logic_error);
+  EXPECT_THROW(serialize_ppf_model(m, 6), std::logic_error);
   EXPECT_THROW(serialize_ppf_model(m, 0), std::logic_error);
 
   // Cut inside the symmetries, or right after the table (no counts): truncated.
   EXPECT_NE(parse_message(bytes.substr(0, bytes.size() - 50)).find("is truncated"), std::string::npos);
-  std::string relabelled = bytes;  // version 4 bytes called version 1: the symmetries are extra
+  std::string relabelled = bytes;  // version 5 bytes called version 1: the symmetries are extra
   relabelled[8] = 1;
   EXPECT_NE(parse_message(relabelled).find("bytes after the end"), std::string::npos);
   // Not a rotation, a zero axis, an absurd count: corrupt.
@@ -453,15 +454,16 @@ TEST(PpfModelFile, RefinementPointsRoundTripAndVersionTwoIsStillRead) {
   EXPECT_EQ(old.cloud.points, m.cloud.points);
   EXPECT_EQ(old.symmetries.discrete.size(), m.symmetries.discrete.size());
 
-  // A count beyond any model, or a cut inside the points: corrupt, truncated.
-  std::string huge = bytes;
-  // After the points: the look-alike and probe counts (8 bytes), both 0 for the box.
+  // A count beyond any model, or a cut inside the points: corrupt, truncated. (Version 4: the
+  // points are followed by the look-alike and probe counts (8 bytes), both 0 for the box.)
+  const std::string v4 = serialize_ppf_model(m, 4);
+  std::string huge = v4;
   ASSERT_TRUE(m.near_symmetries.empty());
-  const std::size_t count_at = bytes.size() - 8 - 24 * m.fit_cloud.points.size() - 4;
+  const std::size_t count_at = v4.size() - 8 - 24 * m.fit_cloud.points.size() - 4;
   huge[count_at + 3] = 0x7f;
   EXPECT_NE(parse_message(huge).find("is corrupt (fit point count)"), std::string::npos)
       << parse_message(huge);
-  EXPECT_NE(parse_message(bytes.substr(0, count_at + 2)).find("is truncated"), std::string::npos);
+  EXPECT_NE(parse_message(v4.substr(0, count_at + 2)).find("is truncated"), std::string::npos);
   PpfModel nan = m;
   nan.fit_cloud.points[3].x() = std::numeric_limits<float>::quiet_NaN();
   EXPECT_NE(parse_message(serialize_ppf_model(nan)).find("is corrupt (fit point 3)"),

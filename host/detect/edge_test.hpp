@@ -1,0 +1,32 @@
+// The edge test of verification, for thin parts (docs/pipeline.md, step 9; the points it reads
+// are host/train/edge_probes.hpp's, measured in the twin test's probe pass, twin_test.hpp).
+//
+// A sheet lying on a sheet steps down at its edges by one thickness, less than the
+// verification's tolerance, so the outline test is off for thin parts (outline_test.hpp), and
+// a pose shifted in its plane or turned on a stack of sheets agrees with the depth image
+// everywhere but at its edges, where the sensor sees the sheet run on. Beyond a right pose's
+// edges the sensor sees a step down: at least the part's thickness, often much more (a part
+// it lies across, the floor), or no depth (the projector's shadow at an edge). So at every
+// edge probe the depth excess along the ray is taken as the twin test takes it (clamped to the
+// tolerance; no depth facing the camera counts as the tolerance, the pose's own share of
+// missing depth taken off; something in front says nothing), and the mean plus two standard
+// errors is how far the pose's edges are seen to step down at most. The score is multiplied
+// by that step over `scale` tolerances, at most 1: a pose whose edges show no step keeps
+// little, one whose edges drop by a tolerance keeps all.
+//
+// Measured before building it (a prototype on the refined poses of 34 structured-light images
+// of 120 mm and 150 mm plates among other parts, ranks recomputed): top-ranked right 17 -> 28
+// of 34 (docs/pipeline.md has the measurement of this implementation).
+#pragma once
+
+#include "host/detect/twin_test.hpp"
+
+namespace binpick {
+
+// max(0, mean - missing_rate x gate + 2 standard errors) of the edge probes' evidence (mm).
+double edge_step(const TwinEvidence& e, double missing_rate, double gate);
+
+// min(1, step / (scale x gate)); 1 for scale <= 0 or gate <= 0 (no test).
+double edge_factor(double step, double scale, double gate);
+
+}  // namespace binpick

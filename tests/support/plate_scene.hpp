@@ -1,0 +1,26 @@
+// A depth image of the built-in plate lying on a plane one sheet thickness beneath it (a plate
+// on a plate), for the probe tests of verification (tests/detect/test_twin_test.cpp,
+// test_edge_test.cpp).
+#pragma once
+
+#include <Eigen/Geometry>
+
+#include "host/detect/depth_to_points.hpp"
+#include "host/detect/pose_fit.hpp"
+
+namespace binpick::test {
+
+// The camera: 320 x 240, f = 500 px, so that at 500 mm a pixel is a millimetre.
+bp_camera plate_camera();
+
+// The plate face up about 500 mm ahead, a little tilted.
+Eigen::Isometry3d plate_pose();
+
+// The plate's surface at `pose` over the plane 1.5 mm beneath it along its normal (the plate
+// beneath's top face), 0.5 mm Gaussian noise (seeded). holes_without_depth: no depth wherever
+// the plate is not (a structured-light sensor whose projector cannot light the bottom of a
+// hole).
+PointImage plate_over_plane(const bp_camera& cam, const Eigen::Isometry3d& pose,
+                            bool holes_without_depth);
+
+}  // namespace binpick::test
