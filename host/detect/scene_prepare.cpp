@@ -44,18 +44,21 @@ PreparedScene prepare_scene(ocl::Device& dev, const DepthImage& depth, const bp_
     s.timings.push_back({"normals", clock.lap()});
   }
 
-  {
-    ocl::Buffer<float> row_sums(dev, 2 * n);
-    enqueue_lowpass_depth(dev, d.points, s.width, s.height, opt.lowpass_radius, row_sums,
-                          d.filtered);
-    ocl::finish(dev);
+  s.has_lowpass = opt.lowpass;
+  if (s.has_lowpass) {
+    {
+      ocl::Buffer<float> row_sums(dev, 2 * n);
+      enqueue_lowpass_depth(dev, d.points, s.width, s.height, opt.lowpass_radius, row_sums,
+                            d.filtered);
+      ocl::finish(dev);
+    }
+    s.timings.push_back({"lowpass", clock.lap()});
   }
-  s.timings.push_back({"lowpass", clock.lap()});
 
   if (opt.read_back) {
     s.points = {s.width, s.height, d.points.read(dev)};
     if (s.has_normals) s.normals = {s.width, s.height, d.normals.read(dev)};
-    s.filtered_depth = d.filtered.read(dev);
+    if (s.has_lowpass) s.filtered_depth = d.filtered.read(dev);
     s.timings.push_back({"readback", clock.lap()});
   }
   return s;
@@ -74,8 +77,11 @@ PreparedScene prepare_scene_reference(const DepthImage& depth, const bp_camera& 
     s.normals = normals_from_points_reference(s.points, opt.normals);
     s.timings.push_back({"normals", clock.lap()});
   }
-  s.filtered_depth = lowpass_depth_reference(s.points, opt.lowpass_radius);
-  s.timings.push_back({"lowpass", clock.lap()});
+  s.has_lowpass = opt.lowpass;
+  if (s.has_lowpass) {
+    s.filtered_depth = lowpass_depth_reference(s.points, opt.lowpass_radius);
+    s.timings.push_back({"lowpass", clock.lap()});
+  }
   return s;
 }
 
