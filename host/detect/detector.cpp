@@ -389,7 +389,7 @@ std::vector<Detection> Detector::detect(const DepthImage& depth, const bp_camera
   Stopwatch hyp_clock;
   const std::vector<Hypothesis> hyps =
       find_hypotheses(dev_, scene.device->points, scene.device->filtered, scene.width,
-                      scene.height, ho, mask);
+                      scene.height, ho, mask, &cam);  // cam: rounds on the exclusion's rectangle
   t.stages.push_back({"hypotheses", hyp_clock.lap()});
   t.prepare_ms += clock.lap();
 
