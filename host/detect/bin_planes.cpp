@@ -68,17 +68,20 @@ std::vector<std::uint32_t> count_plane_inliers(ocl::Device& dev,
                                                const std::vector<Eigen::Vector3f>& points,
                                                const std::vector<bp_plane>& planes, float tol) {
   if (planes.empty()) return {};
-  std::vector<float> xyzw(4 * points.size());
-  for (std::size_t i = 0; i < points.size(); ++i) {
-    xyzw[4 * i] = points[i].x(), xyzw[4 * i + 1] = points[i].y(), xyzw[4 * i + 2] = points[i].z();
-    xyzw[4 * i + 3] = 1.0f;
-  }
-  ocl::Buffer<float> p(dev, std::span<const float>(xyzw), CL_MEM_READ_ONLY);
+  const std::size_t n = points.size();
+  std::vector<float> xyz(3 * n);  // x of every point, then y, then z
+  for (std::size_t i = 0; i < n; ++i)
+    xyz[i] = points[i].x(), xyz[n + i] = points[i].y(), xyz[2 * n + i] = points[i].z();
+  auto axis = [&](int a) {
+    return ocl::Buffer<float>(dev, std::span<const float>(xyz.data() + a * n, n), CL_MEM_READ_ONLY);
+  };
+  const ocl::Buffer<float> xs = axis(0), ys = axis(1), zs = axis(2);
   ocl::Buffer<bp_plane> pl(dev, std::span<const bp_plane>(planes), CL_MEM_READ_ONLY);
   ocl::Buffer<cl_uint> counts(dev, planes.size());
   cl::Kernel k = dev.kernel("bin_planes.cl", "bin_plane_inliers");
-  ocl::launch(dev, k, planes.size(), p, cl_uint(points.size()), pl, cl_uint(planes.size()), tol,
-              counts);
+  // One plane a work group: a plane's scan is long enough, and both cores get work.
+  ocl::launch_tasks(dev, k, planes.size(), xs, ys, zs, cl_uint(n), pl, cl_uint(planes.size()),
+                    tol, counts);
   return counts.read(dev);
 }
 

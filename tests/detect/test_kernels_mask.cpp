@@ -188,7 +188,8 @@ TEST(MaskKernels, plane_inliers_match_reference) {
   auto& dev = ocl::Device::shared();
   std::mt19937 rng(75);
   std::uniform_real_distribution<float> U(-1.0f, 1.0f);
-  for (std::size_t n : {0ul, 1ul, 777ul, 20000ul}) {
+  // Sizes around the kernel's blocks of eight points (the tail is scanned one by one).
+  for (std::size_t n : {0ul, 1ul, 7ul, 8ul, 9ul, 16ul, 777ul, 20000ul}) {
     std::vector<Eigen::Vector3f> pts;
     for (std::size_t i = 0; i < n; ++i)
       pts.emplace_back(300 * U(rng), 300 * U(rng), 900 + 100 * U(rng));
