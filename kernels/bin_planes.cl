@@ -27,3 +27,15 @@ __kernel void bin_plane_inliers(__global const float* xs, __global const float* 
   for (uint i = 8 * blocks; i < n; ++i) c += bp_plane_distance(&pl, xs[i], ys[i], zs[i]) <= tol ? 1u : 0u;
   inliers[k] = c;
 }
+
+/* The sample grid of the bin fit (sample_points in host/detect/bin_planes.cpp): work item g
+ * copies the point of grid cell (g % grid_w, g / grid_w), pixel (stride * that), so that only
+ * the grid, not the whole point image, is read back; the host keeps the ones with data, in the
+ * grid's row-major order. */
+__kernel void bin_sample_grid(__global const float4* points, const uint width,
+                              const uint stride, const uint grid_w, const uint cells,
+                              __global float4* out) {
+  const uint g = get_global_id(0);
+  if (g >= cells) return;
+  out[g] = points[(g / grid_w) * stride * width + (g % grid_w) * stride];
+}

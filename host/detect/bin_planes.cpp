@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <random>
+#include <stdexcept>
 
 #include <Eigen/Eigenvalues>
 #include <Eigen/Geometry>
@@ -45,14 +46,18 @@ std::vector<std::uint32_t> inliers_of(const std::vector<Eigen::Vector3f>& pts,
 
 }  // namespace
 
+std::uint32_t sample_stride(std::size_t valid, std::size_t max_points) {
+  return std::max<std::uint32_t>(
+      1, std::uint32_t(std::ceil(std::sqrt(double(valid) / double(std::max<std::size_t>(max_points, 1))))));
+}
+
 PlaneSamples sample_points(const std::vector<float>& xyzw, std::uint32_t width,
                            std::uint32_t height, std::size_t max_points) {
   PlaneSamples s;
   s.width = width, s.height = height;
   std::size_t valid = 0;
   for (std::size_t i = 0; i < std::size_t(width) * height; ++i) valid += xyzw[4 * i + 3] != 0.0f;
-  s.stride = std::max<std::uint32_t>(
-      1, std::uint32_t(std::ceil(std::sqrt(double(valid) / double(std::max<std::size_t>(max_points, 1))))));
+  s.stride = sample_stride(valid, max_points);
   for (std::uint32_t v = 0; v < height; v += s.stride)
     for (std::uint32_t u = 0; u < width; u += s.stride) {
       const float* p = &xyzw[4 * (std::size_t(v) * width + u)];
@@ -61,6 +66,32 @@ PlaneSamples sample_points(const std::vector<float>& xyzw, std::uint32_t width,
       s.u.push_back(u);
       s.v.push_back(v);
     }
+  return s;
+}
+
+PlaneSamples sample_points(ocl::Device& dev, const ocl::Buffer<float>& points,
+                           std::uint32_t width, std::uint32_t height, std::size_t valid,
+                           std::size_t max_points) {
+  if (points.size() < 4 * std::size_t(width) * height)
+    throw std::logic_error("sample_points: the point buffer is smaller than the image");
+  PlaneSamples s;
+  s.width = width, s.height = height;
+  s.stride = sample_stride(valid, max_points);
+  const std::uint32_t gw = (width + s.stride - 1) / s.stride, gh = (height + s.stride - 1) / s.stride;
+  const std::size_t cells = std::size_t(gw) * gh;
+  if (cells == 0) return s;
+  ocl::Buffer<float> grid(dev, 4 * cells, CL_MEM_WRITE_ONLY);
+  cl::Kernel k = dev.kernel("bin_planes.cl", "bin_sample_grid");
+  ocl::launch(dev, k, cells, points, cl_uint(width), cl_uint(s.stride), cl_uint(gw), cl_uint(cells),
+              grid);
+  const std::vector<float> g = grid.read(dev);
+  for (std::size_t c = 0; c < cells; ++c) {
+    const float* p = &g[4 * c];
+    if (p[3] == 0.0f) continue;
+    s.points.emplace_back(p[0], p[1], p[2]);
+    s.u.push_back(std::uint32_t(c % gw) * s.stride);
+    s.v.push_back(std::uint32_t(c / gw) * s.stride);
+  }
   return s;
 }
 

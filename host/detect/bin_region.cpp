@@ -47,7 +47,10 @@ SceneRegionMask apply_region(PreparedScene& scene, const RegionSetup& setup, int
     bo.spec = setup.bin;
     bo.min_height = setup.min_height;
     out.bin = known_bin ? *known_bin
-                        : fit_bin(dev, scene.device->points.read(dev), scene.width, scene.height, bo);
+                        : fit_bin(dev,
+                                  sample_points(dev, scene.device->points, scene.width,
+                                                scene.height, scene.valid_pixels),
+                                  bo);
     out.report = describe(*out.bin);
     if (out.bin->found) {
       const bool clear = setup.clear_floor && out.bin->floor_plane;

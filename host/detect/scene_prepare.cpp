@@ -1,5 +1,6 @@
 #include "host/detect/scene_prepare.hpp"
 
+#include <algorithm>
 #include <string>
 
 #include "host/core/error.hpp"
@@ -14,6 +15,12 @@ void check(const DepthImage& depth, const bp_camera& cam, const ScenePrepOptions
   check_lowpass_radius(opt.lowpass_radius);
 }
 
+// depth_to_points gives a point (w = 1) exactly where the raw depth is not 0.
+std::size_t valid_pixels(const DepthImage& depth) {
+  return std::size_t(std::count_if(depth.raw.begin(), depth.raw.end(),
+                                   [](std::uint16_t r) { return r != 0; }));
+}
+
 }  // namespace
 
 PreparedScene prepare_scene(ocl::Device& dev, const DepthImage& depth, const bp_camera& cam,
@@ -22,6 +29,7 @@ PreparedScene prepare_scene(ocl::Device& dev, const DepthImage& depth, const bp_
   const std::size_t n = depth.raw.size();
   PreparedScene s;
   s.width = depth.width, s.height = depth.height, s.camera = cam;
+  s.valid_pixels = valid_pixels(depth);
   Stopwatch clock;
   ocl::Buffer<std::uint16_t> raw(dev, std::span<const std::uint16_t>(depth.raw),
                                  CL_MEM_READ_ONLY);
@@ -69,6 +77,7 @@ PreparedScene prepare_scene_reference(const DepthImage& depth, const bp_camera& 
   check(depth, cam, opt);
   PreparedScene s;
   s.width = depth.width, s.height = depth.height, s.camera = cam;
+  s.valid_pixels = valid_pixels(depth);
   Stopwatch clock;
   s.points = depth_to_points_reference(depth, cam);
   s.timings.push_back({"points", clock.lap()});

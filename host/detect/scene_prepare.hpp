@@ -47,6 +47,7 @@ struct PreparedScene {
   StageTimings timings;               // upload, points, normals, lowpass, readback
   bool has_normals = true;            // false: normals (device and host) were not computed
   bool has_lowpass = true;            // false: the filtered depth was not computed yet
+  std::size_t valid_pixels = 0;       // pixels with data (w = 1)
   std::shared_ptr<DeviceScene> device;  // null for the reference
 };
 

@@ -284,6 +284,9 @@ TEST(Lowpass, LeftOutOfThePreparationTheRegionWritesIt) {
   without.lowpass = false;
   const PreparedScene full = prepare_scene(test_device(), depth, cam, with);
   ASSERT_TRUE(full.has_lowpass);
+  EXPECT_EQ(full.valid_pixels, std::size_t(std::count_if(depth.raw.begin(), depth.raw.end(),
+                                                        [](std::uint16_t r) { return r != 0; })));
+  EXPECT_EQ(prepare_scene_reference(depth, cam, with).valid_pixels, full.valid_pixels);
   for (int roi = 0; roi < 2; ++roi) {
     PreparedScene lazy = prepare_scene(test_device(), depth, cam, without);
     EXPECT_FALSE(lazy.has_lowpass);
