@@ -28,20 +28,10 @@ __kernel void hyp_chunk_argmin(__global const float* filtered, __global const uc
   part_pixel[g] = best_i;
 }
 
-/* Round, stage 2 (one work item): the best of the chunks, in chunk order for the same
- * tie-break; writes hyps[k], with the 3D point on the pixel's ray at the filtered depth. */
-__kernel void hyp_select(__global const float* part_depth, __global const uint* part_pixel,
-                         const uint parts, __global const float4* points,
-                         __global const float* filtered, const uint width, const uint k,
-                         __global bp_hypothesis* hyps) {
-  if (get_global_id(0) != 0) return;
-  float best = INFINITY;
-  uint best_i = BP_NO_PIXEL;
-  for (uint g = 0; g < parts; ++g)
-    if (part_pixel[g] != BP_NO_PIXEL && part_depth[g] < best) {
-      best = part_depth[g];
-      best_i = part_pixel[g];
-    }
+/* The hypothesis of pixel best_i (BP_NO_PIXEL: none, all zero), with the 3D point on the
+ * pixel's ray at the filtered depth. */
+inline bp_hypothesis hyp_at(const uint best_i, __global const float4* points,
+                            __global const float* filtered, const uint width) {
   bp_hypothesis h;
   h.pixel = best_i;
   h.u = h.v = 0;
@@ -57,7 +47,24 @@ __kernel void hyp_select(__global const float* part_depth, __global const uint* 
     h.y = p.y * s;
     h.z = h.depth;
   }
-  hyps[k] = h;
+  return h;
+}
+
+/* Round, stage 2 (one work item): the best of the chunks, in chunk order for the same
+ * tie-break; writes hyps[k], with the 3D point on the pixel's ray at the filtered depth. */
+__kernel void hyp_select(__global const float* part_depth, __global const uint* part_pixel,
+                         const uint parts, __global const float4* points,
+                         __global const float* filtered, const uint width, const uint k,
+                         __global bp_hypothesis* hyps) {
+  if (get_global_id(0) != 0) return;
+  float best = INFINITY;
+  uint best_i = BP_NO_PIXEL;
+  for (uint g = 0; g < parts; ++g)
+    if (part_pixel[g] != BP_NO_PIXEL && part_depth[g] < best) {
+      best = part_depth[g];
+      best_i = part_pixel[g];
+    }
+  hyps[k] = hyp_at(best_i, points, filtered, width);
 }
 
 /* Round, stage 3: exclude the neighbourhood of hyps[k] (and its own pixel, which the radius
@@ -81,4 +88,73 @@ __kernel void hyp_exclude_masked(__global const uchar* mask, const uint n,
   const uint i = get_global_id(0);
   if (i >= n) return;
   excluded[i] = mask[i] ? (uchar)0 : (uchar)1;
+}
+
+/* Rounds on a depth image's points (host/detect/hypotheses.cpp, HypothesisOptions::camera): the
+ * same choices as the chunk kernels above, with less work after the first round. The image is
+ * cut into tiles of tile_w x tile_h pixels; a round excludes only inside the rectangle of the
+ * image the exclusion sphere projects into (no pixel outside it has its point within the
+ * radius), so only the tiles that rectangle touches need their argmin again. */
+
+/* Stage 1 on tiles: work item g scans tile (tx0 + g % ntx, ty0 + g / ntx) row by row, i.e. in
+ * pixel order, so a strict "<" keeps the smallest index among equal depths; writes its result
+ * at the tile's index ty * tiles_x + tx. */
+__kernel void hyp_tile_argmin(__global const float* filtered, __global const uchar* excluded,
+                              const uint width, const uint height, const uint tile_w,
+                              const uint tile_h, const uint tiles_x, const uint tx0,
+                              const uint ty0, const uint ntx, const uint nty,
+                              __global float* part_depth, __global uint* part_pixel) {
+  const uint g = get_global_id(0);
+  if (g >= ntx * nty) return;
+  const uint tx = tx0 + g % ntx, ty = ty0 + g / ntx;
+  const uint u0 = tx * tile_w, v0 = ty * tile_h;
+  const uint u1 = min(u0 + tile_w, width), v1 = min(v0 + tile_h, height);
+  float best = INFINITY;
+  uint best_i = BP_NO_PIXEL;
+  for (uint v = v0; v < v1; ++v)
+    for (uint i = v * width + u0; i < v * width + u1; ++i) {
+      const float d = filtered[i];
+      if (d > 0.0f && !excluded[i] && d < best) {
+        best = d;
+        best_i = i;
+      }
+    }
+  part_depth[ty * tiles_x + tx] = best;
+  part_pixel[ty * tiles_x + tx] = best_i;
+}
+
+/* Stage 2 on tiles (one work item): the tiles are not in pixel order, so among equal depths the
+ * smaller pixel index wins explicitly: the same pixel as the chunks' choice. */
+__kernel void hyp_select_tiles(__global const float* part_depth, __global const uint* part_pixel,
+                               const uint parts, __global const float4* points,
+                               __global const float* filtered, const uint width, const uint k,
+                               __global bp_hypothesis* hyps) {
+  if (get_global_id(0) != 0) return;
+  float best = INFINITY;
+  uint best_i = BP_NO_PIXEL;
+  for (uint g = 0; g < parts; ++g) {
+    const uint i = part_pixel[g];
+    if (i == BP_NO_PIXEL) continue;
+    if (part_depth[g] < best || (part_depth[g] == best && i < best_i)) {
+      best = part_depth[g];
+      best_i = i;
+    }
+  }
+  hyps[k] = hyp_at(best_i, points, filtered, width);
+}
+
+/* Stage 3 on a rectangle: hyp_exclude for the pixels of columns [u0, u0 + rect_w) and rows
+ * [v0, v0 + rect_h) only (work item g: column u0 + g % rect_w, row v0 + g / rect_w). */
+__kernel void hyp_exclude_rect(__global const float4* points, const uint width, const uint u0,
+                               const uint v0, const uint rect_w, const uint rect_h,
+                               __global const bp_hypothesis* hyps, const uint k,
+                               const float radius2, __global uchar* excluded) {
+  const uint g = get_global_id(0);
+  if (g >= rect_w * rect_h) return;
+  const bp_hypothesis h = hyps[k];
+  if (h.pixel == BP_NO_PIXEL) return;
+  const uint i = (v0 + g / rect_w) * width + u0 + g % rect_w;
+  const float4 p = points[i];
+  if (i == h.pixel || (p.w != 0.0f && bp_dist2(p.x, p.y, p.z, h.x, h.y, h.z) <= radius2))
+    excluded[i] = 1;
 }

@@ -75,9 +75,13 @@ double BinFit::tilt_degrees() const {
 
 BinFit fit_bin(ocl::Device& dev, const std::vector<float>& xyzw, std::uint32_t width,
                std::uint32_t height, const BinFitOptions& opt) {
+  if (opt.spec.mode == BinSpec::Mode::none) throw std::logic_error("fit_bin: no bin asked for");
+  return fit_bin(dev, sample_points(xyzw, width, height), opt);
+}
+
+BinFit fit_bin(ocl::Device& dev, const PlaneSamples& s, const BinFitOptions& opt) {
   BinFit bin;
   if (opt.spec.mode == BinSpec::Mode::none) throw std::logic_error("fit_bin: no bin asked for");
-  const PlaneSamples s = sample_points(xyzw, width, height);
   bin.samples = s.points.size();
   if (s.points.size() < 100) {
     bin.why = "too few points with depth";

@@ -24,6 +24,7 @@
 
 #include <Eigen/Core>
 
+#include "host/detect/bin_planes.hpp"
 #include "host/detect/bin_spec.hpp"
 #include "host/detect/scene_mask.hpp"
 #include "host/runtime/cl/cl_buffer.hpp"
@@ -60,6 +61,9 @@ struct BinFit {
 // scored on dev. Never throws for a scene without a bin: found = false and why.
 BinFit fit_bin(ocl::Device& dev, const std::vector<float>& xyzw, std::uint32_t width,
                std::uint32_t height, const BinFitOptions& opt);
+// The same on the samples of the point image (sample_points; from the device's point image
+// without reading all of it back): the same fit.
+BinFit fit_bin(ocl::Device& dev, const PlaneSamples& samples, const BinFitOptions& opt);
 
 // The interior shrunk by margin (mm) on the sides, up to `above` over the rim (parts may pile
 // higher). From floor_clearance (mm) above the floor when it is >= 0: the floor itself is no

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <random>
+#include <stdexcept>
 
 #include <Eigen/Eigenvalues>
 #include <Eigen/Geometry>
@@ -45,14 +46,18 @@ std::vector<std::uint32_t> inliers_of(const std::vector<Eigen::Vector3f>& pts,
 
 }  // namespace
 
+std::uint32_t sample_stride(std::size_t valid, std::size_t max_points) {
+  return std::max<std::uint32_t>(
+      1, std::uint32_t(std::ceil(std::sqrt(double(valid) / double(std::max<std::size_t>(max_points, 1))))));
+}
+
 PlaneSamples sample_points(const std::vector<float>& xyzw, std::uint32_t width,
                            std::uint32_t height, std::size_t max_points) {
   PlaneSamples s;
   s.width = width, s.height = height;
   std::size_t valid = 0;
   for (std::size_t i = 0; i < std::size_t(width) * height; ++i) valid += xyzw[4 * i + 3] != 0.0f;
-  s.stride = std::max<std::uint32_t>(
-      1, std::uint32_t(std::ceil(std::sqrt(double(valid) / double(std::max<std::size_t>(max_points, 1))))));
+  s.stride = sample_stride(valid, max_points);
   for (std::uint32_t v = 0; v < height; v += s.stride)
     for (std::uint32_t u = 0; u < width; u += s.stride) {
       const float* p = &xyzw[4 * (std::size_t(v) * width + u)];
@@ -64,21 +69,50 @@ PlaneSamples sample_points(const std::vector<float>& xyzw, std::uint32_t width,
   return s;
 }
 
+PlaneSamples sample_points(ocl::Device& dev, const ocl::Buffer<float>& points,
+                           std::uint32_t width, std::uint32_t height, std::size_t valid,
+                           std::size_t max_points) {
+  if (points.size() < 4 * std::size_t(width) * height)
+    throw std::logic_error("sample_points: the point buffer is smaller than the image");
+  PlaneSamples s;
+  s.width = width, s.height = height;
+  s.stride = sample_stride(valid, max_points);
+  const std::uint32_t gw = (width + s.stride - 1) / s.stride, gh = (height + s.stride - 1) / s.stride;
+  const std::size_t cells = std::size_t(gw) * gh;
+  if (cells == 0) return s;
+  ocl::Buffer<float> grid(dev, 4 * cells, CL_MEM_WRITE_ONLY);
+  cl::Kernel k = dev.kernel("bin_planes.cl", "bin_sample_grid");
+  ocl::launch(dev, k, cells, points, cl_uint(width), cl_uint(s.stride), cl_uint(gw), cl_uint(cells),
+              grid);
+  const std::vector<float> g = grid.read(dev);
+  for (std::size_t c = 0; c < cells; ++c) {
+    const float* p = &g[4 * c];
+    if (p[3] == 0.0f) continue;
+    s.points.emplace_back(p[0], p[1], p[2]);
+    s.u.push_back(std::uint32_t(c % gw) * s.stride);
+    s.v.push_back(std::uint32_t(c / gw) * s.stride);
+  }
+  return s;
+}
+
 std::vector<std::uint32_t> count_plane_inliers(ocl::Device& dev,
                                                const std::vector<Eigen::Vector3f>& points,
                                                const std::vector<bp_plane>& planes, float tol) {
   if (planes.empty()) return {};
-  std::vector<float> xyzw(4 * points.size());
-  for (std::size_t i = 0; i < points.size(); ++i) {
-    xyzw[4 * i] = points[i].x(), xyzw[4 * i + 1] = points[i].y(), xyzw[4 * i + 2] = points[i].z();
-    xyzw[4 * i + 3] = 1.0f;
-  }
-  ocl::Buffer<float> p(dev, std::span<const float>(xyzw), CL_MEM_READ_ONLY);
+  const std::size_t n = points.size();
+  std::vector<float> xyz(3 * n);  // x of every point, then y, then z
+  for (std::size_t i = 0; i < n; ++i)
+    xyz[i] = points[i].x(), xyz[n + i] = points[i].y(), xyz[2 * n + i] = points[i].z();
+  auto axis = [&](int a) {
+    return ocl::Buffer<float>(dev, std::span<const float>(xyz.data() + a * n, n), CL_MEM_READ_ONLY);
+  };
+  const ocl::Buffer<float> xs = axis(0), ys = axis(1), zs = axis(2);
   ocl::Buffer<bp_plane> pl(dev, std::span<const bp_plane>(planes), CL_MEM_READ_ONLY);
   ocl::Buffer<cl_uint> counts(dev, planes.size());
   cl::Kernel k = dev.kernel("bin_planes.cl", "bin_plane_inliers");
-  ocl::launch(dev, k, planes.size(), p, cl_uint(points.size()), pl, cl_uint(planes.size()), tol,
-              counts);
+  // One plane a work group: a plane's scan is long enough, and both cores get work.
+  ocl::launch_tasks(dev, k, planes.size(), xs, ys, zs, cl_uint(n), pl, cl_uint(planes.size()),
+                    tol, counts);
   return counts.read(dev);
 }
 

@@ -22,9 +22,17 @@ struct PlaneSamples {
   std::uint32_t stride = 1, width = 0, height = 0; // of the image sampled
 };
 
+// The grid stride that samples at most about max_points of `valid` points with data.
+std::uint32_t sample_stride(std::size_t valid, std::size_t max_points);
+
 // Samples at most about max_points of the points with data (xyzw a pixel, w = 0 without).
 PlaneSamples sample_points(const std::vector<float>& xyzw, std::uint32_t width,
                            std::uint32_t height, std::size_t max_points = 40000);
+// The same samples from the point image on the device (float4 a pixel), of which `valid` pixels
+// have data: only the grid is read back (kernel bin_sample_grid), not the whole image.
+PlaneSamples sample_points(ocl::Device& dev, const ocl::Buffer<float>& points,
+                           std::uint32_t width, std::uint32_t height, std::size_t valid,
+                           std::size_t max_points = 40000);
 
 // Routine: inlier counts (|n . p + d| <= tol) of every plane over the points, on the device.
 std::vector<std::uint32_t> count_plane_inliers(ocl::Device& dev,

@@ -9,10 +9,34 @@
 
 namespace binpick {
 
+namespace {
+
+// The scene's low-pass range image when prepare_scene left it out (ScenePrepOptions::lowpass),
+// over all its points: no mask was made.
+void lowpass_if_missing(PreparedScene& scene, int lowpass_radius, StageTimings* timings) {
+  if (scene.has_lowpass) return;
+  if (!scene.device) throw InputError("apply_region needs a scene on the device");
+  Stopwatch clock;
+  ocl::Device& dev = *scene.device->dev;
+  {
+    ocl::Buffer<float> row_sums(dev, 2 * std::size_t(scene.width) * scene.height);
+    enqueue_lowpass_depth(dev, scene.device->points, scene.width, scene.height, lowpass_radius,
+                          row_sums, scene.device->filtered);
+    ocl::finish(dev);
+  }
+  scene.has_lowpass = true;
+  if (timings) timings->push_back({"lowpass", clock.lap()});
+}
+
+}  // namespace
+
 SceneRegionMask apply_region(PreparedScene& scene, const RegionSetup& setup, int lowpass_radius,
                              StageTimings* timings, const BinFit* known_bin) {
   SceneRegionMask out;
-  if (!setup.wanted()) return out;
+  if (!setup.wanted()) {
+    lowpass_if_missing(scene, lowpass_radius, timings);
+    return out;
+  }
   if (!scene.device) throw InputError("apply_region needs a scene on the device");
   ocl::Device& dev = *scene.device->dev;
   const std::size_t n = std::size_t(scene.width) * scene.height;
@@ -23,7 +47,10 @@ SceneRegionMask apply_region(PreparedScene& scene, const RegionSetup& setup, int
     bo.spec = setup.bin;
     bo.min_height = setup.min_height;
     out.bin = known_bin ? *known_bin
-                        : fit_bin(dev, scene.device->points.read(dev), scene.width, scene.height, bo);
+                        : fit_bin(dev,
+                                  sample_points(dev, scene.device->points, scene.width,
+                                                scene.height, scene.valid_pixels),
+                                  bo);
     out.report = describe(*out.bin);
     if (out.bin->found) {
       const bool clear = setup.clear_floor && out.bin->floor_plane;
@@ -38,19 +65,23 @@ SceneRegionMask apply_region(PreparedScene& scene, const RegionSetup& setup, int
   }
   if (setup.roi && (setup.roi->frame == RoiSpec::Frame::camera || region.bin))
     region.roi = roi_box(*setup.roi, out.bin ? &*out.bin : nullptr);
-  if (!region.active()) return out;
+  if (!region.active()) {
+    lowpass_if_missing(scene, lowpass_radius, timings);
+    return out;
+  }
 
   out.mask.emplace(scene_mask(dev, scene.device->points, n, region));
-  {
-    ocl::Buffer<float> kept(dev, 4 * n), row_sums(dev, 2 * n);
-    enqueue_masked_points(dev, scene.device->points, *out.mask, n, kept);
-    enqueue_lowpass_depth(dev, kept, scene.width, scene.height, lowpass_radius, row_sums,
-                          scene.device->filtered);
-    ocl::finish(dev);
-  }
   const std::vector<std::uint8_t> m = out.mask->read(dev);
   out.kept = std::size_t(std::count(m.begin(), m.end(), std::uint8_t(1)));
   if (timings) timings->push_back({"mask", clock.lap()});
+  {
+    ocl::Buffer<float> row_sums(dev, 2 * n);
+    enqueue_lowpass_depth(dev, scene.device->points, scene.width, scene.height, lowpass_radius,
+                          row_sums, scene.device->filtered, &*out.mask);
+    ocl::finish(dev);
+  }
+  scene.has_lowpass = true;
+  if (timings) timings->push_back({"lowpass", clock.lap()});
   return out;
 }
 

@@ -38,7 +38,9 @@ struct SceneRegionMask {
 };
 
 // On a scene prepared on the device (prepare_scene): its `filtered` buffer is replaced by the
-// low-pass of the kept points when a mask is made. Appends "bin fit" and "mask" to timings.
+// low-pass of the kept points when a mask is made, and written from all points when no mask is
+// made and prepare_scene left it out (ScenePrepOptions::lowpass). Appends "bin fit", "mask" and
+// "lowpass" (when it computes one) to timings.
 // known_bin: the bin fitted in this image with setup's spec and min_height before (another model
 // detecting in it, shared_scene.hpp), used instead of fitting again.
 SceneRegionMask apply_region(PreparedScene& scene, const RegionSetup& setup, int lowpass_radius,

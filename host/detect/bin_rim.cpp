@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <future>
 #include <numbers>
 
 #include <Eigen/Eigenvalues>
@@ -27,10 +29,19 @@ Histogram histogram(const std::vector<double>& xs, double width) {
   return h;
 }
 
-double sharpness(const Histogram& h) {
-  double s = 0;
-  for (double c : h.count) s += c * c;
-  return s;
+// The sum of the squared counts of histogram(xs, width), without building it: the same bins,
+// and the counts are integers whose squares add up exactly in any order, so the same value.
+// counts: scratch, reused between calls.
+double histogram_sharpness(const std::vector<double>& xs, double width,
+                           std::vector<std::uint32_t>& counts) {
+  if (xs.empty()) return 0;
+  const auto [mn, mx] = std::minmax_element(xs.begin(), xs.end());
+  const double lo = *mn - width;
+  counts.assign(std::size_t((*mx - lo) / width) + 2, 0);
+  for (double x : xs) ++counts[std::size_t(int(std::floor((x - lo) / width)))];
+  std::uint64_t sum = 0;
+  for (std::uint32_t c : counts) sum += std::uint64_t(c) * c;
+  return double(sum);
 }
 
 double quantile(std::vector<double> xs, double q) {
@@ -170,14 +181,28 @@ RimFit fit_rim(const PlaneSamples& s, const Eigen::Vector3d& up, const Eigen::Ve
     x[j] = e1.dot(p), y[j] = e2.dot(p);
   }
   const double width = std::max(opt.tol, 4.0);
+  // The frame's angle: the half-degree step whose two axes' histograms are sharpest (the first
+  // among equals). The steps are independent: half of them on a second thread (the device
+  // idles during the bin fit), the choice in step order as before.
+  constexpr int kSteps = 180;
+  const auto angle = [](int step) { return step * 0.5 * std::numbers::pi / 180.0; };
+  std::vector<double> scores(kSteps);
+  const auto score_steps = [&](int first, int last) {
+    std::vector<double> xr(x.size()), yr(y.size());
+    std::vector<std::uint32_t> counts;
+    for (int step = first; step < last; ++step) {
+      const double a = angle(step), c = std::cos(a), sn = std::sin(a);
+      for (std::size_t j = 0; j < x.size(); ++j) xr[j] = c * x[j] + sn * y[j], yr[j] = -sn * x[j] + c * y[j];
+      scores[std::size_t(step)] = histogram_sharpness(xr, width, counts) + histogram_sharpness(yr, width, counts);
+    }
+  };
+  std::future<void> second = std::async(std::launch::async, score_steps, kSteps / 2, kSteps);
+  score_steps(0, kSteps / 2);
+  second.get();
   double best = -1;
+  for (int step = 0; step < kSteps; ++step)
+    if (scores[std::size_t(step)] > best) best = scores[std::size_t(step)], rim.angle = angle(step);
   std::vector<double> xr(x.size()), yr(y.size());
-  for (int step = 0; step < 180; ++step) {
-    const double a = step * 0.5 * std::numbers::pi / 180.0, c = std::cos(a), sn = std::sin(a);
-    for (std::size_t j = 0; j < x.size(); ++j) xr[j] = c * x[j] + sn * y[j], yr[j] = -sn * x[j] + c * y[j];
-    const double score = sharpness(histogram(xr, width)) + sharpness(histogram(yr, width));
-    if (score > best) best = score, rim.angle = a;
-  }
   const double c = std::cos(rim.angle), sn = std::sin(rim.angle);
   for (std::size_t j = 0; j < x.size(); ++j) xr[j] = c * x[j] + sn * y[j], yr[j] = -sn * x[j] + c * y[j];
   // Coarse sides first; then each side's edge from the points off the other axis' sides (a

@@ -366,6 +366,7 @@ std::vector<Detection> Detector::detect(const DepthImage& depth, const bp_camera
   prep.normals.focal = 0.5f * (cam.fx + cam.fy);
   prep.read_back = false;
   prep.normals_everywhere = false;  // only where the neighbourhoods need them, below
+  prep.lowpass = false;  // apply_region writes it, from the kept points when it masks
   skipped_.clear();
   region_report_.clear();
   PreparedScene scene = shared ? shared->scene_for_model(dev_, depth, cam, prep)
@@ -405,7 +406,7 @@ std::vector<Detection> Detector::detect(const DepthImage& depth, const bp_camera
   Stopwatch hyp_clock;
   const std::vector<Hypothesis> hyps =
       find_hypotheses(dev_, scene.device->points, scene.device->filtered, scene.width,
-                      scene.height, ho, mask);
+                      scene.height, ho, mask, &cam);  // cam: rounds on the exclusion's rectangle
   t.stages.push_back({"hypotheses", hyp_clock.lap()});
   t.prepare_ms += clock.lap();
 

@@ -1,11 +1,14 @@
 #include "host/detect/hypotheses.hpp"
 
+#include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <string>
 
 #include "host/core/error.hpp"
 #include "host/detect/scene_chunks.hpp"
+#include "host/detect/scene_crop.hpp"
 #include "host/detect/scene_normals.hpp"
 #include "kernels/scene_shared.h"
 
@@ -24,7 +27,72 @@ Hypothesis from_shared(const bp_hypothesis& h) {
   return {h.pixel, h.u, h.v, h.depth, Eigen::Vector3f(h.x, h.y, h.z)};
 }
 
+// Highest first, up to the first round that found none.
+std::vector<Hypothesis> from_device(const std::vector<bp_hypothesis>& hyps) {
+  std::vector<Hypothesis> out;
+  for (const bp_hypothesis& h : hyps) {
+    if (h.pixel == BP_NO_PIXEL) break;  // once none is left, no later round finds one
+    out.push_back(from_shared(h));
+  }
+  return out;
+}
+
+// The rounds with a camera (find_hypotheses): tiles instead of chunks, and after the
+// first round only the exclusion sphere's rectangle excluded and its tiles scanned again. Every
+// other tile's argmin is unchanged (nothing in it was excluded), so each round picks the pixel
+// the whole-image rounds pick.
+std::vector<Hypothesis> rounds_on_tiles(ocl::Device& dev, const ocl::Buffer<float>& points,
+                                        const ocl::Buffer<float>& filtered, std::uint32_t width,
+                                        std::uint32_t height, const HypothesisOptions& opt,
+                                        const bp_camera& cam, ocl::Buffer<std::uint8_t>& excluded) {
+  if (cam.width != width || cam.height != height)
+    throw InputError("the hypotheses' camera is " + std::to_string(cam.width) + " x " +
+                     std::to_string(cam.height) + " pixels, the image " + std::to_string(width) +
+                     " x " + std::to_string(height));
+  const Tiles t = tiles_for(width, height);
+  ocl::Buffer<float> part_depth(dev, t.count());
+  ocl::Buffer<cl_uint> part_pixel(dev, t.count());
+  ocl::Buffer<bp_hypothesis> hyps(dev, opt.count);
+  cl::Kernel argmin = dev.kernel("hypotheses.cl", "hyp_tile_argmin");
+  cl::Kernel select = dev.kernel("hypotheses.cl", "hyp_select_tiles");
+  cl::Kernel exclude = dev.kernel("hypotheses.cl", "hyp_exclude_rect");
+  const float radius2 = opt.exclusion_radius * opt.exclusion_radius;
+  // The tiles to scan: all of them in the first round.
+  std::uint32_t tx0 = 0, ty0 = 0, ntx = t.x, nty = t.y;
+  std::vector<Hypothesis> out;
+  for (cl_uint k = 0; k < opt.count; ++k) {
+    ocl::launch(dev, argmin, std::size_t(ntx) * nty, filtered, excluded, cl_uint(width),
+                cl_uint(height), cl_uint(t.w), cl_uint(t.h), cl_uint(t.x), cl_uint(tx0),
+                cl_uint(ty0), cl_uint(ntx), cl_uint(nty), part_depth, part_pixel);
+    ocl::launch(dev, select, 1, part_depth, part_pixel, cl_uint(t.count()), points, filtered,
+                cl_uint(width), k, hyps);
+    const bp_hypothesis h = hyps.read(dev, k + 1)[k];
+    if (h.pixel == BP_NO_PIXEL) break;  // no later round finds one
+    out.push_back(from_shared(h));
+    if (k + 1 == opt.count) break;  // the last round's exclusion would only serve a next round
+    CropOptions sphere;
+    sphere.centre = Eigen::Vector3f(h.x, h.y, h.z);
+    sphere.radius = opt.exclusion_radius;
+    std::array<std::uint32_t, 4> r = crop_pixel_rect(cam, sphere);
+    // The own pixel is excluded whatever the radius (it lies in the rectangle; made sure).
+    r = {std::min(r[0], h.u), std::min(r[1], h.v), std::max(r[2], h.u + 1), std::max(r[3], h.v + 1)};
+    ocl::launch(dev, exclude, std::size_t(r[2] - r[0]) * (r[3] - r[1]), points, cl_uint(width),
+                cl_uint(r[0]), cl_uint(r[1]), cl_uint(r[2] - r[0]), cl_uint(r[3] - r[1]), hyps, k,
+                radius2, excluded);
+    tx0 = r[0] / t.w, ty0 = r[1] / t.h;
+    ntx = (r[2] - 1) / t.w + 1 - tx0, nty = (r[3] - 1) / t.h + 1 - ty0;
+  }
+  return out;
+}
+
 }  // namespace
+
+Tiles tiles_for(std::uint32_t width, std::uint32_t height) {
+  Tiles t;
+  t.x = (width + t.w - 1) / t.w;
+  t.y = (height + t.h - 1) / t.h;
+  return t;
+}
 
 void check(const HypothesisOptions& opt) {
   if (!(opt.exclusion_radius >= 0) || std::isinf(opt.exclusion_radius))
@@ -35,7 +103,8 @@ void check(const HypothesisOptions& opt) {
 std::vector<Hypothesis> find_hypotheses(ocl::Device& dev, const ocl::Buffer<float>& points,
                                         const ocl::Buffer<float>& filtered, std::uint32_t width,
                                         std::uint32_t height, const HypothesisOptions& opt,
-                                        const ocl::Buffer<std::uint8_t>* mask) {
+                                        const ocl::Buffer<std::uint8_t>* mask,
+                                        const bp_camera* camera) {
   check(opt);
   const std::size_t n = std::size_t(width) * height;
   const Chunks ch = chunks_for(n);
@@ -43,6 +112,8 @@ std::vector<Hypothesis> find_hypotheses(ocl::Device& dev, const ocl::Buffer<floa
   if (mask && mask->size() != n)
     throw InputError("the hypothesis mask has " + std::to_string(mask->size()) +
                      " bytes for an image of " + std::to_string(n) + " pixels");
+  if (points.size() < 4 * n || filtered.size() < n)
+    throw InputError("the hypotheses' point or filtered-depth buffer is smaller than the image");
   ocl::Buffer<std::uint8_t> excluded(dev, n);
   if (mask) {
     cl::Kernel init = dev.kernel("hypotheses.cl", "hyp_exclude_masked");
@@ -50,6 +121,7 @@ std::vector<Hypothesis> find_hypotheses(ocl::Device& dev, const ocl::Buffer<floa
   } else {
     excluded.fill(dev, 0);
   }
+  if (camera) return rounds_on_tiles(dev, points, filtered, width, height, opt, *camera, excluded);
   ocl::Buffer<float> part_depth(dev, ch.count);
   ocl::Buffer<cl_uint> part_pixel(dev, ch.count);
   ocl::Buffer<bp_hypothesis> hyps(dev, opt.count);
@@ -65,25 +137,21 @@ std::vector<Hypothesis> find_hypotheses(ocl::Device& dev, const ocl::Buffer<floa
     // The last round's exclusion would only serve a next round.
     if (k + 1 < opt.count) ocl::launch(dev, exclude, n, points, cl_uint(n), hyps, k, radius2, excluded);
   }
-  std::vector<Hypothesis> out;
-  for (const bp_hypothesis& h : hyps.read(dev)) {
-    if (h.pixel == BP_NO_PIXEL) break;  // once none is left, no later round finds one
-    out.push_back(from_shared(h));
-  }
-  return out;
+  return from_device(hyps.read(dev));
 }
 
 std::vector<Hypothesis> find_hypotheses(ocl::Device& dev, const PointImage& points,
                                         const std::vector<float>& filtered,
                                         const HypothesisOptions& opt,
-                                        const std::vector<std::uint8_t>* mask) {
+                                        const std::vector<std::uint8_t>* mask,
+                                        const bp_camera* camera) {
   check_filtered(points, filtered);
   check(opt);
   ocl::Buffer<float> p(dev, std::span<const float>(points.xyzw), CL_MEM_READ_ONLY);
   ocl::Buffer<float> f(dev, std::span<const float>(filtered), CL_MEM_READ_ONLY);
-  if (!mask) return find_hypotheses(dev, p, f, points.width, points.height, opt);
+  if (!mask) return find_hypotheses(dev, p, f, points.width, points.height, opt, nullptr, camera);
   const ocl::Buffer<std::uint8_t> m(dev, std::span<const std::uint8_t>(*mask), CL_MEM_READ_ONLY);
-  return find_hypotheses(dev, p, f, points.width, points.height, opt, &m);
+  return find_hypotheses(dev, p, f, points.width, points.height, opt, &m, camera);
 }
 
 std::vector<Hypothesis> find_hypotheses_reference(const PointImage& points,

@@ -29,25 +29,42 @@ struct Hypothesis {
 
 void check(const HypothesisOptions& opt);
 
+// The tiles of the rounds with a camera (find_hypotheses; kernel hyp_tile_argmin): tile (tx, ty) holds columns
+// [tx w, tx w + w) and rows [ty h, ty h + h), cut at the image's edge; its result is entry
+// ty x + tx.
+struct Tiles {
+  std::uint32_t w = 32, h = 32;  // pixels
+  std::uint32_t x = 0, y = 0;    // tiles across and down
+  std::size_t count() const { return std::size_t(x) * y; }
+};
+Tiles tiles_for(std::uint32_t width, std::uint32_t height);
+
 // Routine: on the device, from a point image and its filtered depth (one float a pixel,
 // 0 = no data). Highest first; fewer than count when the valid pixels run out. With a mask (one
 // byte a pixel, scene_mask.hpp), pixels it does not keep start excluded: they never become a
 // highest point (the exclusion around each chosen point is unchanged).
+// camera: the camera whose depth_to_points made the points (of the same width x height), if
+// they were made so: then a round excludes only in the rectangle the exclusion sphere projects
+// into (crop_pixel_rect) and looks again only at the tiles (Tiles) it touches: the same
+// hypotheses for less work. Without one every round scans the whole image (any point image).
 std::vector<Hypothesis> find_hypotheses(ocl::Device& dev, const PointImage& points,
                                         const std::vector<float>& filtered,
                                         const HypothesisOptions& opt = {},
-                                        const std::vector<std::uint8_t>* mask = nullptr);
+                                        const std::vector<std::uint8_t>* mask = nullptr,
+                                        const bp_camera* camera = nullptr);
 // Reference: the same rounds in plain C++ (same float predicate: the same pixels exactly).
 std::vector<Hypothesis> find_hypotheses_reference(const PointImage& points,
                                                   const std::vector<float>& filtered,
                                                   const HypothesisOptions& opt = {},
                                                   const std::vector<std::uint8_t>* mask = nullptr);
 
-// The rounds on device buffers (one read-back at the end); mask as above (n bytes) or null.
+// The rounds on device buffers (one read-back at the end; with a camera one small read-back a
+// round, for the rectangle); mask and camera as above (mask n bytes) or null.
 std::vector<Hypothesis> find_hypotheses(ocl::Device& dev, const ocl::Buffer<float>& points,
                                         const ocl::Buffer<float>& filtered, std::uint32_t width,
                                         std::uint32_t height, const HypothesisOptions& opt,
-                                        const ocl::Buffer<std::uint8_t>* mask = nullptr);
+                                        const ocl::Buffer<std::uint8_t>* mask = nullptr,
+                                        const bp_camera* camera = nullptr);
 
 // On a prepared scene: the kernels on its device buffers if it has them, else the C++ reference
 // on its host images (a scene from prepare_scene_reference). Appends the stage "hypotheses" to

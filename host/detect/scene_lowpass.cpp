@@ -1,6 +1,7 @@
 #include "host/detect/scene_lowpass.hpp"
 
 #include <algorithm>
+#include <stdexcept>
 #include <string>
 
 #include "host/core/error.hpp"
@@ -15,31 +16,68 @@ void check_lowpass_radius(int radius) {
 
 void enqueue_lowpass_depth(ocl::Device& dev, const ocl::Buffer<float>& points,
                            std::uint32_t width, std::uint32_t height, int radius,
-                           ocl::Buffer<float>& row_sums, ocl::Buffer<float>& filtered) {
+                           ocl::Buffer<float>& row_sums, ocl::Buffer<float>& filtered,
+                           const ocl::Buffer<std::uint8_t>* mask) {
   const std::size_t n = std::size_t(width) * height;
-  cl::Kernel rows = dev.kernel("scene_lowpass.cl", "lowpass_rows");
-  cl::Kernel cols = dev.kernel("scene_lowpass.cl", "lowpass_cols");
-  ocl::launch(dev, rows, n, points, cl_uint(width), cl_uint(height), cl_int(radius), row_sums);
-  ocl::launch(dev, cols, n, points, row_sums, cl_uint(width), cl_uint(height), cl_int(radius),
-              filtered);
+  if (points.size() < 4 * n || row_sums.size() < 2 * n || filtered.size() < n ||
+      (mask && mask->size() < n))
+    throw std::logic_error("enqueue_lowpass_depth: a buffer is smaller than the image");
+  if (n == 0) return;
+  if (!mask) {
+    cl::Kernel rows = dev.kernel("scene_lowpass.cl", "lowpass_rows");
+    cl::Kernel cols = dev.kernel("scene_lowpass.cl", "lowpass_cols");
+    ocl::launch(dev, rows, n, points, cl_uint(width), cl_uint(height), cl_int(radius), row_sums);
+    ocl::launch(dev, cols, n, points, row_sums, cl_uint(width), cl_uint(height), cl_int(radius),
+                filtered);
+    return;
+  }
+  cl::Kernel rows = dev.kernel("scene_lowpass.cl", "lowpass_rows_masked");
+  cl::Kernel cols = dev.kernel("scene_lowpass.cl", "lowpass_cols_masked");
+  ocl::launch(dev, rows, n, points, *mask, cl_uint(width), cl_uint(height), cl_int(radius),
+              row_sums);
+  ocl::launch(dev, cols, n, points, *mask, row_sums, cl_uint(width), cl_uint(height),
+              cl_int(radius), filtered);
 }
 
-std::vector<float> lowpass_depth(ocl::Device& dev, const PointImage& points, int radius) {
+namespace {
+
+void check_mask(const PointImage& points, const std::vector<std::uint8_t>* mask) {
+  if (mask && mask->size() != std::size_t(points.width) * points.height)
+    throw InputError("the low-pass mask has " + std::to_string(mask->size()) +
+                     " bytes for an image of " + std::to_string(points.width) + " x " +
+                     std::to_string(points.height));
+}
+
+}  // namespace
+
+std::vector<float> lowpass_depth(ocl::Device& dev, const PointImage& points, int radius,
+                                 const std::vector<std::uint8_t>* mask) {
   check_point_image(points);
   check_lowpass_radius(radius);
+  check_mask(points, mask);
   const std::size_t n = std::size_t(points.width) * points.height;
+  if (n == 0) return {};
   ocl::Buffer<float> in(dev, std::span<const float>(points.xyzw), CL_MEM_READ_ONLY);
   ocl::Buffer<float> row_sums(dev, 2 * n), out(dev, n, CL_MEM_WRITE_ONLY);
-  enqueue_lowpass_depth(dev, in, points.width, points.height, radius, row_sums, out);
+  if (!mask) {
+    enqueue_lowpass_depth(dev, in, points.width, points.height, radius, row_sums, out);
+    return out.read(dev);
+  }
+  const ocl::Buffer<std::uint8_t> m(dev, std::span<const std::uint8_t>(*mask), CL_MEM_READ_ONLY);
+  enqueue_lowpass_depth(dev, in, points.width, points.height, radius, row_sums, out, &m);
   return out.read(dev);
 }
 
-std::vector<float> lowpass_depth_reference(const PointImage& points, int radius) {
+std::vector<float> lowpass_depth_reference(const PointImage& points, int radius,
+                                           const std::vector<std::uint8_t>* mask) {
   check_point_image(points);
   check_lowpass_radius(radius);
+  check_mask(points, mask);
   const int w = int(points.width), h = int(points.height);
   const std::size_t n = std::size_t(w) * h;
-  auto valid = [&](std::size_t i) { return points.xyzw[4 * i + 3] != 0.0f; };
+  auto valid = [&](std::size_t i) {
+    return points.xyzw[4 * i + 3] != 0.0f && (!mask || (*mask)[i] != 0);
+  };
   std::vector<float> sum(n), count(n), out(n, 0.0f);
   for (int v = 0; v < h; ++v)
     for (int u = 0; u < w; ++u) {

@@ -11,16 +11,21 @@
 namespace binpick {
 
 // Routine: per pixel the mean z (mm) of the valid pixels in the (2r+1)^2 window, r in [0, 64];
-// 0 where the pixel itself has no data (holes are not filled).
-std::vector<float> lowpass_depth(ocl::Device& dev, const PointImage& points, int radius);
+// 0 where the pixel itself has no data (holes are not filled). With a mask (one byte a pixel,
+// scene_mask.hpp) only the pixels it keeps count as valid: the low-pass of the masked points.
+std::vector<float> lowpass_depth(ocl::Device& dev, const PointImage& points, int radius,
+                                 const std::vector<std::uint8_t>* mask = nullptr);
 // Reference: the same separable sums in the same order, in plain C++.
-std::vector<float> lowpass_depth_reference(const PointImage& points, int radius);
+std::vector<float> lowpass_depth_reference(const PointImage& points, int radius,
+                                           const std::vector<std::uint8_t>* mask = nullptr);
 
 // The two passes on device buffers (points float4 a pixel, row_sums 2 floats a pixel as
-// scratch, filtered one float a pixel), enqueued without waiting.
+// scratch, filtered one float a pixel, mask one byte a pixel or null), enqueued without
+// waiting. The mask is read in place: the masked points are never written out.
 void enqueue_lowpass_depth(ocl::Device& dev, const ocl::Buffer<float>& points,
                            std::uint32_t width, std::uint32_t height, int radius,
-                           ocl::Buffer<float>& row_sums, ocl::Buffer<float>& filtered);
+                           ocl::Buffer<float>& row_sums, ocl::Buffer<float>& filtered,
+                           const ocl::Buffer<std::uint8_t>* mask = nullptr);
 
 void check_lowpass_radius(int radius);
 

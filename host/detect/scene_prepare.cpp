@@ -1,5 +1,6 @@
 #include "host/detect/scene_prepare.hpp"
 
+#include <algorithm>
 #include <string>
 
 #include "host/core/error.hpp"
@@ -14,6 +15,12 @@ void check(const DepthImage& depth, const bp_camera& cam, const ScenePrepOptions
   check_lowpass_radius(opt.lowpass_radius);
 }
 
+// depth_to_points gives a point (w = 1) exactly where the raw depth is not 0.
+std::size_t valid_pixels(const DepthImage& depth) {
+  return std::size_t(std::count_if(depth.raw.begin(), depth.raw.end(),
+                                   [](std::uint16_t r) { return r != 0; }));
+}
+
 }  // namespace
 
 PreparedScene prepare_scene(ocl::Device& dev, const DepthImage& depth, const bp_camera& cam,
@@ -22,6 +29,7 @@ PreparedScene prepare_scene(ocl::Device& dev, const DepthImage& depth, const bp_
   const std::size_t n = depth.raw.size();
   PreparedScene s;
   s.width = depth.width, s.height = depth.height, s.camera = cam;
+  s.valid_pixels = valid_pixels(depth);
   Stopwatch clock;
   ocl::Buffer<std::uint16_t> raw(dev, std::span<const std::uint16_t>(depth.raw),
                                  CL_MEM_READ_ONLY);
@@ -44,18 +52,21 @@ PreparedScene prepare_scene(ocl::Device& dev, const DepthImage& depth, const bp_
     s.timings.push_back({"normals", clock.lap()});
   }
 
-  {
-    ocl::Buffer<float> row_sums(dev, 2 * n);
-    enqueue_lowpass_depth(dev, d.points, s.width, s.height, opt.lowpass_radius, row_sums,
-                          d.filtered);
-    ocl::finish(dev);
+  s.has_lowpass = opt.lowpass;
+  if (s.has_lowpass) {
+    {
+      ocl::Buffer<float> row_sums(dev, 2 * n);
+      enqueue_lowpass_depth(dev, d.points, s.width, s.height, opt.lowpass_radius, row_sums,
+                            d.filtered);
+      ocl::finish(dev);
+    }
+    s.timings.push_back({"lowpass", clock.lap()});
   }
-  s.timings.push_back({"lowpass", clock.lap()});
 
   if (opt.read_back) {
     s.points = {s.width, s.height, d.points.read(dev)};
     if (s.has_normals) s.normals = {s.width, s.height, d.normals.read(dev)};
-    s.filtered_depth = d.filtered.read(dev);
+    if (s.has_lowpass) s.filtered_depth = d.filtered.read(dev);
     s.timings.push_back({"readback", clock.lap()});
   }
   return s;
@@ -66,6 +77,7 @@ PreparedScene prepare_scene_reference(const DepthImage& depth, const bp_camera& 
   check(depth, cam, opt);
   PreparedScene s;
   s.width = depth.width, s.height = depth.height, s.camera = cam;
+  s.valid_pixels = valid_pixels(depth);
   Stopwatch clock;
   s.points = depth_to_points_reference(depth, cam);
   s.timings.push_back({"points", clock.lap()});
@@ -74,8 +86,11 @@ PreparedScene prepare_scene_reference(const DepthImage& depth, const bp_camera& 
     s.normals = normals_from_points_reference(s.points, opt.normals);
     s.timings.push_back({"normals", clock.lap()});
   }
-  s.filtered_depth = lowpass_depth_reference(s.points, opt.lowpass_radius);
-  s.timings.push_back({"lowpass", clock.lap()});
+  s.has_lowpass = opt.lowpass;
+  if (s.has_lowpass) {
+    s.filtered_depth = lowpass_depth_reference(s.points, opt.lowpass_radius);
+    s.timings.push_back({"lowpass", clock.lap()});
+  }
   return s;
 }
 

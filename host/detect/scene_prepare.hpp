@@ -24,6 +24,10 @@ struct ScenePrepOptions {
   // Copy points, normals and filtered depth to the host. Off, only PreparedScene::device holds
   // them (saves about 50 MB of copies for a 1600 x 900 image when later stages run on the device).
   bool read_back = true;
+  // The low-pass range image. The detector turns this off when it applies a region
+  // (bin_region.hpp), which writes the low-pass itself: over the kept points when it makes a
+  // mask, over all of them when it does not.
+  bool lowpass = true;
 };
 
 // The prepared scene on the device; every buffer is one entry per pixel, row-major.
@@ -42,6 +46,8 @@ struct PreparedScene {
   std::vector<float> filtered_depth;  // empty unless read back
   StageTimings timings;               // upload, points, normals, lowpass, readback
   bool has_normals = true;            // false: normals (device and host) were not computed
+  bool has_lowpass = true;            // false: the filtered depth was not computed yet
+  std::size_t valid_pixels = 0;       // pixels with data (w = 1)
   std::shared_ptr<DeviceScene> device;  // null for the reference
 };
 

@@ -10,9 +10,12 @@ PreparedScene SharedScene::scene_for_model(ocl::Device& dev, const DepthImage& d
   if (first) prepared_ = prepare_scene(dev, depth, cam, opt);
   PreparedScene scene = *prepared_;
   if (!first) scene.timings.clear();
-  // The points are only read; the low-pass is rewritten by a model's region mask.
+  // The points are only read; the low-pass is rewritten by a model's region mask, or written
+  // by it when the preparation left it out.
   scene.device = std::make_shared<DeviceScene>(*prepared_->device);
-  scene.device->filtered = prepared_->device->filtered.clone(dev);
+  scene.device->filtered = prepared_->has_lowpass
+                               ? prepared_->device->filtered.clone(dev)
+                               : ocl::Buffer<float>(dev, prepared_->device->filtered.size());
   return scene;
 }
 

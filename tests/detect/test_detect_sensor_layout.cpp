@@ -123,12 +123,13 @@ TEST(DetectSensorLayout, TwoObjectsDetectedTogetherAndEvaluatedPerObjId) {
       (dir / "tee.ppfm").string(), (dir / "bracket.ppfm").string(), detect_layout,
       (dir / "named.csv").string()));
   ASSERT_EQ(r.status, 0) << r.err;
-  // The image is prepared once: the second model's stages start after the upload and low-pass.
+  // The image is prepared once: the second model's stages start after the upload and points.
+  // (The low-pass is each model's: its region's, from the points its mask keeps.)
   const std::size_t second = r.out.find("scene 5 image 3 obj_id 2: ");
   ASSERT_NE(second, std::string::npos) << r.out;
   const std::string stages = r.out.substr(second, r.out.find('\n', second) - second);
   EXPECT_EQ(stages.find(" upload "), std::string::npos) << stages;
-  EXPECT_EQ(stages.find(" lowpass "), std::string::npos) << stages;
+  EXPECT_EQ(stages.find(" points "), std::string::npos) << stages;
   EXPECT_NE(r.out.find("scene 5 image 3 obj_id 1: 10 hypotheses; upload "), std::string::npos);
   EXPECT_EQ(test::without_time(test::slurp(dir / "named.csv")),
             test::without_time(test::slurp(dir / "both.csv")));

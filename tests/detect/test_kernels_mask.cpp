@@ -1,12 +1,14 @@
 // The "may be used" mask (kernels/scene_mask.cl: scene_mask, masked_points), its use by the
 // highest points (hyp_exclude_masked) and by the crops (crop_rect_count_masked,
-// crop_rect_scatter_masked), and the bin fit's plane scoring (kernels/bin_planes.cl:
-// bin_plane_inliers), each against its plain C++ reference on random input: the
+// crop_rect_scatter_masked), and the bin fit's plane scoring and sampling (kernels/bin_planes.cl:
+// bin_plane_inliers, bin_sample_grid), each against its plain C++ reference on random input: the
 // predicates are shared (kernels/scene_mask_shared.h, FP_CONTRACT OFF), so masks, counts, pixels
 // and points compare exactly. Also the degenerate inputs: no box, an empty box, no data.
 #include <gtest/gtest.h>
 
 #include <random>
+#include <stdexcept>
+#include <tuple>
 
 #include <Eigen/Geometry>
 
@@ -188,7 +190,8 @@ TEST(MaskKernels, plane_inliers_match_reference) {
   auto& dev = ocl::Device::shared();
   std::mt19937 rng(75);
   std::uniform_real_distribution<float> U(-1.0f, 1.0f);
-  for (std::size_t n : {0ul, 1ul, 777ul, 20000ul}) {
+  // Sizes around the kernel's blocks of eight points (the tail is scanned one by one).
+  for (std::size_t n : {0ul, 1ul, 7ul, 8ul, 9ul, 16ul, 777ul, 20000ul}) {
     std::vector<Eigen::Vector3f> pts;
     for (std::size_t i = 0; i < n; ++i)
       pts.emplace_back(300 * U(rng), 300 * U(rng), 900 + 100 * U(rng));
@@ -206,4 +209,35 @@ TEST(MaskKernels, plane_inliers_match_reference) {
     }
   }
   EXPECT_TRUE(count_plane_inliers(dev, {}, {}, 1.0f).empty());
+}
+
+// The bin fit's samples gathered on the device (bin_sample_grid) are the host's sample_points
+// of the read-back image: the same points, pixels and stride, on images with few and many holes,
+// one pixel, no data at all, and strides from 1 (a small image) up.
+TEST(MaskKernels, sample_grid_matches_sample_points) {
+  auto& dev = ocl::Device::shared();
+  std::mt19937 rng(76);
+  for (auto [w, h, holes, max_points] :
+       {std::tuple{1u, 1u, 0.0f, 40000ul}, {1u, 1u, 1.0f, 40000ul}, {37u, 23u, 0.3f, 40000ul},
+        {160u, 120u, 0.05f, 1000ul}, {301u, 77u, 0.9f, 500ul}, {64u, 64u, 0.0f, 1ul}}) {
+    const PointImage pts = random_point_image(rng, w, h, holes);
+    std::size_t valid = 0;
+    for (std::size_t i = 0; i < std::size_t(w) * h; ++i) valid += pts.xyzw[4 * i + 3] != 0.0f;
+    const PlaneSamples want = sample_points(pts.xyzw, w, h, max_points);
+    const PlaneSamples got = sample_points(dev, upload(dev, pts.xyzw), w, h, valid, max_points);
+    const std::string at = std::to_string(w) + "x" + std::to_string(h);
+    EXPECT_EQ(got.stride, want.stride) << at;
+    EXPECT_EQ(got.stride, sample_stride(valid, max_points)) << at;
+    EXPECT_EQ(got.width, w);
+    EXPECT_EQ(got.height, h);
+    ASSERT_EQ(got.points, want.points) << at;
+    EXPECT_EQ(got.u, want.u) << at;
+    EXPECT_EQ(got.v, want.v) << at;
+    if (holes == 1.0f) {
+      EXPECT_TRUE(got.points.empty());
+    }
+  }
+  EXPECT_EQ(sample_stride(0, 40000), 1u);
+  EXPECT_EQ(sample_stride(1440000, 40000), 6u);
+  EXPECT_THROW(sample_points(dev, ocl::Buffer<float>(dev, 4), 2, 2, 4), std::logic_error);
 }

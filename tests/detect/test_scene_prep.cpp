@@ -4,6 +4,7 @@
 // depth images of smooth surfaces (tilted planes, spheres) with holes and noise.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <random>
 
@@ -11,7 +12,9 @@
 
 #include "host/core/error.hpp"
 #include "host/detect/scene_crop.hpp"
+#include "host/detect/bin_region.hpp"
 #include "host/detect/scene_lowpass.hpp"
+#include "host/detect/scene_mask.hpp"
 #include "host/detect/scene_neighbourhood.hpp"
 #include "host/detect/scene_normals.hpp"
 #include "host/detect/scene_prepare.hpp"
@@ -230,6 +233,88 @@ TEST(Lowpass, EqualsTheReferenceExactly) {
     const bp_camera cam = camera(97 + 10 * radius, 61, 150.0f);
     const PointImage pts = depth_to_points_reference(random_depth(rng, cam, 1.0f), cam);
     EXPECT_EQ(lowpass_depth(test_device(), pts, radius), lowpass_depth_reference(pts, radius)) << radius;
+  }
+}
+
+// With a mask the kernels read it in place (lowpass_rows_masked, lowpass_cols_masked): bit for
+// bit the reference on the mask, and the unmasked low-pass of the masked points (the points the
+// mask drops set to no data), which is what the region's low-pass was before. Degenerate masks
+// too: none kept (all 0), all kept (the unmasked low-pass), one pixel kept (its own depth).
+TEST(Lowpass, MaskedEqualsTheLowpassOfTheMaskedPoints) {
+  std::mt19937 rng(22);
+  std::bernoulli_distribution keep(0.7);
+  for (auto [w, h, radius] : {std::tuple{1u, 1u, 3}, {9u, 4u, 2}, {97u, 61u, 5}, {160u, 120u, 0},
+                              {200u, 50u, 11}}) {
+    const bp_camera cam = camera(w, h, 150.0f);
+    const PointImage pts = depth_to_points_reference(random_depth(rng, cam, 1.0f), cam);
+    const std::size_t n = std::size_t(w) * h;
+    std::vector<std::uint8_t> random_mask(n), none(n, 0), all(n, 1), one(n, 0);
+    for (auto& m : random_mask) m = keep(rng) ? 1 : 0;
+    one[n / 2] = 1;
+    for (const auto* mask : {&random_mask, &none, &all, &one}) {
+      const std::vector<float> got = lowpass_depth(test_device(), pts, radius, mask);
+      ASSERT_EQ(got, lowpass_depth_reference(pts, radius, mask)) << w << "x" << h << " r " << radius;
+      ASSERT_EQ(got, lowpass_depth_reference(masked_points_reference(pts, *mask), radius));
+      if (mask == &all) {
+        EXPECT_EQ(got, lowpass_depth(test_device(), pts, radius));
+      }
+      if (mask == &none) {
+        EXPECT_EQ(std::count(got.begin(), got.end(), 0.0f), std::ptrdiff_t(n));
+      }
+      if (mask == &one) {
+        EXPECT_EQ(got[n / 2], pts.xyzw[4 * (n / 2) + 3] != 0.0f ? pts.xyzw[4 * (n / 2) + 2] : 0.0f);
+      }
+    }
+  }
+  const std::vector<std::uint8_t> short_mask(3, 1);
+  EXPECT_THROW(lowpass_depth(test_device(), PointImage{2, 2, std::vector<float>(16, 1.0f)}, 1, &short_mask),
+               InputError);
+}
+
+// The detector's preparation leaves the low-pass out (ScenePrepOptions::lowpass) and the region
+// writes it: with no region, or a region that makes no mask, the low-pass of all points; with a
+// camera-frame ROI, the low-pass of the points it keeps. Bit for bit either way.
+TEST(Lowpass, LeftOutOfThePreparationTheRegionWritesIt) {
+  std::mt19937 rng(23);
+  const bp_camera cam = camera(120, 90, 150.0f);
+  const DepthImage depth = random_depth(rng, cam, 1.0f);
+  ScenePrepOptions with, without;
+  with.normals_everywhere = without.normals_everywhere = false;
+  without.read_back = false;
+  without.lowpass = false;
+  const PreparedScene full = prepare_scene(test_device(), depth, cam, with);
+  ASSERT_TRUE(full.has_lowpass);
+  EXPECT_EQ(full.valid_pixels, std::size_t(std::count_if(depth.raw.begin(), depth.raw.end(),
+                                                        [](std::uint16_t r) { return r != 0; })));
+  EXPECT_EQ(prepare_scene_reference(depth, cam, with).valid_pixels, full.valid_pixels);
+  for (int roi = 0; roi < 2; ++roi) {
+    PreparedScene lazy = prepare_scene(test_device(), depth, cam, without);
+    EXPECT_FALSE(lazy.has_lowpass);
+    for (const auto& t : lazy.timings) EXPECT_NE(t.stage, "lowpass");
+    RegionSetup setup;
+    if (roi) {
+      RoiSpec box;
+      box.lo = Eigen::Vector3d(-1e4, -1e4, -1e4);
+      box.hi = Eigen::Vector3d(0, 1e4, 1e4);  // the left half of the image
+      setup.roi = box;
+    }
+    StageTimings timings;
+    const SceneRegionMask m = apply_region(lazy, setup, with.lowpass_radius, &timings);
+    EXPECT_TRUE(lazy.has_lowpass);
+    ASSERT_FALSE(timings.empty());
+    EXPECT_EQ(timings.back().stage, "lowpass");
+    const std::vector<float> got = lazy.device->filtered.read(test_device());
+    if (!roi) {
+      EXPECT_FALSE(m.mask.has_value());
+      EXPECT_EQ(got, full.filtered_depth);
+      continue;
+    }
+    ASSERT_TRUE(m.mask.has_value());
+    const std::vector<std::uint8_t> mask = m.mask->read(test_device());
+    EXPECT_GT(m.kept, 0u);
+    EXPECT_LT(m.kept, mask.size() / 2 + cam.height);
+    EXPECT_EQ(got, lowpass_depth_reference(masked_points_reference(full.points, mask),
+                                           with.lowpass_radius));
   }
 }
 
