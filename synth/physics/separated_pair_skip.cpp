@@ -130,6 +130,9 @@ class SkippingAlgorithm : public btCollisionAlgorithm {
   int wait_ = 0;
 };
 
+// Bullet's pool hands out blocks the size of its largest algorithm, unchecked in release builds.
+static_assert(sizeof(SkippingAlgorithm) <= sizeof(btConvexConvexAlgorithm));
+
 }  // namespace
 
 SeparatedPairSkip::SeparatedPairSkip(btCollisionConfiguration& configuration,
