@@ -13,8 +13,8 @@ namespace {
 // Float rounding in Bullet's GJK and in the gap below: a pair is skipped only this far (units)
 // beyond the distance at which Bullet could report a contact.
 constexpr btScalar kSlack = btScalar(1e-3);
-// After the n-th GJK in a row that found the hulls too close, the next 2^n - 1 tests (n at most
-// this) go straight to Bullet: GJK seldom finds close hulls apart (on the tee's bin, 1 in 20).
+// After the n-th GJK in a row that found the hulls too close (n at most this), the next 2^n - 1
+// tests go straight to Bullet: hulls in contact, or about to be, would fail it step after step.
 constexpr int kMaxMisses = 4;
 
 const btConvexShape& convex(const btCollisionObjectWrapper* body) {
@@ -90,8 +90,7 @@ class SkippingAlgorithm : public btCollisionAlgorithm {
     const btScalar needed = margins + manifold.getContactBreakingThreshold() +
                             result.m_closestPointDistanceThreshold + kSlack;
     if (has_axis_ && gap_along(body0, body1, axis_) > needed) return true;
-    // GJK rarely finds hulls apart whose last axis failed (close hulls stay close): after a
-    // miss, wait a few tests, longer after each miss, before running it again.
+    // After a miss, wait a few tests, longer after each miss, before running GJK again.
     if (wait_ > 0) {
       --wait_;
       return false;
