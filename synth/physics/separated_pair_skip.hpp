@@ -6,8 +6,8 @@
 // pair has no contact point and its hulls stay farther apart along that axis than the manifold
 // keeps points at, Bullet's test could add nothing, so it is not run. Otherwise Bullet's
 // algorithm runs unchanged. The gap along any axis is a lower bound of the distance, so the
-// simulation is the same, bit for bit: the 350-part bins of the built-in parts take 6 to 21 %
-// less CPU time, the tee's 33 instead of 42 s (docs/synthesis.md). The distances at which
+// simulation is the same, bit for bit: the 350-part bins of the built-in parts take 6 to 27 %
+// less CPU time, the tee's 31 to 33 s instead of 42 to 43 (docs/synthesis.md). The distances at which
 // Bullet keeps points were read off Bullet 3.24; tests/synth/test_separated_pair_skip.cpp
 // compares bins with and without the skip, so another Bullet that keeps points farther fails it.
 #pragma once
