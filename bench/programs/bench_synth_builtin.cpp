@@ -5,10 +5,13 @@
 // of docs/synthesis.md come from here. One part and seed per run keeps runs short on a shared
 // machine and lets two run side by side:
 //   bench_synth_builtin --benchmark_filter='BM_DropBuiltin/tee/seed:2$'
-// With BINPICK_BENCH_SMOKE set, a bin has 20 parts and only the first seed runs.
+// With BINPICK_BENCH_SMOKE set, a bin has 20 parts and only the first seed runs. With
+// BINPICK_BENCH_NO_SKIP set, every pair of hulls gets Bullet's contact test (no
+// separated_pair_skip.hpp): the same bins, for timing what the skip saves.
 #include <benchmark/benchmark.h>
 
 #include <chrono>
+#include <cstdlib>
 #include <filesystem>
 #include <string>
 
@@ -35,6 +38,7 @@ void drop_builtin(benchmark::State& state, const std::string& name, std::uint64_
   const ConvexParts hulls = decompose_convex(part, decompose);
   DropOptions options;
   if (smoke()) options.objects = 20;
+  if (std::getenv("BINPICK_BENCH_NO_SKIP")) options.skip_apart_hulls = false;
   options.seed = seed;
   DropResult result;
   double wall = 0.0;

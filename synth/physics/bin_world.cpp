@@ -24,6 +24,8 @@ BinWorld::BinWorld(const DropOptions& options, std::vector<const PartShape*> kin
       rolling_friction_(btScalar(std::sqrt(options.rolling_friction_mm / kMmPerUnit))),
       rest_(options.rest_linear_speed_mm_s / kMmPerUnit, options.rest_angular_speed_rad_s,
             options.rest_seconds) {
+  if (options.skip_apart_hulls)
+    skip_apart_ = std::make_unique<SeparatedPairSkip>(collision_configuration_, dispatcher_);
   world_.setGravity(btVector3(0, 0, btScalar(-kGravityUnits)));
   world_.getSolverInfo().m_numIterations = options.solver_iterations;
   contact_erp_ = world_.getSolverInfo().m_erp2;

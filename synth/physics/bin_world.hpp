@@ -12,6 +12,7 @@
 #include "synth/physics/drop.hpp"
 #include "synth/physics/part_shape.hpp"
 #include "synth/physics/rest_tracker.hpp"
+#include "synth/physics/separated_pair_skip.hpp"
 
 namespace binpick {
 
@@ -56,6 +57,8 @@ class BinWorld {
     return kinds_of_parts_[std::size_t(body.getUserIndex())];
   }
   btDispatcher& dispatcher() { return dispatcher_; }
+  // Null when DropOptions::skip_apart_hulls is off.
+  const SeparatedPairSkip* apart_pair_skip() const { return skip_apart_.get(); }
   const PartShape& shape(int kind) const { return *kinds_[std::size_t(kind)]; }
   // A part whose centre of mass is below this (units) fell through the ground.
   btScalar lost_below() const { return lost_below_; }
@@ -74,6 +77,7 @@ class BinWorld {
   const btScalar rolling_friction_;  // per body, also spinning friction
   btDefaultCollisionConfiguration collision_configuration_;
   btCollisionDispatcher dispatcher_{&collision_configuration_};
+  std::unique_ptr<SeparatedPairSkip> skip_apart_;  // before world_: outlives its pairs
   btDbvtBroadphase broadphase_;
   btSequentialImpulseConstraintSolver solver_;
   btDiscreteDynamicsWorld world_{&dispatcher_, &broadphase_, &solver_, &collision_configuration_};

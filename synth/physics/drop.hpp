@@ -75,6 +75,10 @@ struct DropOptions {
   // a whole, so it comes to rest late). Off by default: the second above removes the large
   // shifts at a fraction of the cost, and what it leaves is under the rest speed.
   bool final_settle_all_dynamic = false;
+  // Pairs of hulls that are clearly apart skip Bullet's contact test (separated_pair_skip.hpp):
+  // the same bin, bit for bit, in 6 to 27 % less time (the built-in parts). Off only to check
+  // that.
+  bool skip_apart_hulls = true;
 };
 
 struct DropProgress {
