@@ -23,4 +23,10 @@ struct PointCloud {
   std::vector<Eigen::Vector3f> normals;
 };
 
+// Appends from's points and normals to to's (the fit points followed by probes, for one pass).
+inline void append_cloud(PointCloud& to, const PointCloud& from) {
+  to.points.insert(to.points.end(), from.points.begin(), from.points.end());
+  to.normals.insert(to.normals.end(), from.normals.begin(), from.normals.end());
+}
+
 }  // namespace binpick

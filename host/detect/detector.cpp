@@ -148,19 +148,13 @@ Detector::Detector(const PpfModel& model, const DetectParams& params, ocl::Devic
   if (params_.verify_edge > 0 && outline_ratio_ == 0) {
     const PointCloud& edges = model_.edge_probes;
     twin_probes_.edge_probes = static_cast<std::uint32_t>(edges.points.size());
-    twin_probes_.probes.points.insert(twin_probes_.probes.points.end(), edges.points.begin(),
-                                      edges.points.end());
-    twin_probes_.probes.normals.insert(twin_probes_.probes.normals.end(), edges.normals.begin(),
-                                       edges.normals.end());
+    append_cloud(twin_probes_.probes, edges);
     twin_probes_.probe_twin.resize(twin_probes_.probes.points.size(), twin_probes_.twins);
   }
   if (!twin_probes_.probes.points.empty()) {
     twin_probes_.fit_points = fit_model_.size;
     PointCloud all = fit_cloud;
-    all.points.insert(all.points.end(), twin_probes_.probes.points.begin(),
-                      twin_probes_.probes.points.end());
-    all.normals.insert(all.normals.end(), twin_probes_.probes.normals.begin(),
-                       twin_probes_.probes.normals.end());
+    append_cloud(all, twin_probes_.probes);
     twin_model_ = upload_fit_model(dev_, all);
   }
 }

@@ -70,8 +70,7 @@ void plate_shifted_on_a_plate(bool holes_without_depth) {
   tm.probe_twin.assign(tm.probes.points.size(), 0);
   tm.edge_probes = static_cast<std::uint32_t>(tm.probes.points.size());
   PointCloud all = model.fit_cloud;
-  all.points.insert(all.points.end(), tm.probes.points.begin(), tm.probes.points.end());
-  all.normals.insert(all.normals.end(), tm.probes.normals.begin(), tm.probes.normals.end());
+  append_cloud(all, tm.probes);
   const DeviceFitModel with_probes = upload_fit_model(dev, all);
   const std::vector<RefinedPose> before = refined;
   TwinTestOptions to;

@@ -135,8 +135,7 @@ void plate_and_its_look_alikes(bool holes_without_depth) {
   tm.probe_twin = model.probe_twin;
   tm.twins = 3;
   PointCloud both = model.fit_cloud;
-  both.points.insert(both.points.end(), tm.probes.points.begin(), tm.probes.points.end());
-  both.normals.insert(both.normals.end(), tm.probes.normals.begin(), tm.probes.normals.end());
+  append_cloud(both, tm.probes);
   const DeviceFitModel with_probes = upload_fit_model(dev, both);
   const std::vector<RefinedPose> before = refined;
   TwinTestOptions to;
