@@ -50,8 +50,10 @@ inline bp_hypothesis hyp_at(const uint best_i, __global const float4* points,
   return h;
 }
 
-/* Round, stage 2 (one work item): the best of the chunks, in chunk order for the same
- * tie-break; writes hyps[k], with the 3D point on the pixel's ray at the filtered depth. */
+/* Round, stage 2 (one work item): the best of the chunks or tiles, the smaller pixel index
+ * among equal depths (for chunks, which are in pixel order, the first chunk; tiles are not in
+ * pixel order, so the rule is explicit); writes hyps[k], with the 3D point on the pixel's ray
+ * at the filtered depth. */
 __kernel void hyp_select(__global const float* part_depth, __global const uint* part_pixel,
                          const uint parts, __global const float4* points,
                          __global const float* filtered, const uint width, const uint k,
@@ -59,11 +61,14 @@ __kernel void hyp_select(__global const float* part_depth, __global const uint* 
   if (get_global_id(0) != 0) return;
   float best = INFINITY;
   uint best_i = BP_NO_PIXEL;
-  for (uint g = 0; g < parts; ++g)
-    if (part_pixel[g] != BP_NO_PIXEL && part_depth[g] < best) {
+  for (uint g = 0; g < parts; ++g) {
+    const uint i = part_pixel[g];
+    if (i == BP_NO_PIXEL) continue;
+    if (part_depth[g] < best || (part_depth[g] == best && i < best_i)) {
       best = part_depth[g];
-      best_i = part_pixel[g];
+      best_i = i;
     }
+  }
   hyps[k] = hyp_at(best_i, points, filtered, width);
 }
 
@@ -121,26 +126,6 @@ __kernel void hyp_tile_argmin(__global const float* filtered, __global const uch
     }
   part_depth[ty * tiles_x + tx] = best;
   part_pixel[ty * tiles_x + tx] = best_i;
-}
-
-/* Stage 2 on tiles (one work item): the tiles are not in pixel order, so among equal depths the
- * smaller pixel index wins explicitly: the same pixel as the chunks' choice. */
-__kernel void hyp_select_tiles(__global const float* part_depth, __global const uint* part_pixel,
-                               const uint parts, __global const float4* points,
-                               __global const float* filtered, const uint width, const uint k,
-                               __global bp_hypothesis* hyps) {
-  if (get_global_id(0) != 0) return;
-  float best = INFINITY;
-  uint best_i = BP_NO_PIXEL;
-  for (uint g = 0; g < parts; ++g) {
-    const uint i = part_pixel[g];
-    if (i == BP_NO_PIXEL) continue;
-    if (part_depth[g] < best || (part_depth[g] == best && i < best_i)) {
-      best = part_depth[g];
-      best_i = i;
-    }
-  }
-  hyps[k] = hyp_at(best_i, points, filtered, width);
 }
 
 /* Stage 3 on a rectangle: hyp_exclude for the pixels of columns [u0, u0 + rect_w) and rows

@@ -54,7 +54,7 @@ std::vector<Hypothesis> rounds_on_tiles(ocl::Device& dev, const ocl::Buffer<floa
   ocl::Buffer<cl_uint> part_pixel(dev, t.count());
   ocl::Buffer<bp_hypothesis> hyps(dev, opt.count);
   cl::Kernel argmin = dev.kernel("hypotheses.cl", "hyp_tile_argmin");
-  cl::Kernel select = dev.kernel("hypotheses.cl", "hyp_select_tiles");
+  cl::Kernel select = dev.kernel("hypotheses.cl", "hyp_select");
   cl::Kernel exclude = dev.kernel("hypotheses.cl", "hyp_exclude_rect");
   const float radius2 = opt.exclusion_radius * opt.exclusion_radius;
   // The tiles to scan: all of them in the first round.

@@ -1,5 +1,5 @@
 // The highest-point rounds on a depth image's points (find_hypotheses with its camera): the tile
-// kernels of kernels/hypotheses.cl (hyp_tile_argmin, hyp_select_tiles, hyp_exclude_rect) each
+// kernels of kernels/hypotheses.cl (hyp_tile_argmin, hyp_select on tiles, hyp_exclude_rect) each
 // against a plain C++ reference on random input, exactly (comparisons only; the selected
 // point's x, y within 4 ulp as in test_kernels_hypotheses.cpp), and the routine with a camera
 // against the routine without one and find_hypotheses_reference: the same pixels, round by round.
@@ -46,22 +46,6 @@ void tile_argmin_reference(const std::vector<float>& filtered,
       depth[ty * t.x + tx] = best;
       pixel[ty * t.x + tx] = best_i;
     }
-}
-
-// hyp_select_tiles: the smallest depth of the parts, the smallest pixel among equals; the
-// hypothesis as hyp_select makes it (kernel_refs.hpp's reference of one part).
-bp_hypothesis select_tiles_reference(const std::vector<float>& part_depth,
-                                     const std::vector<u32>& part_pixel,
-                                     const std::vector<float>& points,
-                                     const std::vector<float>& filtered, u32 width) {
-  float best = INFINITY;
-  u32 best_i = BP_NO_PIXEL;
-  for (std::size_t g = 0; g < part_pixel.size(); ++g) {
-    if (part_pixel[g] == BP_NO_PIXEL) continue;
-    if (part_depth[g] < best || (part_depth[g] == best && part_pixel[g] < best_i))
-      best = part_depth[g], best_i = part_pixel[g];
-  }
-  return hyp_select_reference({best}, {best_i}, points, filtered, width);
 }
 
 // hyp_exclude_rect: hyp_exclude on the rectangle [u0, u1) x [v0, v1) only.
@@ -186,9 +170,9 @@ TEST(HypothesisTiles, hyp_tile_argmin_matches_reference) {
   }
 }
 
-TEST(HypothesisTiles, hyp_select_tiles_matches_reference) {
+TEST(HypothesisTiles, hyp_select_on_tiles_matches_reference) {
   auto& dev = ocl::Device::shared();
-  cl::Kernel k = dev.kernel("hypotheses.cl", "hyp_select_tiles");
+  cl::Kernel k = dev.kernel("hypotheses.cl", "hyp_select");
   std::mt19937 rng(612);
   for (auto [w, h, holes] : {std::tuple{1u, 1u, 0.0f}, {37u, 23u, 0.1f}, {160u, 120u, 0.05f}}) {
     const PointImage pts = random_point_image(rng, w, h, holes);
@@ -224,7 +208,7 @@ TEST(HypothesisTiles, hyp_select_tiles_matches_reference) {
       ocl::launch(dev, k, t % 2 ? 5 : 1, d_buf, px_buf, parts, p_buf, f_buf, w, slot, h_buf);
       const std::vector<bp_hypothesis> got = h_buf.read(dev);
       const std::string at = std::to_string(w) + "x" + std::to_string(h) + " t " + std::to_string(t);
-      expect_same(got[slot], select_tiles_reference(part_depth, part_pixel, pts.xyzw, filtered, w), at);
+      expect_same(got[slot], hyp_select_reference(part_depth, part_pixel, pts.xyzw, filtered, w), at);
       for (u32 j = 0; j < hyps.size(); ++j)
         if (j != slot) {
           EXPECT_EQ(got[j].pixel, kCanary) << at << " slot " << j;

@@ -354,7 +354,8 @@ inline ChunkArgmin hyp_chunk_argmin_reference(const std::vector<float>& filtered
   return r;
 }
 
-// hyp_select: the best of the chunks (first chunk among equals), with the point on its pixel's
+// hyp_select: the best of the chunks or tiles (the smaller pixel among equal depths: for
+// chunks in pixel order the first chunk), with the point on its pixel's
 // ray at the filtered depth; all zero but pixel = BP_NO_PIXEL if no chunk has one.
 inline bp_hypothesis hyp_select_reference(const std::vector<float>& part_depth,
                                           const std::vector<u32>& part_pixel,
@@ -362,8 +363,11 @@ inline bp_hypothesis hyp_select_reference(const std::vector<float>& part_depth,
                                           const std::vector<float>& filtered, u32 width) {
   float best = INFINITY;
   u32 best_i = BP_NO_PIXEL;
-  for (std::size_t g = 0; g < part_pixel.size(); ++g)
-    if (part_pixel[g] != BP_NO_PIXEL && part_depth[g] < best) best = part_depth[g], best_i = part_pixel[g];
+  for (std::size_t g = 0; g < part_pixel.size(); ++g) {
+    if (part_pixel[g] == BP_NO_PIXEL) continue;
+    if (part_depth[g] < best || (part_depth[g] == best && part_pixel[g] < best_i))
+      best = part_depth[g], best_i = part_pixel[g];
+  }
   bp_hypothesis h{best_i, 0, 0, 0.0f, 0.0f, 0.0f, 0.0f, {0, 0}};
   if (best_i != BP_NO_PIXEL) {
     const float* p = &points[4 * std::size_t(best_i)];
