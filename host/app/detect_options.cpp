@@ -85,6 +85,11 @@ void add_detect_cli_options(CLI::App* verb, DetectCliOptions& a, const std::stri
           "sensor sees the part's edges step down by (mean over points just beyond them, plus "
           "two standard errors) over this many verification tolerances, at most 1, in [0, 10]; "
           "0: off");
+  add("verify-rival", p.verify_rival,
+      "rival test: of two poses on the same measured points, the one whose squared residuals "
+          "along the rays are larger by more than this many standard errors of the paired "
+          "differences cannot outrank the other (its score is capped at the other's times the "
+          "ratio of their mean squares), in [0, 100]; 0: off");
   add("roi", p.roi,
       "only this box may hold hypotheses and crops: camera:x0,y0,z0,x1,y1,z1 (camera frame, "
           "mm) or bin:x0,y0,z0,x1,y1,z1 (the bin's frame: origin at the floor's centre, z up, "

@@ -19,6 +19,7 @@
 #include "host/detect/image_memory.hpp"
 #include "host/detect/ppf_pose.hpp"
 #include "host/detect/pose_refine.hpp"
+#include "host/detect/rival_test.hpp"
 #include "host/detect/scene_cloud.hpp"
 #include "host/detect/scene_crop.hpp"
 #include "host/detect/scene_neighbourhood.hpp"
@@ -66,6 +67,7 @@ std::optional<ParamProblem> find_param_problem(const DetectParams& p) {
       {in(p.verify_through, 0, 100), {"verify-through", p.verify_through, "[0, 100]"}},
       {in(p.verify_twin, 0, 1), {"verify-twin", p.verify_twin, "[0, 1]"}},
       {in(p.verify_edge, 0, 10), {"verify-edge", p.verify_edge, "[0, 10]"}},
+      {in(p.verify_rival, 0, 100), {"verify-rival", p.verify_rival, "[0, 100]"}},
       {in(p.bin_margin, 0, 10), {"bin-margin", p.bin_margin, "[0, 10]"}},
       {p.instances <= 1000, {"instances", double(p.instances), "[0, 1000]"}},
   };
@@ -130,7 +132,7 @@ Detector::Detector(const PpfModel& model, const DetectParams& params, ocl::Devic
   fit_model_ = upload_fit_model(dev_, fit_cloud);
   if (params_.verify_patch > 0)
     fit_geometry_.patches = model_patches(fit_cloud, float(params_.verify_patch * model_.diameter));
-  if (params_.verify_ray > 0) {
+  if (params_.verify_ray > 0 || params_.verify_rival > 0) {
     fit_geometry_.points = fit_cloud.points;
     fit_geometry_.normals = fit_cloud.normals;
   }
@@ -226,6 +228,10 @@ void take_pose(Detection& d, const RefinedPose& r, std::uint64_t votes, std::uin
   d.twin_excess = r.twin_excess;
   d.edge_tested = r.edge_tested;
   d.edge_step = r.edge_step;
+  d.rival_out_fitted = r.rival_out_fitted;
+  d.rival_shared = r.rival_shared;
+  d.own_ms = r.own_ms;
+  d.rival_ms = r.rival_ms;
   d.see_through = r.see_through;
   d.reason = r.reason;
 }
@@ -263,6 +269,8 @@ std::vector<Detection> Detector::refine_and_rank(
   ro.outline_ratio = outline_ratio_;
   ro.ray_band_ratio = float(params_.verify_ray);
   ro.through_weight = float(params_.verify_through);
+  // The rival test needs the measured points on the pixels' rays: a sensor's image.
+  ro.keep_measured = sensor && params_.verify_rival > 0;
   const auto sums = [&](const std::vector<bp_pose_fit>& fits) {
     return pose_fit_sums(dev_, points, cam, fit_model_, fits);
   };
@@ -290,6 +298,17 @@ std::vector<Detection> Detector::refine_and_rank(
         r.reason = fmt::format("{:.0f} % of the part below the bin's floor", 100 * below);
       }
     }
+  }
+  if (ro.keep_measured) {
+    RivalTestOptions rt;
+    rt.significance = params_.verify_rival;
+    rt.max_centre_distance = kRivalCentreRatio * model_.diameter;
+    // An RMS difference of 0.005 d, the twin test's band: a noise-free right pose's leftover
+    // error is of that size (the tee: 0.5 mm, one pose fitting the model's sampling 0.03 mm^2
+    // better than another).
+    rt.dead_band_floor = std::pow(kRivalFloorRatio * model_.diameter, 2);
+    rival_test(refined, fit_geometry_.points, fit_geometry_.normals,
+               model_.voxel_size / kFitVoxelDivisor, cam, fit_geometry_.centroid, rt);
   }
   if (params_.instances > 0) {
     // Every refined pose competes (instance_select.hpp), not only each hypothesis' best.

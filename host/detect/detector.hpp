@@ -65,6 +65,10 @@ struct DetectParams {
   // multiplied by the depth the sensor sees the part's edges step down by (an upper bound) over
   // this many verification tolerances, at most 1. Measured in docs/pipeline.md, step 9.
   double verify_edge = 1.0;
+  // Rival test's significance (standard errors; 0: off; rival_test.hpp): a pose that fits the
+  // measured points it shares with another pose worse by more than this cannot outrank it.
+  // Measured in docs/pipeline.md, step 9.
+  double verify_rival = 2.0;
   // Where hypotheses and crops may be (bin_spec.hpp, docs/cli.md): "" (anywhere),
   // "camera:x0,y0,z0,x1,y1,z1" or "bin:..." (mm).
   std::string roi;
@@ -119,6 +123,11 @@ struct Detection {
   // The edge test's step down at the part's edges (mm, an upper bound; edge_test.hpp), if run.
   bool edge_tested = false;
   double edge_step = 0;
+  // The rival test (rival_test.hpp): out-fitted by another pose on this many shared measured
+  // points, its mean clipped squared residual there against the rival's (mm^2).
+  bool rival_out_fitted = false;
+  std::uint32_t rival_shared = 0;
+  double own_ms = 0, rival_ms = 0;
   std::uint32_t see_through = 0;    // visible model points the sensor sees past
   std::string reason;               // why the score is 0 or refinement stopped early, or why the
                                     // hypothesis was skipped (Detector::skipped)

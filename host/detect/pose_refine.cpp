@@ -9,6 +9,7 @@
 
 #include "host/core/error.hpp"
 #include "host/detect/ray_test.hpp"
+#include "host/detect/rival_test.hpp"
 
 namespace binpick {
 namespace {
@@ -146,8 +147,10 @@ std::vector<RefinedPose> refine_and_verify(const FitSumsFn& sums_of, const bp_ca
   const bool patch_test_on = g.patches.count > 0;
   const bool ray_test_on = opt.ray_band_ratio > 0 && !g.points.empty() &&
                            g.points.size() == g.normals.size() && g.points.size() == model_points;
+  const bool keep_measured = opt.keep_measured && g.points.size() == model_points &&
+                             g.normals.size() == model_points;
   const std::vector<FitSums> sums = final_sums(tolerance, final_gate, opt.outline_ratio * g.diameter,
-                                               patch_test_on || ray_test_on);
+                                               patch_test_on || ray_test_on || keep_measured);
   const double min_support = double(opt.min_support_ratio) * model_points;
   // The ray test (ray_test.hpp): each pose's spread along the rays; the image's noise is the
   // least among the poses with enough points.
@@ -173,6 +176,8 @@ std::vector<RefinedPose> refine_and_verify(const FitSumsFn& sums_of, const bp_ca
     r.tolerance = tolerance;
     r.outline_continue = s.outline_continue;
     r.outline_step = s.outline_step;
+    if (keep_measured && s.residuals.size() == model_points)
+      r.measured = measured_points(s.residuals, r.R, r.t, g.points, g.normals, cam);
     if (r.visible == 0) {
       r.score = 0;
       r.reason = "no model surface visible at this pose";

@@ -67,6 +67,9 @@ struct RefineOptions {
   // max(0, 1 - through_weight * see_through / support) (support: visible minus half the
   // missing, as in the score). 0: off (such points only fail to agree).
   float through_weight = 0.0f;
+  // Keep each pose's measured points (RefinedPose::measured) for the rival test
+  // (rival_test.hpp); depth images only, whose measured points lie on the pixels' rays.
+  bool keep_measured = false;
 };
 void check(const RefineOptions& opt);
 
@@ -83,6 +86,13 @@ struct RefinedPose {
   double twin_excess = 0;        // mm, its largest depth excess at a look-alike's probes
   bool edge_tested = false;      // the edge test ran on this pose (edge_test.hpp)
   double edge_step = 0;          // mm, the step down at its edges (an upper bound)
+  // The rival test (rival_test.hpp): out-fitted by another pose on shared measured points, its
+  // mean clipped squared residual there (mm^2) against the rival's.
+  bool rival_out_fitted = false;
+  std::uint32_t rival_shared = 0;
+  double own_ms = 0, rival_ms = 0;
+  // The measured points of its ICP terms at the final pose (RefineOptions::keep_measured).
+  std::vector<Eigen::Vector3f> measured;
   std::uint32_t iterations = 0;  // ICP steps taken
   float tolerance = 0;           // mm, the verification tolerance used (the same for all poses)
   std::string reason;          // why the score is 0 or refinement stopped early; empty if neither

@@ -176,38 +176,30 @@ TEST_F(DetectCli, ParamsFileAppliesAndCommandLineWins) {
                                     (*dir_ / "data").string(), out.string(), params.string()));
   EXPECT_EQ(r.status, 2);
   EXPECT_NE(r.err.find("no_such_thing"), std::string::npos) << r.err;
-  // The ray test's band from the file is checked like the command line's.
-  { std::ofstream(params) << R"({"verify_ray": 2})"; }
-  r = test::run_binpick(fmt::format("detect --model {} --dataset {} --out {} --params {}", model_,
-                                    (*dir_ / "data").string(), out.string(), params.string()));
-  EXPECT_EQ(r.status, 2);
-  EXPECT_NE(r.err.find("verify-ray 2 must be in [0, 1]"), std::string::npos) << r.err;
-  // So is the see-through cost's weight.
-  { std::ofstream(params) << R"({"verify_through": -1})"; }
-  r = test::run_binpick(fmt::format("detect --model {} --dataset {} --out {} --params {}", model_,
-                                    (*dir_ / "data").string(), out.string(), params.string()));
-  EXPECT_EQ(r.status, 2);
-  EXPECT_NE(r.err.find("verify-through -1 must be in [0, 100]"), std::string::npos) << r.err;
-  // And the twin test's band, from a file and as an option.
-  { std::ofstream(params) << R"({"verify_twin": 1.5})"; }
-  r = test::run_binpick(fmt::format("detect --model {} --dataset {} --out {} --params {}", model_,
-                                    (*dir_ / "data").string(), out.string(), params.string()));
-  EXPECT_EQ(r.status, 2);
-  EXPECT_NE(r.err.find("verify-twin 1.5 must be in [0, 1]"), std::string::npos) << r.err;
-  r = test::run_binpick(fmt::format("detect --model {} --dataset {} --out {} --verify-twin -0.1",
-                                    model_, (*dir_ / "data").string(), out.string()));
-  EXPECT_EQ(r.status, 2);
-  EXPECT_NE(r.err.find("verify-twin -0.1 must be in [0, 1]"), std::string::npos) << r.err;
-  // And the edge test's scale.
-  { std::ofstream(params) << R"({"verify_edge": 11})"; }
-  r = test::run_binpick(fmt::format("detect --model {} --dataset {} --out {} --params {}", model_,
-                                    (*dir_ / "data").string(), out.string(), params.string()));
-  EXPECT_EQ(r.status, 2);
-  EXPECT_NE(r.err.find("verify-edge 11 must be in [0, 10]"), std::string::npos) << r.err;
-  r = test::run_binpick(fmt::format("detect --model {} --dataset {} --out {} --verify-edge nan",
-                                    model_, (*dir_ / "data").string(), out.string()));
-  EXPECT_EQ(r.status, 2);
-  EXPECT_NE(r.err.find("verify-edge"), std::string::npos) << r.err;
+  // Each verification test's parameter, from the file and as an option, is checked alike: one
+  // message naming it and its range, exit status 2.
+  const auto refused_in_file = [&](const std::string& json, const std::string& message) {
+    { std::ofstream(params) << json; }
+    const auto r = test::run_binpick(fmt::format("detect --model {} --dataset {} --out {} --params {}",
+                                                 model_, (*dir_ / "data").string(), out.string(),
+                                                 params.string()));
+    EXPECT_EQ(r.status, 2) << json;
+    EXPECT_NE(r.err.find(message), std::string::npos) << r.err;
+  };
+  const auto refused_as_option = [&](const std::string& option, const std::string& message) {
+    const auto r = test::run_binpick(fmt::format("detect --model {} --dataset {} --out {} {}", model_,
+                                                 (*dir_ / "data").string(), out.string(), option));
+    EXPECT_EQ(r.status, 2) << option;
+    EXPECT_NE(r.err.find(message), std::string::npos) << r.err;
+  };
+  refused_in_file(R"({"verify_ray": 2})", "verify-ray 2 must be in [0, 1]");
+  refused_in_file(R"({"verify_through": -1})", "verify-through -1 must be in [0, 100]");
+  refused_in_file(R"({"verify_twin": 1.5})", "verify-twin 1.5 must be in [0, 1]");
+  refused_as_option("--verify-twin -0.1", "verify-twin -0.1 must be in [0, 1]");
+  refused_in_file(R"({"verify_edge": 11})", "verify-edge 11 must be in [0, 10]");
+  refused_as_option("--verify-edge nan", "verify-edge");
+  refused_in_file(R"({"verify_rival": 101})", "verify-rival 101 must be in [0, 100]");
+  refused_as_option("--verify-rival -1", "verify-rival -1 must be in [0, 100]");
 }
 
 TEST_F(DetectCli, CloudPath) {
