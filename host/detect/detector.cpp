@@ -307,6 +307,10 @@ std::vector<Detection> Detector::refine_and_rank(
     // error is of that size (the tee: 0.5 mm, one pose fitting the model's sampling 0.03 mm^2
     // better than another).
     rt.dead_band_floor = std::pow(kRivalFloorRatio * model_.diameter, 2);
+    // A thin part's neighbours beyond its outline are sheets of itself a thickness lower, which
+    // any pose shifted over them explains as well as the right one does its own surface: there
+    // the edge test judges the outline, and only the shared points are compared.
+    rt.count_unexplained = outline_ratio_ > 0;
     rival_test(refined, fit_geometry_.points, fit_geometry_.normals,
                model_.voxel_size / kFitVoxelDivisor, cam, fit_geometry_.centroid, rt);
   }

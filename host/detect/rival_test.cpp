@@ -118,26 +118,28 @@ double PosedSurface::along_ray(const Eigen::Vector3f& m) const {
 
 RivalComparison compare_rivals(const PosedSurface& a, std::span<const Eigen::Vector3f> measured_a,
                                const PosedSurface& b, std::span<const Eigen::Vector3f> measured_b,
-                               double tolerance) {
+                               double tolerance, bool count_unexplained) {
   RivalComparison c;
   const double cap = tolerance * tolerance;
   double sum_a = 0, sum_b = 0, sum_d = 0, sum_d2 = 0;
   for (const std::span<const Eigen::Vector3f> measured : {measured_a, measured_b})
     for (const Eigen::Vector3f& m : measured) {
       ++c.union_size;
-      const double ea = a.along_ray(m);
-      if (!std::isfinite(ea)) continue;
-      const double eb = b.along_ray(m);
-      if (!std::isfinite(eb)) continue;
-      const double sa = std::min(ea * ea, cap), sb = std::min(eb * eb, cap);
-      ++c.shared;
+      const double ea = a.along_ray(m), eb = b.along_ray(m);
+      const bool both = std::isfinite(ea) && std::isfinite(eb);
+      if (both) ++c.shared;
+      if (!both && !count_unexplained) continue;
+      // A point one pose has no surface at is left unexplained by it: the clip's cost.
+      const double sa = std::isfinite(ea) ? std::min(ea * ea, cap) : cap;
+      const double sb = std::isfinite(eb) ? std::min(eb * eb, cap) : cap;
+      ++c.compared;
       sum_a += sa;
       sum_b += sb;
       sum_d += sb - sa;
       sum_d2 += (sb - sa) * (sb - sa);
     }
-  if (c.shared < 2) return c;
-  const double n = double(c.shared);
+  if (c.compared < 2) return c;
+  const double n = double(c.compared);
   c.ms_a = sum_a / n;
   c.ms_b = sum_b / n;
   const double mean = sum_d / n;
@@ -176,7 +178,8 @@ void rival_test(std::vector<RefinedPose>& poses, std::span<const Eigen::Vector3f
       const Eigen::Vector3d cj = poses[j].R * centroid + poses[j].t;
       if (opt.max_centre_distance > 0 && (ci - cj).norm() > opt.max_centre_distance) continue;
       const RivalComparison c = compare_rivals(surface_of(i), poses[i].measured, surface_of(j),
-                                               poses[j].measured, poses[i].tolerance);
+                                               poses[j].measured, poses[i].tolerance,
+                                               opt.count_unexplained);
       if (c.shared < opt.min_points || double(c.shared) < opt.min_shared * double(c.union_size))
         continue;
       const double margin =

@@ -13,9 +13,12 @@
 // Per pair of poses (A, B): the union of the measured points each one's ICP used; at each, each
 // pose's along-ray residual to the tangent plane of its model point at that pixel (projective,
 // as ICP pairs them), squared and clipped at the tolerance. The pair are rivals if both have
-// model surface at `min_shared` of the union's points at least. If B's mean
-// exceeds A's by more than `significance` standard errors of the paired differences, B is
-// out-fitted: its score becomes at most A's score times ms_A / ms_B.
+// model surface at `min_shared` of the union's points at least. A point where one of them has
+// none is left unexplained by it and costs it the clip (`count_unexplained`): a pose that turns
+// a protruding feature out of view shows fewer points, all agreeing, and would otherwise
+// outscore the right pose. If B's mean exceeds A's by more than `significance` standard errors
+// of the paired differences (and the dead bands), B is out-fitted: its score becomes at most
+// A's score times ms_A / ms_B.
 #pragma once
 
 #include <cstddef>
@@ -61,14 +64,15 @@ class PosedSurface {
 };
 
 struct RivalComparison {
-  std::size_t union_size = 0, shared = 0;  // measured points, and those both poses reach
-  double ms_a = 0, ms_b = 0;               // mean clipped squared residual on the shared, mm^2
+  std::size_t union_size = 0, shared = 0;  // measured points, and those both have surface at
+  std::size_t compared = 0;                // those the means are over
+  double ms_a = 0, ms_b = 0;               // mean clipped squared residual, mm^2
   double standard_error = 0;               // of the mean of (B's - A's), mm^2
 };
 // A's and B's residuals on the union of their measured points.
 RivalComparison compare_rivals(const PosedSurface& a, std::span<const Eigen::Vector3f> measured_a,
                                const PosedSurface& b, std::span<const Eigen::Vector3f> measured_b,
-                               double tolerance);
+                               double tolerance, bool count_unexplained);
 
 // Poses whose posed centroids lie farther apart than this fraction of the diameter are not
 // compared (they cannot share most of their points); a pruning for speed.
@@ -87,6 +91,9 @@ struct RivalTestOptions {
   double dead_band_floor = 0;
   std::size_t min_points = 30;  // fewer shared points: no comparison
   double max_centre_distance = 0;  // mm; poses whose centroids lie farther apart are not compared
+  // A measured point of one pose where the other has no model surface costs the other the
+  // clip (it leaves the point unexplained); false: only the shared points are compared.
+  bool count_unexplained = true;
 };
 
 // Caps the score of every pose out-fitted by a rival (the scores before the test count) and

@@ -234,3 +234,42 @@ TEST(RivalTest, PosesWithoutMeasuredPointsOrScoreAreNotCompared) {
   EXPECT_THROW(PosedSurface(Eigen::Matrix3d::Identity(), {0, 0, 500}, points, normals, kCam, 0.0f),
                std::logic_error);
 }
+
+TEST(RivalTest, APoseShowingLessLeavesTheRestUnexplained) {
+  // Two poses of a flat part facing the camera 500 mm ahead: A's model is the whole 40 x 40 mm
+  // square, B's only its left half (a pose that turns a protruding feature out of view). The
+  // measured surface is the whole square, 0.2 mm behind the model.
+  std::vector<Eigen::Vector3f> whole, half, normals_whole, normals_half;
+  for (int i = -20; i <= 20; ++i)
+    for (int j = -20; j <= 20; ++j) {
+      whole.emplace_back(float(i), float(j), 0.0f);
+      normals_whole.emplace_back(0.0f, 0.0f, 1.0f);
+      if (i < 0) {
+        half.emplace_back(float(i), float(j), 0.0f);
+        normals_half.emplace_back(0.0f, 0.0f, 1.0f);
+      }
+    }
+  const Eigen::Matrix3d facing = Eigen::AngleAxisd(M_PI, Eigen::Vector3d::UnitX()).toRotationMatrix();
+  const PosedSurface a(facing, {0, 0, 500}, whole, normals_whole, kCam, 1.0f);
+  const PosedSurface b(facing, {0, 0, 500}, half, normals_half, kCam, 1.0f);
+  const auto measured_on = [](const std::vector<Eigen::Vector3f>& model) {
+    std::vector<Eigen::Vector3f> m;
+    for (const Eigen::Vector3f& p : model) m.push_back(Eigen::Vector3f(p.x(), -p.y(), 500.2f));
+    return m;
+  };
+  const auto ma = measured_on(whole), mb = measured_on(half);
+  // Only the shared points: the two fit alike.
+  const RivalComparison shared = compare_rivals(a, ma, b, mb, 2.0, false);
+  EXPECT_EQ(shared.union_size, ma.size() + mb.size());
+  EXPECT_EQ(shared.compared, shared.shared);
+  EXPECT_NEAR(shared.ms_a, shared.ms_b, 1e-3);
+  EXPECT_NEAR(shared.ms_a, 0.04, 0.01);
+  // Counting what B leaves unexplained at the clip (2 mm): about a third of the union costs B
+  // 4 mm^2 each.
+  const RivalComparison all = compare_rivals(a, ma, b, mb, 2.0, true);
+  EXPECT_EQ(all.compared, all.union_size);
+  EXPECT_GT(all.shared, 0.6 * double(all.union_size));
+  EXPECT_NEAR(all.ms_a, 0.04, 0.01);
+  EXPECT_GT(all.ms_b, 1.0);
+  EXPECT_LT(all.ms_b - all.ms_a, 4.0 * (1.0 - 0.6));
+}
