@@ -43,10 +43,7 @@ void plate_shifted_on_a_plate(bool holes_without_depth) {
   const Eigen::Matrix3d R = pose.linear();
   const Eigen::Vector3d t = pose.translation();
 
-  FitGeometry g;
-  g.diameter = model.diameter;
-  g.voxel_size = model.voxel_size;
-  g.centroid = model_centroid(model.cloud);
+  const FitGeometry g = test::plate_fit_geometry(model);
   const DeviceFitModel fit = upload_fit_model(dev, model.fit_cloud);
   const ocl::Buffer<float> points(dev, std::span<const float>(image.xyzw));
   // The right pose, and the plate shifted 20 mm across (in its plane, along y): its one long

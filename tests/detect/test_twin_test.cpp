@@ -110,10 +110,7 @@ void plate_and_its_look_alikes(bool holes_without_depth) {
   const Eigen::Vector3d t = pose.translation();
   const PointImage image = test::plate_over_plane(cam, pose, holes_without_depth);
 
-  FitGeometry g;
-  g.diameter = model.diameter;
-  g.voxel_size = model.voxel_size;
-  g.centroid = model_centroid(model.cloud);
+  const FitGeometry g = test::plate_fit_geometry(model);
   const DeviceFitModel fit = upload_fit_model(dev, model.fit_cloud);
   const ocl::Buffer<float> points(dev, std::span<const float>(image.xyzw));
   std::vector<PoseToRefine> poses = {{R, t}};

@@ -56,4 +56,12 @@ PointImage plate_over_plane(const bp_camera& cam, const Eigen::Isometry3d& pose,
   return image;
 }
 
+FitGeometry plate_fit_geometry(const PpfModel& model) {
+  FitGeometry g;
+  g.diameter = model.diameter;
+  g.voxel_size = model.voxel_size;
+  g.centroid = model_centroid(model.cloud);
+  return g;
+}
+
 }  // namespace binpick::test

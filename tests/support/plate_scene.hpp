@@ -7,6 +7,7 @@
 
 #include "host/detect/depth_to_points.hpp"
 #include "host/detect/pose_fit.hpp"
+#include "host/train/ppf_model.hpp"
 
 namespace binpick::test {
 
@@ -22,5 +23,8 @@ Eigen::Isometry3d plate_pose();
 // hole).
 PointImage plate_over_plane(const bp_camera& cam, const Eigen::Isometry3d& pose,
                             bool holes_without_depth);
+
+// The fit geometry the probe tests verify with: the model's diameter, voxel and centroid.
+FitGeometry plate_fit_geometry(const PpfModel& model);
 
 }  // namespace binpick::test
