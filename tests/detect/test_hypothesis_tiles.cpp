@@ -15,6 +15,7 @@
 #include "host/detect/hypotheses.hpp"
 #include "host/detect/scene_lowpass.hpp"
 #include "host/detect/scene_prepare.hpp"
+#include "tests/support/hypothesis_checks.hpp"
 #include "tests/support/kernel_refs.hpp"
 #include "tests/support/test_device.hpp"
 
@@ -60,31 +61,6 @@ void exclude_rect_reference(const std::vector<float>& points, u32 width, u32 u0,
       if (i == h.pixel || (p[3] != 0.0f && bp_dist2(p[0], p[1], p[2], h.x, h.y, h.z) <= radius2))
         excluded[i] = 1;
     }
-}
-
-// Filtered depths rounded to 1/4 mm: many pixels share the smallest value (ties).
-std::vector<float> tied_filtered(const PointImage& pts, int radius) {
-  std::vector<float> f = lowpass_depth_reference(pts, radius);
-  for (float& x : f) x = std::round(x * 4.0f) / 4.0f;
-  return f;
-}
-
-std::vector<std::uint8_t> random_flags(std::mt19937& rng, std::size_t n, double p) {
-  std::bernoulli_distribution b(p);
-  std::vector<std::uint8_t> out(n);
-  for (auto& x : out) x = b(rng) ? 1 : 0;
-  return out;
-}
-
-void expect_same(const bp_hypothesis& got, const bp_hypothesis& want, const std::string& at) {
-  EXPECT_EQ(got.pixel, want.pixel) << at;
-  EXPECT_EQ(got.u, want.u) << at;
-  EXPECT_EQ(got.v, want.v) << at;
-  EXPECT_EQ(got.depth, want.depth) << at;
-  EXPECT_EQ(got.z, want.z) << at;
-  const float eps = 4 * std::numeric_limits<float>::epsilon();
-  EXPECT_LE(std::fabs(got.x - want.x), eps * std::fabs(want.x)) << at;
-  EXPECT_LE(std::fabs(got.y - want.y), eps * std::fabs(want.y)) << at;
 }
 
 bp_camera camera(u32 w, u32 h, float f, float cx_shift = 0.0f) {

@@ -12,6 +12,7 @@
 #include "host/detect/hypotheses.hpp"
 #include "host/detect/scene_chunks.hpp"
 #include "host/detect/scene_lowpass.hpp"
+#include "tests/support/hypothesis_checks.hpp"
 #include "tests/support/kernel_refs.hpp"
 
 using namespace binpick;
@@ -21,38 +22,6 @@ namespace {
 
 constexpr u32 kCanary = 0xdeadbeefu;
 constexpr std::size_t kGuard = 8;
-
-// Filtered depths of a point image: the low-pass reference, with ties forced (depths rounded
-// to 1/4 mm: many pixels share the smallest value).
-std::vector<float> tied_filtered(const PointImage& pts, int radius) {
-  std::vector<float> f = lowpass_depth_reference(pts, radius);
-  for (float& x : f) x = std::round(x * 4.0f) / 4.0f;
-  return f;
-}
-
-std::vector<std::uint8_t> random_flags(std::mt19937& rng, std::size_t n, double p) {
-  std::bernoulli_distribution b(p);
-  std::vector<std::uint8_t> out(n);
-  for (auto& x : out) x = b(rng) ? 1 : 0;
-  return out;
-}
-
-void expect_near_ulps(float got, float want, int ulps, const std::string& what) {
-  EXPECT_LE(std::fabs(got - want), ulps * std::numeric_limits<float>::epsilon() * std::fabs(want))
-      << what << ": " << got << " vs " << want;
-}
-
-void expect_same(const bp_hypothesis& got, const bp_hypothesis& want, const std::string& at) {
-  EXPECT_EQ(got.pixel, want.pixel) << at;
-  EXPECT_EQ(got.u, want.u) << at;
-  EXPECT_EQ(got.v, want.v) << at;
-  EXPECT_EQ(got.depth, want.depth) << at;
-  EXPECT_EQ(got.z, want.z) << at;
-  expect_near_ulps(got.x, want.x, 4, at + " x");
-  expect_near_ulps(got.y, want.y, 4, at + " y");
-  EXPECT_EQ(got.reserved[0], 0u) << at;
-  EXPECT_EQ(got.reserved[1], 0u) << at;
-}
 
 const bp_hypothesis kCanaryHypothesis{kCanary, kCanary, kCanary, -1.0f, -1.0f, -1.0f, -1.0f, {kCanary, kCanary}};
 
