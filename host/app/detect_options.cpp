@@ -55,6 +55,10 @@ void add_detect_cli_options(CLI::App* verb, DetectCliOptions& a, const std::stri
   add("local-peaks", a.local_peaks,
       "1: accumulator peaks must be local maxima along alpha, so the peaks "
           "kept are different poses; 0: the best cells");
+  add("bucket-cap", p.bucket_cap,
+      "a feature key votes for at most this many model pairs per model point (the most "
+          "common keys, such as a flat face's, keep that many evenly spaced), in [0, 10000]; "
+          "0: every pair (Drost)");
   add("candidates", a.candidates,
       "best pose clusters per hypothesis refined and verified, in [1, 64]");
   add("refine-iterations", a.refine_iterations,

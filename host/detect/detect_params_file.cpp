@@ -61,6 +61,7 @@ const std::map<std::string, Field>& fields() {
       {"unique-votes", count(&DetectParams::unique_votes)},
       {"spread-votes", count(&DetectParams::spread_votes)},
       {"local-peaks", count(&DetectParams::local_peaks)},
+      {"bucket-cap", real(&DetectParams::bucket_cap)},
       {"candidates", count(&DetectParams::candidates)},
       {"refine-iterations", count(&DetectParams::refine_iterations)},
       {"verify-tolerance", real(&DetectParams::verify_tolerance)},

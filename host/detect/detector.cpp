@@ -25,6 +25,7 @@
 #include "host/detect/scene_neighbourhood.hpp"
 #include "host/detect/scene_prepare.hpp"
 #include "host/detect/shared_scene.hpp"
+#include "host/train/ppf_bucket_cap.hpp"
 #include "host/train/voxel_subsample.hpp"
 
 namespace binpick {
@@ -58,6 +59,7 @@ std::optional<ParamProblem> find_param_problem(const DetectParams& p) {
       {p.unique_votes <= 1, {"unique-votes", double(p.unique_votes), "{0, 1}"}},
       {p.spread_votes <= 1, {"spread-votes", double(p.spread_votes), "{0, 1}"}},
       {p.local_peaks <= 1, {"local-peaks", double(p.local_peaks), "{0, 1}"}},
+      {in(p.bucket_cap, 0, 10000), {"bucket-cap", p.bucket_cap, "[0, 10000]"}},
       {p.candidates >= 1 && p.candidates <= 64, {"candidates", double(p.candidates), "[1, 64]"}},
       {p.refine_iterations <= 100, {"refine-iterations", double(p.refine_iterations), "[0, 100]"}},
       {in(p.verify_tolerance, 0, 1) && p.verify_tolerance > 0, {"verify-tolerance", p.verify_tolerance, "(0, 1]"}},
@@ -126,7 +128,8 @@ Detector::Detector(const PpfModel& model, const DetectParams& params, ocl::Devic
                                     "pose_fit.cl"});
   if (!params_.roi.empty() || params_.bin != "none")
     program_build_s_ += dev_.prebuild({"scene_mask.cl", "bin_planes.cl"});
-  device_model_ = upload_model(dev_, model_);
+  device_model_ = upload_model(
+      dev_, model_, bucket_cap_entries(params_.bucket_cap, model_.cloud.points.size()));
   // The denser refinement points where the model file has them (version 3 on).
   const PointCloud& fit_cloud = model_.fit_cloud.points.empty() ? model_.cloud : model_.fit_cloud;
   fit_model_ = upload_fit_model(dev_, fit_cloud);

@@ -43,6 +43,10 @@ struct DetectParams {
   std::uint32_t unique_votes = 0;  // 1: equal scene pairs of a reference point vote once
   std::uint32_t spread_votes = 0;  // 1: each vote also goes to the nearer neighbouring alpha bin
   std::uint32_t local_peaks = 1;   // 1: peaks must be local maxima along alpha
+  // A feature key votes for at most this many model pairs per model point (evenly spaced;
+  // ppf_bucket_cap.hpp); 0: all of them (Drost). Off: measured in docs/parameters.md, it makes
+  // flat parts vote faster but costs a few hypotheses.
+  double bucket_cap = 0.0;
   double normal_ratio = 0.08;      // scene normals: radius of the plane fitted (fraction)
   std::uint32_t candidates = 4;    // best pose clusters per hypothesis refined and verified
   std::uint32_t refine_iterations = 10;  // ICP steps per candidate (0: verify the voted pose)

@@ -12,6 +12,7 @@
 
 #include "host/core/error.hpp"
 #include "host/core/cloud_input.hpp"
+#include "host/train/ppf_bucket_cap.hpp"
 #include "host/train/ppf_features.hpp"
 
 namespace binpick {
@@ -23,14 +24,17 @@ std::size_t cells_of(const PpfModel& model) {
 
 }  // namespace
 
-DeviceModel upload_model(ocl::Device& dev, const PpfModel& model) {
+DeviceModel upload_model(ocl::Device& dev, const PpfModel& model, std::size_t bucket_cap) {
   if (model.table.offsets.size() != std::size_t(bp_ppf_key_count(model.quant)) + 1)
     throw InputError("PPF model table does not match its discretisation");
   DeviceModel d;
   d.model = &model;
-  d.offsets = ocl::Buffer<std::uint32_t>(
-      dev, std::span<const std::uint32_t>(model.table.offsets), CL_MEM_READ_ONLY);
-  d.entries = ocl::Buffer<bp_ppf_entry>(dev, std::span<const bp_ppf_entry>(model.table.entries),
+  d.bucket_cap = bucket_cap;
+  const PpfTable capped = cap_ppf_buckets(model.table, bucket_cap);
+  const PpfTable& table = bucket_cap == 0 ? model.table : capped;
+  d.offsets = ocl::Buffer<std::uint32_t>(dev, std::span<const std::uint32_t>(table.offsets),
+                                         CL_MEM_READ_ONLY);
+  d.entries = ocl::Buffer<bp_ppf_entry>(dev, std::span<const bp_ppf_entry>(table.entries),
                                         CL_MEM_READ_ONLY);
   return d;
 }

@@ -20,8 +20,10 @@ struct DeviceModel {
   const PpfModel* model = nullptr;  // must outlive this
   ocl::Buffer<std::uint32_t> offsets;
   ocl::Buffer<bp_ppf_entry> entries;
+  std::size_t bucket_cap = 0;       // entries a bucket keeps (cap_ppf_buckets); 0: all
 };
-DeviceModel upload_model(ocl::Device& dev, const PpfModel& model);
+// The table as cap_ppf_buckets(model.table, bucket_cap) leaves it (0: the whole table).
+DeviceModel upload_model(ocl::Device& dev, const PpfModel& model, std::size_t bucket_cap = 0);
 
 // Reference points: m = max(1, round(ratio * n)) of n subsampled scene points, evenly spread
 // over the cloud's order (index floor(j * n / m)): deterministic, and in pixel order this

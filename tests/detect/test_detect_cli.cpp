@@ -200,6 +200,13 @@ TEST_F(DetectCli, ParamsFileAppliesAndCommandLineWins) {
   refused_as_option("--verify-edge nan", "verify-edge");
   refused_in_file(R"({"verify_rival": 101})", "verify-rival 101 must be in [0, 100]");
   refused_as_option("--verify-rival -1", "verify-rival -1 must be in [0, 100]");
+  refused_in_file(R"({"bucket_cap": -1})", "bucket-cap -1 must be in [0, 10000]");
+  refused_as_option("--bucket-cap inf", "bucket-cap inf must be in [0, 10000]");
+  // A capped table detects too.
+  r = test::run_binpick(fmt::format("detect --model {} --dataset {} --out {} --scenes 0 --hypotheses 1 --bucket-cap 3",
+                                    model_, (*dir_ / "data").string(), out.string()));
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_EQ(bop::read_results_csv(out).size(), 1u);
 }
 
 TEST_F(DetectCli, CloudPath) {

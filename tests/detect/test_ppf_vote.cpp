@@ -14,6 +14,7 @@
 #include "host/detect/detector.hpp"
 #include "host/detect/ppf_pose.hpp"
 #include "host/detect/ppf_vote.hpp"
+#include "host/train/ppf_bucket_cap.hpp"
 #include "host/train/ppf_features.hpp"
 #include "host/train/ppf_table.hpp"
 #include "tests/support/test_device.hpp"
@@ -55,6 +56,45 @@ Eigen::Isometry3f known_pose() {
 }
 
 }  // namespace
+
+TEST(PpfBucketCap, KeepsEvenlySpacedEntriesOfOverfullBucketsOnly) {
+  EXPECT_EQ(bucket_cap_entries(0.0, 318), 0u);
+  EXPECT_EQ(bucket_cap_entries(3.0, 318), 954u);
+  EXPECT_EQ(bucket_cap_entries(1e-6, 318), 1u);  // a cap keeps at least one entry
+  // A plane's pairs: most share a few keys (the case the cap is for).
+  PpfModel plate;
+  plate.diameter = 50.0f;
+  plate.quant = make_ppf_quant(plate.diameter, 20, 30);
+  for (int y = 0; y < 12; ++y)
+    for (int x = 0; x < 12; ++x) {
+      plate.cloud.points.emplace_back(3.0f * x, 3.0f * y, 0.0f);
+      plate.cloud.normals.emplace_back(0.0f, 0.0f, 1.0f);
+    }
+  const PpfTable& full = plate.table = build_ppf_table(test_device(), plate.cloud, plate.quant);
+  const std::size_t cap = 200;
+  const PpfTable capped = cap_ppf_buckets(full, cap);
+  ASSERT_EQ(capped.offsets.size(), full.offsets.size());
+  EXPECT_EQ(capped.offsets.back(), capped.entries.size());
+  std::size_t overfull = 0;
+  for (std::size_t k = 0; k + 1 < full.offsets.size(); ++k) {
+    const std::size_t size = full.offsets[k + 1] - full.offsets[k];
+    const std::size_t kept = capped.offsets[k + 1] - capped.offsets[k];
+    ASSERT_EQ(kept, std::min(size, cap)) << k;
+    if (size > cap) ++overfull;
+    for (std::size_t j = 0; j < kept; ++j) {  // floor(j * size / kept), in order
+      const bp_ppf_entry& want = full.entries[full.offsets[k] + j * size / kept];
+      const bp_ppf_entry& got = capped.entries[capped.offsets[k] + j];
+      ASSERT_EQ(got.point, want.point);
+      ASSERT_EQ(got.alpha, want.alpha);
+    }
+  }
+  EXPECT_GT(overfull, 0u);
+  EXPECT_LT(capped.entries.size(), full.entries.size());
+  const PpfTable same = cap_ppf_buckets(full, 0);
+  EXPECT_EQ(same.offsets, full.offsets);
+  EXPECT_EQ(same.entries.size(), full.entries.size());
+  EXPECT_TRUE(cap_ppf_buckets(PpfTable{}, 5).entries.empty());
+}
 
 TEST(PpfVote, ReferencePointsAreEvenlySpreadAndDeterministic) {
   EXPECT_TRUE(select_reference_points(0, 0.2).empty());
@@ -120,6 +160,17 @@ TEST(PpfVote, VotesAndPeaksMatchReferenceExactly) {
     VoteOptions small = opt;
     small.max_accumulator_cells = 7 * model.cloud.points.size() * model.quant.n_alpha;
     EXPECT_EQ(vote_peaks(dev, dm, scene, refs, small), got);
+  }
+  // A capped table on the device votes as the reference does with the capped table.
+  PpfModel capped = model;
+  capped.table = cap_ppf_buckets(model.table, 1);
+  const DeviceModel dcap = upload_model(dev, model, 1);
+  EXPECT_EQ(dcap.bucket_cap, 1u);
+  for (VoteOptions opt : {VoteOptions{16, 0.0f}, VoteOptions{3, 0.9f, true, true, true}}) {
+    ScenePairs pairs;
+    const auto got = vote_peaks(dev, dcap, scene, refs, opt, nullptr, &pairs);
+    EXPECT_EQ(got, vote_peaks_reference(pairs, capped, opt));
+    EXPECT_NE(got, vote_peaks_reference(pairs, model, opt));  // the cap took votes away
   }
   // Without duplicate suppression every vote lands: the accumulator total is the number of
   // matching table entries; with it, no more.
