@@ -61,6 +61,11 @@ void add_detect_cli_options(CLI::App* verb, DetectCliOptions& a, const std::stri
           "0: every pair (Drost)");
   add("candidates", a.candidates,
       "best pose clusters per hypothesis refined and verified, in [1, 64]");
+  add("plane-search", p.plane_search,
+      "thin parts (sheet metal): each candidate pose is also searched for over the sheet's "
+          "plane (shifts within this fraction of the diameter, turns through the whole turn) "
+          "for the pose whose edges the sensor sees step down most, refined and verified beside "
+          "it, in [0, 1]; 0: off");
   add("refine-iterations", a.refine_iterations,
       "ICP steps per candidate pose, in [0, 100] (0: verify the voted pose)");
   add("verify-noise-factor", p.verify_noise_factor,

@@ -63,6 +63,7 @@ const std::map<std::string, Field>& fields() {
       {"local-peaks", count(&DetectParams::local_peaks)},
       {"bucket-cap", real(&DetectParams::bucket_cap)},
       {"candidates", count(&DetectParams::candidates)},
+      {"plane-search", real(&DetectParams::plane_search)},
       {"refine-iterations", count(&DetectParams::refine_iterations)},
       {"verify-tolerance", real(&DetectParams::verify_tolerance)},
       {"verify-noise-factor", real(&DetectParams::verify_noise_factor)},

@@ -25,6 +25,7 @@
 #include "host/detect/scene_neighbourhood.hpp"
 #include "host/detect/scene_prepare.hpp"
 #include "host/detect/shared_scene.hpp"
+#include "host/detect/plane_search.hpp"
 #include "host/train/ppf_bucket_cap.hpp"
 #include "host/train/voxel_subsample.hpp"
 
@@ -61,6 +62,7 @@ std::optional<ParamProblem> find_param_problem(const DetectParams& p) {
       {p.local_peaks <= 1, {"local-peaks", double(p.local_peaks), "{0, 1}"}},
       {in(p.bucket_cap, 0, 10000), {"bucket-cap", p.bucket_cap, "[0, 10000]"}},
       {p.candidates >= 1 && p.candidates <= 64, {"candidates", double(p.candidates), "[1, 64]"}},
+      {in(p.plane_search, 0, 1), {"plane-search", p.plane_search, "[0, 1]"}},
       {p.refine_iterations <= 100, {"refine-iterations", double(p.refine_iterations), "[0, 100]"}},
       {in(p.verify_tolerance, 0, 1) && p.verify_tolerance > 0, {"verify-tolerance", p.verify_tolerance, "(0, 1]"}},
       {in(p.verify_noise_factor, 0, 100), {"verify-noise-factor", p.verify_noise_factor, "[0, 100]"}},
@@ -155,6 +157,12 @@ Detector::Detector(const PpfModel& model, const DetectParams& params, ocl::Devic
     twin_probes_.edge_probes = static_cast<std::uint32_t>(edges.points.size());
     append_cloud(twin_probes_.probes, edges);
     twin_probes_.probe_twin.resize(twin_probes_.probes.points.size(), twin_probes_.twins);
+  }
+  if (params_.plane_search > 0 && outline_ratio_ == 0 && !model_.edge_probes.points.empty())
+  {
+    plane_search_model_ = upload_plane_search_model(dev_, model_.edge_probes, model_.cloud,
+                                                    fit_geometry_.centroid);
+    program_build_s_ += dev_.prebuild({"plane_search.cl"});
   }
   if (!twin_probes_.probes.points.empty()) {
     twin_probes_.fit_points = fit_model_.size;
@@ -252,19 +260,37 @@ std::vector<Detection> Detector::refine_and_rank(
     std::uint32_t candidate, twin;
   };
   std::vector<Owner> owner;
+  const auto add_pose = [&](const Eigen::Matrix3d& R, const Eigen::Vector3d& t, std::size_t k,
+                            std::uint32_t c) {
+    poses.push_back({R, t});
+    owner.push_back({k, c, 0});
+    // The pose's look-alikes: model x -> S x, then the pose.
+    for (std::uint32_t s = 0; s < model_.near_symmetries.size(); ++s) {
+      const Eigen::Isometry3d& S = model_.near_symmetries[s];
+      poses.push_back({R * S.linear(), R * S.translation() + t});
+      owner.push_back({k, c, s + 1});
+    }
+  };
+  // Thin parts on a depth image: each candidate's in-plane search (plane_search.hpp) adds the
+  // pose found, if its edges step down more than the voted pose's.
+  const bool search = sensor && plane_search_model_.probes > 0;
+  const double tolerance = params_.verify_tolerance * model_.diameter;
   for (std::size_t k = 0; k < candidates.size(); ++k)
     for (std::uint32_t c = 0; c < candidates[k].size(); ++c) {
       const Eigen::Matrix3d R = candidates[k][c].q.toRotationMatrix();
       const Eigen::Vector3d t = candidates[k][c].t;
-      poses.push_back({R, t});
-      owner.push_back({k, c, 0});
-      // The pose's look-alikes: model x -> S x, then the pose.
-      for (std::uint32_t s = 0; s < model_.near_symmetries.size(); ++s) {
-        const Eigen::Isometry3d& S = model_.near_symmetries[s];
-        poses.push_back({R * S.linear(), R * S.translation() + t});
-        owner.push_back({k, c, s + 1});
-      }
+      add_pose(R, t, k, c);
+      if (!search) continue;
+      Eigen::Isometry3d start = Eigen::Isometry3d::Identity();
+      start.linear() = R;
+      start.translation() = t;
+      const PlaneSearchResult found =
+          plane_search(dev_, points, cam, plane_search_model_, start,
+                       params_.plane_search * model_.diameter, float(tolerance));
+      if (found.score > found.start_score)
+        add_pose(found.pose.linear(), found.pose.translation(), k, c);
     }
+  if (search) t.stages.push_back({"plane search", clock.lap()});
   RefineOptions ro;
   ro.iterations = params_.refine_iterations;
   ro.tolerance_ratio = float(params_.verify_tolerance);

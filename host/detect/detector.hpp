@@ -17,6 +17,7 @@
 #include "host/detect/hypotheses.hpp"
 #include "host/detect/ppf_vote.hpp"
 #include "host/detect/pose_cluster.hpp"
+#include "host/detect/plane_search.hpp"
 #include "host/detect/pose_fit.hpp"
 #include "host/detect/twin_test.hpp"
 #include "host/core/timing.hpp"
@@ -49,6 +50,10 @@ struct DetectParams {
   double bucket_cap = 0.0;
   double normal_ratio = 0.08;      // scene normals: radius of the plane fitted (fraction)
   std::uint32_t candidates = 4;    // best pose clusters per hypothesis refined and verified
+  // Thin parts (plane_search.hpp): each candidate is also searched for over the sheet's plane,
+  // shifts within this fraction of the diameter and the whole turn (0: off). Measured in
+  // docs/pipeline.md, step 9.
+  double plane_search = 0.15;
   std::uint32_t refine_iterations = 10;  // ICP steps per candidate (0: verify the voted pose)
   double verify_tolerance = 0.04;  // depth agreement of a verified model point (fraction)
   double verify_noise_factor = 3.5;  // tolerance widens to this x the noise seen (0: fixed)
@@ -232,6 +237,7 @@ class Detector {
   // The fit points followed by the look-alikes' probes and the edge probes (twin_test.hpp);
   // empty without probes.
   DeviceFitModel twin_model_;
+  PlaneSearchModel plane_search_model_;  // thin parts with --plane-search only
   TwinProbeModel twin_probes_;
   FitGeometry fit_geometry_;
   float outline_ratio_ = 0;  // the verification's outline test, 0 for thin parts (outline_test.hpp)

@@ -202,6 +202,8 @@ TEST_F(DetectCli, ParamsFileAppliesAndCommandLineWins) {
   refused_as_option("--verify-rival -1", "verify-rival -1 must be in [0, 100]");
   refused_in_file(R"({"bucket_cap": -1})", "bucket-cap -1 must be in [0, 10000]");
   refused_as_option("--bucket-cap inf", "bucket-cap inf must be in [0, 10000]");
+  refused_in_file(R"({"plane_search": 2})", "plane-search 2 must be in [0, 1]");
+  refused_as_option("--plane-search -0.5", "plane-search -0.5 must be in [0, 1]");
   // A capped table detects too.
   r = test::run_binpick(fmt::format("detect --model {} --dataset {} --out {} --scenes 0 --hypotheses 1 --bucket-cap 3",
                                     model_, (*dir_ / "data").string(), out.string()));

@@ -1,0 +1,185 @@
+#include "host/detect/plane_search.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+#include <Eigen/Eigenvalues>
+
+#include "host/core/error.hpp"
+
+namespace binpick {
+namespace {
+
+std::vector<float> pack_poses(const std::vector<Eigen::Isometry3d>& poses) {
+  std::vector<float> out;
+  out.reserve(12 * poses.size());
+  for (const Eigen::Isometry3d& T : poses) {
+    for (int r = 0; r < 3; ++r)
+      for (int c = 0; c < 3; ++c) out.push_back(float(T.linear()(r, c)));
+    for (int r = 0; r < 3; ++r) out.push_back(float(T.translation()[r]));
+  }
+  return out;
+}
+
+std::vector<float> pack4(const std::vector<Eigen::Vector3f>& v) {
+  std::vector<float> out;
+  out.reserve(4 * v.size());
+  for (const Eigen::Vector3f& p : v) out.insert(out.end(), {p.x(), p.y(), p.z(), 0.0f});
+  return out;
+}
+
+constexpr std::uint32_t kMinProbes = 10;  // BP_EDGE_SEARCH_MIN_PROBES
+
+}  // namespace
+
+Eigen::Vector3d sheet_normal(const PointCloud& model_points, const Eigen::Vector3d& centre) {
+  Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
+  for (const Eigen::Vector3f& p : model_points.points) {
+    const Eigen::Vector3d q = p.cast<double>() - centre;
+    cov += q * q.transpose();
+  }
+  return Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(cov).eigenvectors().col(0).normalized();
+}
+
+PlaneSearchModel upload_plane_search_model(ocl::Device& dev, const PointCloud& edge_probes,
+                                           const PointCloud& model_points,
+                                           const Eigen::Vector3d& centre) {
+  if (edge_probes.normals.size() != edge_probes.points.size() ||
+      model_points.normals.size() != model_points.points.size())
+    throw InputError("the plane search needs edge probes and model points with normals");
+  PlaneSearchModel m;
+  m.axis = sheet_normal(model_points, centre);
+  m.centre = centre;
+  if (edge_probes.points.empty() || model_points.points.empty()) return m;
+  m.probes = static_cast<std::uint32_t>(edge_probes.points.size() + model_points.points.size());
+  std::vector<float> p = pack4(edge_probes.points), n = pack4(edge_probes.normals);
+  std::vector<float> own = pack4(model_points.points), own_n = pack4(model_points.normals);
+  for (std::size_t i = 3; i < own.size(); i += 4) own[i] = 1.0f;
+  p.insert(p.end(), own.begin(), own.end());
+  n.insert(n.end(), own_n.begin(), own_n.end());
+  m.points = ocl::Buffer<float>(dev, std::span<const float>(p), CL_MEM_READ_ONLY);
+  m.normals = ocl::Buffer<float>(dev, std::span<const float>(n), CL_MEM_READ_ONLY);
+  return m;
+}
+
+std::vector<float> edge_step_scores(ocl::Device& dev, const ocl::Buffer<float>& points,
+                                    const bp_camera& cam, const PlaneSearchModel& model,
+                                    const std::vector<Eigen::Isometry3d>& poses,
+                                    std::uint32_t stride, float tolerance) {
+  if (stride == 0) throw InputError("edge step scores: the probe stride must be positive");
+  if (poses.empty()) return {};
+  if (model.probes == 0) return std::vector<float>(poses.size(), -1.0f);
+  const ocl::Buffer<float> pose_buf(dev, std::span<const float>(pack_poses(poses)),
+                                    CL_MEM_READ_ONLY);
+  ocl::Buffer<float> scores(dev, poses.size());
+  cl::Kernel k = dev.kernel("plane_search.cl", "edge_step_scores");
+  ocl::launch(dev, k, poses.size(), points, cam, model.points, model.normals, model.probes, stride,
+              pose_buf, static_cast<std::uint32_t>(poses.size()), tolerance, scores);
+  return scores.read(dev);
+}
+
+std::vector<float> edge_step_scores_reference(const std::vector<float>& points,
+                                              const bp_camera& cam, const PointCloud& probes,
+                                              std::size_t edge_probes,
+                                              const std::vector<Eigen::Isometry3d>& poses,
+                                              std::uint32_t stride, float tolerance) {
+  if (stride == 0) throw InputError("edge step scores: the probe stride must be positive");
+  if (points.size() != 4 * std::size_t(cam.width) * cam.height)
+    throw InputError("edge step scores: the point image does not match the camera");
+  std::vector<float> out;
+  const std::vector<float> packed = pack_poses(poses);
+  for (std::size_t k = 0; k < poses.size(); ++k) {
+    const float* P = &packed[12 * k];
+    float sum = 0.0f, own = 0.0f;
+    std::uint32_t count = 0, own_count = 0;
+    for (std::size_t j = 0; j < probes.points.size(); j += stride) {
+      const Eigen::Vector3f& q = probes.points[j];
+      const Eigen::Vector3f& m = probes.normals[j];
+      const float x = P[0] * q.x() + P[1] * q.y() + P[2] * q.z() + P[9];
+      const float y = P[3] * q.x() + P[4] * q.y() + P[5] * q.z() + P[10];
+      const float z = P[6] * q.x() + P[7] * q.y() + P[8] * q.z() + P[11];
+      const float nx = P[0] * m.x() + P[1] * m.y() + P[2] * m.z();
+      const float ny = P[3] * m.x() + P[4] * m.y() + P[5] * m.z();
+      const float nz = P[6] * m.x() + P[7] * m.y() + P[8] * m.z();
+      if (!(z > 0.0f) || nx * x + ny * y + nz * z >= 0.0f) continue;
+      const float fu = std::floor(cam.fx * x / z + cam.cx + 0.5f);
+      const float fv = std::floor(cam.fy * y / z + cam.cy + 0.5f);
+      if (!(fu >= 0.0f && fv >= 0.0f && fu < float(cam.width) && fv < float(cam.height))) continue;
+      const float* s = &points[4 * (std::size_t(fv) * cam.width + std::size_t(fu))];
+      float e = tolerance;
+      if (s[3] != 0.0f) {
+        e = (s[2] - z) * (std::sqrt(x * x + y * y + z * z) / z);
+        if (e < -tolerance) continue;
+        e = std::min(e, tolerance);
+      }
+      if (j >= edge_probes) {
+        own += std::max(e, 0.0f);
+        ++own_count;
+      } else {
+        sum += e;
+        ++count;
+      }
+    }
+    out.push_back(count >= kMinProbes && own_count >= kMinProbes
+                      ? sum / float(count) - own / float(own_count)
+                      : -1.0f);
+  }
+  return out;
+}
+
+Eigen::Isometry3d in_plane_pose(const Eigen::Isometry3d& pose, const Eigen::Vector3d& axis,
+                                const Eigen::Vector3d& centre, double angle, double a, double b) {
+  const Eigen::Vector3d n = pose.linear() * axis;
+  const Eigen::Vector3d e1 = n.unitOrthogonal(), e2 = n.cross(e1);
+  const Eigen::Vector3d c = pose * centre + a * e1 + b * e2;
+  Eigen::Isometry3d out = Eigen::Isometry3d::Identity();
+  out.linear() = Eigen::AngleAxisd(angle, n).toRotationMatrix() * pose.linear();
+  out.translation() = c - out.linear() * centre;
+  return out;
+}
+
+PlaneSearchResult plane_search(ocl::Device& dev, const ocl::Buffer<float>& points,
+                               const bp_camera& cam, const PlaneSearchModel& model,
+                               const Eigen::Isometry3d& start, double span, float tolerance) {
+  PlaneSearchResult best;
+  best.pose = start;
+  best.start_score = best.score =
+      edge_step_scores(dev, points, cam, model, {start}, 1, tolerance).at(0);
+  if (model.probes == 0 || !(span > 0)) return best;
+  // Coarse: the whole turn, shifts of a quarter of the span.
+  const double coarse = span / kShiftSteps, turn = 2 * std::numbers::pi / kCoarseAngles;
+  std::vector<Eigen::Isometry3d> grid;
+  for (int a = 0; a < kCoarseAngles; ++a)
+    for (int i = -kShiftSteps; i <= kShiftSteps; ++i)
+      for (int j = -kShiftSteps; j <= kShiftSteps; ++j)
+        grid.push_back(in_plane_pose(start, model.axis, model.centre, a * turn, i * coarse,
+                                     j * coarse));
+  const std::vector<float> s = edge_step_scores(dev, points, cam, model, grid, kCoarseStride,
+                                                tolerance);
+  std::vector<std::size_t> order(grid.size());
+  for (std::size_t k = 0; k < order.size(); ++k) order[k] = k;
+  const std::size_t starts = std::min<std::size_t>(kFineStarts, order.size());
+  std::partial_sort(order.begin(), order.begin() + starts, order.end(),
+                    [&](std::size_t x, std::size_t y) { return s[x] > s[y] || (s[x] == s[y] && x < y); });
+  // Fine: around the best coarse poses, a quarter of their steps.
+  std::vector<Eigen::Isometry3d> fine;
+  for (std::size_t r = 0; r < starts; ++r) {
+    if (s[order[r]] < 0) break;
+    for (int a = -kFineSteps; a <= kFineSteps; ++a)
+      for (int i = -kFineSteps; i <= kFineSteps; ++i)
+        for (int j = -kFineSteps; j <= kFineSteps; ++j)
+          fine.push_back(in_plane_pose(grid[order[r]], model.axis, model.centre,
+                                       a * turn / kFineDivisions, i * coarse / kFineDivisions,
+                                       j * coarse / kFineDivisions));
+  }
+  const std::vector<float> f = edge_step_scores(dev, points, cam, model, fine, 1, tolerance);
+  for (std::size_t k = 0; k < fine.size(); ++k)
+    if (f[k] > best.score) {
+      best.score = f[k];
+      best.pose = fine[k];
+    }
+  return best;
+}
+
+}  // namespace binpick

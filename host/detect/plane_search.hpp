@@ -1,0 +1,79 @@
+// The in-plane search of thin parts (DetectParams::plane_search; kernels/plane_search.cl).
+//
+// Why: sheet metal lying on sheet metal is a plane with steps of one thickness. Voting on
+// surface features finds the plane but not where the part lies in it (a pose shifted or turned
+// in the plane fits the surface as well), and the edge test (edge_test.hpp) can only rank the
+// candidates voting gives. The search moves each candidate over the plane, turns it about the
+// sheet's normal through the whole turn, and keeps the pose whose edges the sensor sees step
+// down most (the mean clamped excess depth at the edge probes, edge_step_scores). Coarse first
+// (every kCoarseStride-th probe, kCoarseAngles turns, shifts of a quarter of the span), then
+// fine around the kFineStarts best coarse poses, with every probe. The pose found is refined and verified as an
+// extra candidate beside the voted one, so a right voted pose is never lost.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include <Eigen/Geometry>
+
+#include "host/core/mesh.hpp"
+#include "host/runtime/cl/cl_buffer.hpp"
+#include "kernels/binpick_shared.h"
+
+namespace binpick {
+
+inline constexpr std::uint32_t kCoarseStride = 8;
+inline constexpr int kCoarseAngles = 90;        // 4 degree steps over the whole turn
+inline constexpr int kShiftSteps = 4;           // coarse shifts: +-4 steps of span / 4 a side
+inline constexpr int kFineStarts = 3;
+inline constexpr int kFineDivisions = 4;        // fine steps: a quarter of the coarse ones,
+inline constexpr int kFineSteps = 2;            // +-2 of them: half a coarse step each way
+
+// The edge probes and the model's surface points on the device, and the sheet's frame.
+struct PlaneSearchModel {
+  std::uint32_t probes = 0;            // edge probes and surface points
+  ocl::Buffer<float> points, normals;  // float4 each, model frame; w = 1 for surface points
+  Eigen::Vector3d axis = Eigen::Vector3d::UnitZ();  // the sheet's normal, model frame
+  Eigen::Vector3d centre = Eigen::Vector3d::Zero();  // turns are about this model point
+};
+
+// The sheet's normal: the least-variance axis of the model points about `centre`.
+Eigen::Vector3d sheet_normal(const PointCloud& model_points, const Eigen::Vector3d& centre);
+
+// Uploads the edge probes, then the model points (both with normals; InputError otherwise).
+PlaneSearchModel upload_plane_search_model(ocl::Device& dev, const PointCloud& edge_probes,
+                                           const PointCloud& model_points,
+                                           const Eigen::Vector3d& centre);
+
+// Routine: the edge step score of each pose (model to camera, mm) over every stride-th probe
+// on a point image on the device (float4 a pixel): kernels/plane_search.cl says what it is.
+std::vector<float> edge_step_scores(ocl::Device& dev, const ocl::Buffer<float>& points,
+                                    const bp_camera& cam, const PlaneSearchModel& model,
+                                    const std::vector<Eigen::Isometry3d>& poses,
+                                    std::uint32_t stride, float tolerance);
+// Reference: the same arithmetic in plain C++ on a host point image.
+// probes: the edge probes, then the surface points (from index edge_probes on).
+std::vector<float> edge_step_scores_reference(const std::vector<float>& points,
+                                              const bp_camera& cam, const PointCloud& probes,
+                                              std::size_t edge_probes,
+                                              const std::vector<Eigen::Isometry3d>& poses,
+                                              std::uint32_t stride, float tolerance);
+
+// The pose turned by `angle` (radians) about the sheet's normal through the centre, and the
+// centre moved by (a, b) along two fixed axes of the plane (mm).
+Eigen::Isometry3d in_plane_pose(const Eigen::Isometry3d& pose, const Eigen::Vector3d& axis,
+                                const Eigen::Vector3d& centre, double angle, double a, double b);
+
+struct PlaneSearchResult {
+  Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
+  float score = -1;        // its edge step score (-1: too few probes at every pose)
+  float start_score = -1;  // the starting pose's
+};
+
+// The search about `start` over shifts within +-span (mm) and the whole turn. Returns the
+// start itself when no pose scores higher.
+PlaneSearchResult plane_search(ocl::Device& dev, const ocl::Buffer<float>& points,
+                               const bp_camera& cam, const PlaneSearchModel& model,
+                               const Eigen::Isometry3d& start, double span, float tolerance);
+
+}  // namespace binpick

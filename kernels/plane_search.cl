@@ -1,0 +1,62 @@
+/* The in-plane search of thin parts (host/detect/plane_search.hpp): the edge step of many poses.
+ *
+ * edge_step_scores: one work item per pose (12 floats: R row-major, then t; model to camera).
+ * For every `stride`-th edge probe (model frame, with the normal of the face it continues) that
+ * faces the camera at the pose, the depth the sensor sees beyond the pose's edge, along the
+ * probe's ray: the excess of the measured depth over the probe's, clamped to [.., tolerance];
+ * no depth counts as a full tolerance (a shadow or a drop), something more than a tolerance in
+ * front says nothing (the probe is skipped). The score is the mean over the probes counted, or
+ * -1 with fewer than BP_EDGE_SEARCH_MIN_PROBES. A right pose of a sheet lying on a sheet scores
+ * about its thickness; a pose shifted or turned in the sheet's plane has probes on the sheet
+ * itself and scores less. Points with w = 1 are the part's own surface instead: their excess,
+ * clamped to [0, tolerance] (the pose hanging over what the sensor sees), is averaged apart and
+ * taken off, so that a pose lying off the sheet, over what lies beneath, does not score as if
+ * its edges stepped down (also at least BP_EDGE_SEARCH_MIN_PROBES of them, or -1). Written out
+ * identically in edge_step_scores_reference. */
+#pragma OPENCL FP_CONTRACT OFF
+#include "binpick_shared.h"
+
+#define BP_EDGE_SEARCH_MIN_PROBES 10u
+
+__kernel void edge_step_scores(__global const float4* points, const bp_camera cam,
+                               __global const float4* probes, __global const float4* normals,
+                               const uint n_probes, const uint stride,
+                               __global const float* poses, const uint n_poses,
+                               const float tolerance, __global float* scores) {
+  const uint k = get_global_id(0);
+  if (k >= n_poses) return;
+  __global const float* P = poses + 12 * (size_t)k;
+  float sum = 0.0f, own = 0.0f;
+  uint count = 0u, own_count = 0u;
+  for (uint j = 0; j < n_probes; j += stride) {
+    const float4 q = probes[j];
+    const float4 m = normals[j];
+    const float x = P[0] * q.x + P[1] * q.y + P[2] * q.z + P[9];
+    const float y = P[3] * q.x + P[4] * q.y + P[5] * q.z + P[10];
+    const float z = P[6] * q.x + P[7] * q.y + P[8] * q.z + P[11];
+    const float nx = P[0] * m.x + P[1] * m.y + P[2] * m.z;
+    const float ny = P[3] * m.x + P[4] * m.y + P[5] * m.z;
+    const float nz = P[6] * m.x + P[7] * m.y + P[8] * m.z;
+    if (!(z > 0.0f) || nx * x + ny * y + nz * z >= 0.0f) continue;
+    const float fu = floor(cam.fx * x / z + cam.cx + 0.5f);
+    const float fv = floor(cam.fy * y / z + cam.cy + 0.5f);
+    if (!(fu >= 0.0f && fv >= 0.0f && fu < (float)cam.width && fv < (float)cam.height)) continue;
+    const float4 s = points[(size_t)fv * cam.width + (size_t)fu];
+    float e = tolerance;
+    if (s.w != 0.0f) {
+      e = (s.z - z) * (sqrt(x * x + y * y + z * z) / z);
+      if (e < -tolerance) continue;
+      e = fmin(e, tolerance);
+    }
+    if (q.w != 0.0f) {
+      own += fmax(e, 0.0f);
+      ++own_count;
+    } else {
+      sum += e;
+      ++count;
+    }
+  }
+  scores[k] = count >= BP_EDGE_SEARCH_MIN_PROBES && own_count >= BP_EDGE_SEARCH_MIN_PROBES
+                  ? sum / (float)count - own / (float)own_count
+                  : -1.0f;
+}

@@ -1,0 +1,127 @@
+// The in-plane search of thin parts (host/detect/plane_search.hpp, kernels/plane_search.cl): the
+// edge step scores of the device against the C++ reference on random poses, the in-plane pose
+// arithmetic, and on an image of the built-in plate lying on a plane one sheet thickness beneath
+// it, a start shifted and turned in the plate's plane is brought back to the right pose.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+#include <random>
+#include <span>
+
+#include "host/core/error.hpp"
+#include "host/detect/plane_search.hpp"
+#include "host/train/ppf_model.hpp"
+#include "synth/parts/builtin_parts.hpp"
+#include "tests/support/plate_scene.hpp"
+#include "tests/support/test_device.hpp"
+
+using namespace binpick;
+
+namespace {
+
+const PpfModel& plate_model() {
+  static const PpfModel model =
+      train_ppf_model(make_builtin_part("plate"), PpfTrainParams{}, nullptr, test::test_device());
+  return model;
+}
+
+Eigen::Vector3d centroid(const PointCloud& c) {
+  Eigen::Vector3d s = Eigen::Vector3d::Zero();
+  for (const auto& p : c.points) s += p.cast<double>();
+  return s / double(c.points.size());
+}
+
+double angle_between(const Eigen::Matrix3d& a, const Eigen::Matrix3d& b) {
+  return Eigen::AngleAxisd(a.transpose() * b).angle();
+}
+
+}  // namespace
+
+TEST(PlaneSearch, InPlanePoseTurnsAboutTheCentreAndShiftsInThePlane) {
+  const Eigen::Isometry3d pose = test::plate_pose();
+  const Eigen::Vector3d axis(0, 0, 1), centre(3, -2, 0.5);
+  const Eigen::Isometry3d same = in_plane_pose(pose, axis, centre, 0, 0, 0);
+  EXPECT_TRUE(same.isApprox(pose, 1e-12));
+  const Eigen::Isometry3d moved = in_plane_pose(pose, axis, centre, 0.7, 4.0, -3.0);
+  // The sheet's normal is kept, the centre moves 5 mm within the plane, the turn is 0.7 rad.
+  EXPECT_LT((moved.linear() * axis - pose.linear() * axis).norm(), 1e-12);
+  const Eigen::Vector3d d = moved * centre - pose * centre;
+  EXPECT_NEAR(d.norm(), 5.0, 1e-9);
+  EXPECT_NEAR(d.dot(pose.linear() * axis), 0.0, 1e-9);
+  EXPECT_NEAR(angle_between(moved.linear(), pose.linear()), 0.7, 1e-9);
+}
+
+TEST(PlaneSearch, EdgeStepScoresMatchReference) {
+  auto& dev = test::test_device();
+  const PpfModel& model = plate_model();
+  const bp_camera cam = test::plate_camera();
+  const Eigen::Isometry3d pose = test::plate_pose();
+  const PointImage image = test::plate_over_plane(cam, pose, true);
+  const ocl::Buffer<float> points(dev, std::span<const float>(image.xyzw));
+  const PlaneSearchModel sm =
+      upload_plane_search_model(dev, model.edge_probes, model.cloud, centroid(model.cloud));
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<double> U(-1.0, 1.0);
+  std::vector<Eigen::Isometry3d> poses = {pose};
+  for (int k = 0; k < 200; ++k)
+    poses.push_back(in_plane_pose(pose, sm.axis, sm.centre, std::numbers::pi * U(rng),
+                                  30 * U(rng), 30 * U(rng)));
+  Eigen::Isometry3d behind = pose;  // behind the camera: no probe counts
+  behind.translation().z() = -500;
+  poses.push_back(behind);
+  for (std::uint32_t stride : {1u, 8u}) {
+    const std::vector<float> got = edge_step_scores(dev, points, cam, sm, poses, stride, 4.8f);
+    PointCloud all = model.edge_probes;
+    all.points.insert(all.points.end(), model.cloud.points.begin(), model.cloud.points.end());
+    all.normals.insert(all.normals.end(), model.cloud.normals.begin(), model.cloud.normals.end());
+    const std::vector<float> want = edge_step_scores_reference(
+        image.xyzw, cam, all, model.edge_probes.points.size(), poses, stride, 4.8f);
+    ASSERT_EQ(got.size(), want.size());
+    // Floats: a probe projected within rounding of a pixel edge may read the neighbour pixel.
+    int differ = 0;
+    for (std::size_t k = 0; k < got.size(); ++k)
+      if (std::fabs(got[k] - want[k]) > 1e-4f) ++differ;
+    EXPECT_LE(differ, 4) << stride;
+    EXPECT_EQ(got.back(), -1.0f);
+    EXPECT_GT(got.front(), 1.0f);  // the right pose: the step down to the plane (1.5 mm)
+  }
+  EXPECT_THROW(edge_step_scores(dev, points, cam, sm, poses, 0, 4.8f), InputError);
+  EXPECT_TRUE(edge_step_scores(dev, points, cam, sm, {}, 1, 4.8f).empty());
+  PointCloud no_normals = model.edge_probes;
+  no_normals.normals.clear();
+  EXPECT_THROW(upload_plane_search_model(dev, no_normals, model.cloud, sm.centre), InputError);
+}
+
+TEST(PlaneSearch, FindsThePlateShiftedAndTurnedOnAPlate) {
+  auto& dev = test::test_device();
+  const PpfModel& model = plate_model();
+  const bp_camera cam = test::plate_camera();
+  const Eigen::Isometry3d pose = test::plate_pose();
+  const PlaneSearchModel sm =
+      upload_plane_search_model(dev, model.edge_probes, model.cloud, centroid(model.cloud));
+  // The sheet's normal is the plate's thin axis (z in the model frame).
+  EXPECT_GT(std::fabs(sm.axis.z()), 0.99);
+  for (bool holes_without_depth : {false, true}) {
+    const PointImage image = test::plate_over_plane(cam, pose, holes_without_depth);
+    const ocl::Buffer<float> points(dev, std::span<const float>(image.xyzw));
+    // Shifted 9 mm and 6 mm in the plane and turned 25 degrees: on the plane beneath, its
+    // surface still fits; the search brings it back within the probes' margin (3 mm beyond the
+    // edges: closer than that, every probe still sees the step) and a fine step.
+    const Eigen::Isometry3d start = in_plane_pose(pose, sm.axis, sm.centre, 25 * std::numbers::pi / 180, 9, -6);
+    const PlaneSearchResult found = plane_search(dev, points, cam, sm, start, 18.0, 4.8f);
+    EXPECT_GT(found.score, found.start_score + 0.3f) << holes_without_depth;
+    EXPECT_LT((found.pose * sm.centre - pose * sm.centre).norm(), 5.0) << holes_without_depth;
+    EXPECT_LT(angle_between(found.pose.linear(), pose.linear()) * 180 / std::numbers::pi, 3.0)
+        << holes_without_depth;
+    // From the right pose nothing better is found far away.
+    const PlaneSearchResult stay = plane_search(dev, points, cam, sm, pose, 18.0, 4.8f);
+    EXPECT_LT((stay.pose * sm.centre - pose * sm.centre).norm(), 5.0);
+  }
+  // No span: the start is returned.
+  const PointImage image = test::plate_over_plane(cam, pose, false);
+  const ocl::Buffer<float> points(dev, std::span<const float>(image.xyzw));
+  const PlaneSearchResult none = plane_search(dev, points, cam, sm, pose, 0.0, 4.8f);
+  EXPECT_TRUE(none.pose.isApprox(pose));
+  EXPECT_EQ(none.score, none.start_score);
+}
