@@ -158,8 +158,7 @@ Detector::Detector(const PpfModel& model, const DetectParams& params, ocl::Devic
     append_cloud(twin_probes_.probes, edges);
     twin_probes_.probe_twin.resize(twin_probes_.probes.points.size(), twin_probes_.twins);
   }
-  if (params_.plane_search > 0 && outline_ratio_ == 0 && !model_.edge_probes.points.empty())
-  {
+  if (params_.plane_search > 0 && outline_ratio_ == 0 && !model_.edge_probes.points.empty()) {
     plane_search_model_ = upload_plane_search_model(dev_, model_.edge_probes, model_.cloud,
                                                     fit_geometry_.centroid);
     program_build_s_ += dev_.prebuild({"plane_search.cl"});
@@ -290,7 +289,11 @@ std::vector<Detection> Detector::refine_and_rank(
       if (found.score > found.start_score)
         add_pose(found.pose.linear(), found.pose.translation(), k, c);
     }
-  if (search) t.stages.push_back({"plane search", clock.lap()});
+  if (search) {  // part of refinement in the summary
+    const double ms = clock.lap();
+    t.refine_ms += ms;
+    t.stages.push_back({"plane search", ms});
+  }
   RefineOptions ro;
   ro.iterations = params_.refine_iterations;
   ro.tolerance_ratio = float(params_.verify_tolerance);
