@@ -6,6 +6,7 @@
 
 #include <Eigen/Eigenvalues>
 
+#include "host/core/cloud_input.hpp"
 #include "host/core/error.hpp"
 
 namespace binpick {
@@ -19,13 +20,6 @@ std::vector<float> pack_poses(const std::vector<Eigen::Isometry3d>& poses) {
       for (int c = 0; c < 3; ++c) out.push_back(float(T.linear()(r, c)));
     for (int r = 0; r < 3; ++r) out.push_back(float(T.translation()[r]));
   }
-  return out;
-}
-
-std::vector<float> pack4(const std::vector<Eigen::Vector3f>& v) {
-  std::vector<float> out;
-  out.reserve(4 * v.size());
-  for (const Eigen::Vector3f& p : v) out.insert(out.end(), {p.x(), p.y(), p.z(), 0.0f});
   return out;
 }
 
@@ -53,13 +47,14 @@ PlaneSearchModel upload_plane_search_model(ocl::Device& dev, const PointCloud& e
   m.centre = centre;
   if (edge_probes.points.empty() || model_points.points.empty()) return m;
   m.probes = static_cast<std::uint32_t>(edge_probes.points.size() + model_points.points.size());
-  std::vector<float> p = pack4(edge_probes.points), n = pack4(edge_probes.normals);
-  std::vector<float> own = pack4(model_points.points), own_n = pack4(model_points.normals);
-  for (std::size_t i = 3; i < own.size(); i += 4) own[i] = 1.0f;
+  std::vector<cl_float4> p = pack_float4(edge_probes.points), n = pack_float4(edge_probes.normals);
+  std::vector<cl_float4> own = pack_float4(model_points.points);
+  const std::vector<cl_float4> own_n = pack_float4(model_points.normals);
+  for (cl_float4& q : own) q.s[3] = 1.0f;  // the part's own surface
   p.insert(p.end(), own.begin(), own.end());
   n.insert(n.end(), own_n.begin(), own_n.end());
-  m.points = ocl::Buffer<float>(dev, std::span<const float>(p), CL_MEM_READ_ONLY);
-  m.normals = ocl::Buffer<float>(dev, std::span<const float>(n), CL_MEM_READ_ONLY);
+  m.points = ocl::Buffer<cl_float4>(dev, std::span<const cl_float4>(p), CL_MEM_READ_ONLY);
+  m.normals = ocl::Buffer<cl_float4>(dev, std::span<const cl_float4>(n), CL_MEM_READ_ONLY);
   return m;
 }
 

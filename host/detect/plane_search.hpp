@@ -32,7 +32,7 @@ inline constexpr int kFineSteps = 2;            // +-2 of them: half a coarse st
 // The edge probes and the model's surface points on the device, and the sheet's frame.
 struct PlaneSearchModel {
   std::uint32_t probes = 0;            // edge probes and surface points
-  ocl::Buffer<float> points, normals;  // float4 each, model frame; w = 1 for surface points
+  ocl::Buffer<cl_float4> points, normals;  // model frame; w = 1 for surface points
   Eigen::Vector3d axis = Eigen::Vector3d::UnitZ();  // the sheet's normal, model frame
   Eigen::Vector3d centre = Eigen::Vector3d::Zero();  // turns are about this model point
 };

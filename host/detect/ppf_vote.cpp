@@ -30,7 +30,8 @@ DeviceModel upload_model(ocl::Device& dev, const PpfModel& model, std::size_t bu
   DeviceModel d;
   d.model = &model;
   d.bucket_cap = bucket_cap;
-  const PpfTable capped = cap_ppf_buckets(model.table, bucket_cap);
+  // Copied only when capped (the tee's table holds 1.5 M entries).
+  const PpfTable capped = bucket_cap == 0 ? PpfTable{} : cap_ppf_buckets(model.table, bucket_cap);
   const PpfTable& table = bucket_cap == 0 ? model.table : capped;
   d.offsets = ocl::Buffer<std::uint32_t>(dev, std::span<const std::uint32_t>(table.offsets),
                                          CL_MEM_READ_ONLY);
