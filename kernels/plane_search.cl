@@ -1,5 +1,10 @@
 /* The in-plane search of thin parts (host/detect/plane_search.hpp): the edge step of many poses.
  *
+ * point_depths: one work item per pixel: the z of a point image (float4, w = 1 where there is
+ * data), 0 where there is none. The search reads only the depth, at random pixels over the
+ * part's footprint: a float a pixel is a quarter of the memory a float4 image is, and the
+ * footprint of a part at 2 m in a 2064 x 1544 image then fits in a core's cache.
+ *
  * edge_step_scores: one work item per pose (12 floats: R row-major, then t; model to camera).
  * For every `stride`-th edge probe (model frame, with the normal of the face it continues) that
  * faces the camera at the pose, the depth the sensor sees beyond the pose's edge, along the
@@ -18,7 +23,14 @@
 
 #define BP_EDGE_SEARCH_MIN_PROBES 10u
 
-__kernel void edge_step_scores(__global const float4* points, const bp_camera cam,
+__kernel void point_depths(__global const float4* points, const uint n, __global float* depth) {
+  const uint i = get_global_id(0);
+  if (i >= n) return;
+  const float4 p = points[i];
+  depth[i] = p.w != 0.0f ? p.z : 0.0f;
+}
+
+__kernel void edge_step_scores(__global const float* depth, const bp_camera cam,
                                __global const float4* probes, __global const float4* normals,
                                const uint n_probes, const uint stride,
                                __global const float* poses, const uint n_poses,
@@ -41,10 +53,10 @@ __kernel void edge_step_scores(__global const float4* points, const bp_camera ca
     const float fu = floor(cam.fx * x / z + cam.cx + 0.5f);
     const float fv = floor(cam.fy * y / z + cam.cy + 0.5f);
     if (!(fu >= 0.0f && fv >= 0.0f && fu < (float)cam.width && fv < (float)cam.height)) continue;
-    const float4 s = points[(size_t)fv * cam.width + (size_t)fu];
+    const float sz = depth[(size_t)fv * cam.width + (size_t)fu];
     float e = tolerance;
-    if (s.w != 0.0f) {
-      e = (s.z - z) * (sqrt(x * x + y * y + z * z) / z);
+    if (sz != 0.0f) {
+      e = (sz - z) * (sqrt(x * x + y * y + z * z) / z);
       if (e < -tolerance) continue;
       e = fmin(e, tolerance);
     }

@@ -271,23 +271,28 @@ std::vector<Detection> Detector::refine_and_rank(
     }
   };
   // Thin parts on a depth image: each candidate's in-plane search (plane_search.hpp) adds the
-  // pose found, if its edges step down more than the voted pose's.
+  // pose found, if its edges step down more than the voted pose's. All candidates are searched
+  // in one batch (one launch a stage), on the depth image the search reads.
   const bool search = sensor && plane_search_model_.probes > 0;
   const double tolerance = params_.verify_tolerance * model_.diameter;
-  for (std::size_t k = 0; k < candidates.size(); ++k)
-    for (std::uint32_t c = 0; c < candidates[k].size(); ++c) {
-      const Eigen::Matrix3d R = candidates[k][c].q.toRotationMatrix();
-      const Eigen::Vector3d t = candidates[k][c].t;
-      add_pose(R, t, k, c);
-      if (!search) continue;
+  std::vector<Eigen::Isometry3d> starts;
+  for (const std::vector<PoseCluster>& clusters : candidates)
+    for (const PoseCluster& c : clusters) {
       Eigen::Isometry3d start = Eigen::Isometry3d::Identity();
-      start.linear() = R;
-      start.translation() = t;
-      const PlaneSearchResult found =
-          plane_search(dev_, points, cam, plane_search_model_, start,
-                       params_.plane_search * model_.diameter, float(tolerance));
-      if (found.score > found.start_score)
-        add_pose(found.pose.linear(), found.pose.translation(), k, c);
+      start.linear() = c.q.toRotationMatrix();
+      start.translation() = c.t;
+      starts.push_back(start);
+    }
+  std::vector<PlaneSearchResult> found;
+  if (search && !starts.empty())
+    found = plane_search(dev_, point_depths(dev_, points, cam), cam, plane_search_model_, starts,
+                         params_.plane_search * model_.diameter, float(tolerance));
+  std::size_t next = 0;
+  for (std::size_t k = 0; k < candidates.size(); ++k)
+    for (std::uint32_t c = 0; c < candidates[k].size(); ++c, ++next) {
+      add_pose(starts[next].linear(), starts[next].translation(), k, c);
+      if (search && found[next].score > found[next].start_score)
+        add_pose(found[next].pose.linear(), found[next].pose.translation(), k, c);
     }
   if (search) {  // part of refinement in the summary
     const double ms = clock.lap();

@@ -58,18 +58,38 @@ PlaneSearchModel upload_plane_search_model(ocl::Device& dev, const PointCloud& e
   return m;
 }
 
-std::vector<float> edge_step_scores(ocl::Device& dev, const ocl::Buffer<float>& points,
+ocl::Buffer<float> point_depths(ocl::Device& dev, const ocl::Buffer<float>& points,
+                                const bp_camera& cam) {
+  const std::size_t n = std::size_t(cam.width) * cam.height;
+  if (points.size() != 4 * n)
+    throw InputError("plane search: the point image does not match the camera");
+  ocl::Buffer<float> depth(dev, n);
+  cl::Kernel k = dev.kernel("plane_search.cl", "point_depths");
+  ocl::launch(dev, k, n, points, static_cast<std::uint32_t>(n), depth);
+  return depth;
+}
+
+std::vector<float> point_depths_reference(const std::vector<float>& points) {
+  std::vector<float> depth(points.size() / 4);
+  for (std::size_t i = 0; i < depth.size(); ++i)
+    depth[i] = points[4 * i + 3] != 0.0f ? points[4 * i + 2] : 0.0f;
+  return depth;
+}
+
+std::vector<float> edge_step_scores(ocl::Device& dev, const ocl::Buffer<float>& depth,
                                     const bp_camera& cam, const PlaneSearchModel& model,
                                     const std::vector<Eigen::Isometry3d>& poses,
                                     std::uint32_t stride, float tolerance) {
   if (stride == 0) throw InputError("edge step scores: the probe stride must be positive");
+  if (depth.size() != std::size_t(cam.width) * cam.height)
+    throw InputError("edge step scores: the depth image does not match the camera");
   if (poses.empty()) return {};
   if (model.probes == 0) return std::vector<float>(poses.size(), -1.0f);
   const ocl::Buffer<float> pose_buf(dev, std::span<const float>(pack_poses(poses)),
                                     CL_MEM_READ_ONLY);
   ocl::Buffer<float> scores(dev, poses.size());
   cl::Kernel k = dev.kernel("plane_search.cl", "edge_step_scores");
-  ocl::launch(dev, k, poses.size(), points, cam, model.points, model.normals, model.probes, stride,
+  ocl::launch(dev, k, poses.size(), depth, cam, model.points, model.normals, model.probes, stride,
               pose_buf, static_cast<std::uint32_t>(poses.size()), tolerance, scores);
   return scores.read(dev);
 }
@@ -134,46 +154,61 @@ Eigen::Isometry3d in_plane_pose(const Eigen::Isometry3d& pose, const Eigen::Vect
   return out;
 }
 
-PlaneSearchResult plane_search(ocl::Device& dev, const ocl::Buffer<float>& points,
-                               const bp_camera& cam, const PlaneSearchModel& model,
-                               const Eigen::Isometry3d& start, double span, float tolerance) {
-  PlaneSearchResult best;
-  best.pose = start;
-  best.start_score = best.score =
-      edge_step_scores(dev, points, cam, model, {start}, 1, tolerance).at(0);
-  if (model.probes == 0 || !(span > 0)) return best;
-  // Coarse: the whole turn, shifts of a quarter of the span.
+std::vector<PlaneSearchResult> plane_search(ocl::Device& dev, const ocl::Buffer<float>& depth,
+                                            const bp_camera& cam, const PlaneSearchModel& model,
+                                            const std::vector<Eigen::Isometry3d>& starts,
+                                            double span, float tolerance) {
+  std::vector<PlaneSearchResult> best(starts.size());
+  const std::vector<float> s0 = edge_step_scores(dev, depth, cam, model, starts, 1, tolerance);
+  for (std::size_t r = 0; r < starts.size(); ++r) {
+    best[r].pose = starts[r];
+    best[r].start_score = best[r].score = s0[r];
+  }
+  if (starts.empty() || model.probes == 0 || !(span > 0)) return best;
+  // Coarse: the whole turn, shifts of a quarter of the span; every start's grid in one launch.
   const double coarse = span / kShiftSteps, turn = 2 * std::numbers::pi / kCoarseAngles;
   std::vector<Eigen::Isometry3d> grid;
-  for (int a = 0; a < kCoarseAngles; ++a)
-    for (int i = -kShiftSteps; i <= kShiftSteps; ++i)
-      for (int j = -kShiftSteps; j <= kShiftSteps; ++j)
-        grid.push_back(in_plane_pose(start, model.axis, model.centre, a * turn, i * coarse,
-                                     j * coarse));
-  const std::vector<float> s = edge_step_scores(dev, points, cam, model, grid, kCoarseStride,
+  for (const Eigen::Isometry3d& start : starts)
+    for (int a = 0; a < kCoarseAngles; ++a)
+      for (int i = -kShiftSteps; i <= kShiftSteps; ++i)
+        for (int j = -kShiftSteps; j <= kShiftSteps; ++j)
+          grid.push_back(in_plane_pose(start, model.axis, model.centre, a * turn, i * coarse,
+                                       j * coarse));
+  const std::vector<float> s = edge_step_scores(dev, depth, cam, model, grid, kCoarseStride,
                                                 tolerance);
-  std::vector<std::size_t> order(grid.size());
-  for (std::size_t k = 0; k < order.size(); ++k) order[k] = k;
-  const std::size_t starts = std::min<std::size_t>(kFineStarts, order.size());
-  std::partial_sort(order.begin(), order.begin() + starts, order.end(),
-                    [&](std::size_t x, std::size_t y) { return s[x] > s[y] || (s[x] == s[y] && x < y); });
-  // Fine: around the best coarse poses, a quarter of their steps.
+  const std::size_t per_start = grid.size() / starts.size();
+  // Fine: around each start's best coarse poses, a quarter of their steps.
   std::vector<Eigen::Isometry3d> fine;
-  for (std::size_t r = 0; r < starts; ++r) {
-    if (s[order[r]] < 0) break;
-    for (int a = -kFineSteps; a <= kFineSteps; ++a)
-      for (int i = -kFineSteps; i <= kFineSteps; ++i)
-        for (int j = -kFineSteps; j <= kFineSteps; ++j)
-          fine.push_back(in_plane_pose(grid[order[r]], model.axis, model.centre,
-                                       a * turn / kFineDivisions, i * coarse / kFineDivisions,
-                                       j * coarse / kFineDivisions));
-  }
-  const std::vector<float> f = edge_step_scores(dev, points, cam, model, fine, 1, tolerance);
-  for (std::size_t k = 0; k < fine.size(); ++k)
-    if (f[k] > best.score) {
-      best.score = f[k];
-      best.pose = fine[k];
+  std::vector<std::size_t> fine_start;  // the start each fine pose belongs to
+  std::vector<std::size_t> order(per_start);
+  for (std::size_t r = 0; r < starts.size(); ++r) {
+    const std::size_t base = r * per_start;
+    for (std::size_t k = 0; k < per_start; ++k) order[k] = base + k;
+    const std::size_t n_best = std::min<std::size_t>(kFineStarts, per_start);
+    std::partial_sort(order.begin(), order.begin() + n_best, order.end(),
+                      [&](std::size_t x, std::size_t y) {
+                        return s[x] > s[y] || (s[x] == s[y] && x < y);
+                      });
+    for (std::size_t b = 0; b < n_best; ++b) {
+      if (s[order[b]] < 0) break;
+      for (int a = -kFineSteps; a <= kFineSteps; ++a)
+        for (int i = -kFineSteps; i <= kFineSteps; ++i)
+          for (int j = -kFineSteps; j <= kFineSteps; ++j) {
+            fine.push_back(in_plane_pose(grid[order[b]], model.axis, model.centre,
+                                         a * turn / kFineDivisions, i * coarse / kFineDivisions,
+                                         j * coarse / kFineDivisions));
+            fine_start.push_back(r);
+          }
     }
+  }
+  const std::vector<float> f = edge_step_scores(dev, depth, cam, model, fine, 1, tolerance);
+  for (std::size_t k = 0; k < fine.size(); ++k) {
+    PlaneSearchResult& b = best[fine_start[k]];
+    if (f[k] > b.score) {
+      b.score = f[k];
+      b.pose = fine[k];
+    }
+  }
   return best;
 }
 

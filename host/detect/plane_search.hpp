@@ -45,9 +45,16 @@ PlaneSearchModel upload_plane_search_model(ocl::Device& dev, const PointCloud& e
                                            const PointCloud& model_points,
                                            const Eigen::Vector3d& centre);
 
+// Routine: the depth the search reads, one float a pixel (z, 0 where the point image has no
+// data; kernels/plane_search.cl says why), from a point image on the device (float4 a pixel).
+ocl::Buffer<float> point_depths(ocl::Device& dev, const ocl::Buffer<float>& points,
+                                const bp_camera& cam);
+// Reference: the same from a host point image.
+std::vector<float> point_depths_reference(const std::vector<float>& points);
+
 // Routine: the edge step score of each pose (model to camera, mm) over every stride-th probe
-// on a point image on the device (float4 a pixel): kernels/plane_search.cl says what it is.
-std::vector<float> edge_step_scores(ocl::Device& dev, const ocl::Buffer<float>& points,
+// on a depth image on the device (point_depths): kernels/plane_search.cl says what it is.
+std::vector<float> edge_step_scores(ocl::Device& dev, const ocl::Buffer<float>& depth,
                                     const bp_camera& cam, const PlaneSearchModel& model,
                                     const std::vector<Eigen::Isometry3d>& poses,
                                     std::uint32_t stride, float tolerance);
@@ -70,10 +77,12 @@ struct PlaneSearchResult {
   float start_score = -1;  // the starting pose's
 };
 
-// The search about `start` over shifts within +-span (mm) and the whole turn. Returns the
-// start itself when no pose scores higher.
-PlaneSearchResult plane_search(ocl::Device& dev, const ocl::Buffer<float>& points,
-                               const bp_camera& cam, const PlaneSearchModel& model,
-                               const Eigen::Isometry3d& start, double span, float tolerance);
+// The search about each start over shifts within +-span (mm) and the whole turn, on a depth
+// image from point_depths; one launch a stage for all starts. A result holds its start itself
+// when no pose scores higher.
+std::vector<PlaneSearchResult> plane_search(ocl::Device& dev, const ocl::Buffer<float>& depth,
+                                            const bp_camera& cam, const PlaneSearchModel& model,
+                                            const std::vector<Eigen::Isometry3d>& starts,
+                                            double span, float tolerance);
 
 }  // namespace binpick

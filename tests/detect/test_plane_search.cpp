@@ -4,6 +4,7 @@
 // it, a start shifted and turned in the plate's plane is brought back to the right pose.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 #include <random>
@@ -59,6 +60,11 @@ TEST(PlaneSearch, EdgeStepScoresMatchReference) {
   const Eigen::Isometry3d pose = test::plate_pose();
   const PointImage image = test::plate_over_plane(cam, pose, true);
   const ocl::Buffer<float> points(dev, std::span<const float>(image.xyzw));
+  const ocl::Buffer<float> depth = point_depths(dev, points, cam);
+  // The depth image is copied exactly (the plate's holes without depth give zeros).
+  const std::vector<float> want_depth = point_depths_reference(image.xyzw);
+  EXPECT_EQ(depth.read(dev), want_depth);
+  EXPECT_GT(std::count(want_depth.begin(), want_depth.end(), 0.0f), 0);
   const PlaneSearchModel sm =
       upload_plane_search_model(dev, model.edge_probes, model.cloud, centroid(model.cloud));
   std::mt19937 rng(3);
@@ -71,7 +77,7 @@ TEST(PlaneSearch, EdgeStepScoresMatchReference) {
   behind.translation().z() = -500;
   poses.push_back(behind);
   for (std::uint32_t stride : {1u, 8u}) {
-    const std::vector<float> got = edge_step_scores(dev, points, cam, sm, poses, stride, 4.8f);
+    const std::vector<float> got = edge_step_scores(dev, depth, cam, sm, poses, stride, 4.8f);
     PointCloud all = model.edge_probes;
     all.points.insert(all.points.end(), model.cloud.points.begin(), model.cloud.points.end());
     all.normals.insert(all.normals.end(), model.cloud.normals.begin(), model.cloud.normals.end());
@@ -86,8 +92,10 @@ TEST(PlaneSearch, EdgeStepScoresMatchReference) {
     EXPECT_EQ(got.back(), -1.0f);
     EXPECT_GT(got.front(), 1.0f);  // the right pose: the step down to the plane (1.5 mm)
   }
-  EXPECT_THROW(edge_step_scores(dev, points, cam, sm, poses, 0, 4.8f), InputError);
-  EXPECT_TRUE(edge_step_scores(dev, points, cam, sm, {}, 1, 4.8f).empty());
+  EXPECT_THROW(edge_step_scores(dev, depth, cam, sm, poses, 0, 4.8f), InputError);
+  EXPECT_THROW(edge_step_scores(dev, points, cam, sm, poses, 1, 4.8f), InputError);  // float4s
+  EXPECT_THROW(point_depths(dev, depth, cam), InputError);  // not a point image
+  EXPECT_TRUE(edge_step_scores(dev, depth, cam, sm, {}, 1, 4.8f).empty());
   PointCloud no_normals = model.edge_probes;
   no_normals.normals.clear();
   EXPECT_THROW(upload_plane_search_model(dev, no_normals, model.cloud, sm.centre), InputError);
@@ -105,23 +113,33 @@ TEST(PlaneSearch, FindsThePlateShiftedAndTurnedOnAPlate) {
   for (bool holes_without_depth : {false, true}) {
     const PointImage image = test::plate_over_plane(cam, pose, holes_without_depth);
     const ocl::Buffer<float> points(dev, std::span<const float>(image.xyzw));
+    const ocl::Buffer<float> depth = point_depths(dev, points, cam);
     // Shifted 9 mm and 6 mm in the plane and turned 25 degrees: on the plane beneath, its
     // surface still fits; the search brings it back within the probes' margin (3 mm beyond the
-    // edges: closer than that, every probe still sees the step) and a fine step.
+    // edges: closer than that, every probe still sees the step) and a fine step. The right
+    // pose, searched in the same batch, finds nothing better far away.
     const Eigen::Isometry3d start = in_plane_pose(pose, sm.axis, sm.centre, 25 * std::numbers::pi / 180, 9, -6);
-    const PlaneSearchResult found = plane_search(dev, points, cam, sm, start, 18.0, 4.8f);
-    EXPECT_GT(found.score, found.start_score + 0.3f) << holes_without_depth;
-    EXPECT_LT((found.pose * sm.centre - pose * sm.centre).norm(), 5.0) << holes_without_depth;
-    EXPECT_LT(angle_between(found.pose.linear(), pose.linear()) * 180 / std::numbers::pi, 3.0)
+    const std::vector<PlaneSearchResult> found =
+        plane_search(dev, depth, cam, sm, {start, pose}, 18.0, 4.8f);
+    ASSERT_EQ(found.size(), 2u);
+    EXPECT_GT(found[0].score, found[0].start_score + 0.3f) << holes_without_depth;
+    EXPECT_LT((found[0].pose * sm.centre - pose * sm.centre).norm(), 5.0) << holes_without_depth;
+    EXPECT_LT(angle_between(found[0].pose.linear(), pose.linear()) * 180 / std::numbers::pi, 3.0)
         << holes_without_depth;
-    // From the right pose nothing better is found far away.
-    const PlaneSearchResult stay = plane_search(dev, points, cam, sm, pose, 18.0, 4.8f);
-    EXPECT_LT((stay.pose * sm.centre - pose * sm.centre).norm(), 5.0);
+    EXPECT_LT((found[1].pose * sm.centre - pose * sm.centre).norm(), 5.0);
+    // Searched alone, a start gives what it gives in the batch.
+    const std::vector<PlaneSearchResult> alone = plane_search(dev, depth, cam, sm, {start}, 18.0, 4.8f);
+    ASSERT_EQ(alone.size(), 1u);
+    EXPECT_EQ(alone[0].score, found[0].score);
+    EXPECT_TRUE(alone[0].pose.isApprox(found[0].pose));
   }
-  // No span: the start is returned.
+  // No span: the start is returned; no starts: no results.
   const PointImage image = test::plate_over_plane(cam, pose, false);
   const ocl::Buffer<float> points(dev, std::span<const float>(image.xyzw));
-  const PlaneSearchResult none = plane_search(dev, points, cam, sm, pose, 0.0, 4.8f);
-  EXPECT_TRUE(none.pose.isApprox(pose));
-  EXPECT_EQ(none.score, none.start_score);
+  const ocl::Buffer<float> depth = point_depths(dev, points, cam);
+  const std::vector<PlaneSearchResult> none = plane_search(dev, depth, cam, sm, {pose}, 0.0, 4.8f);
+  ASSERT_EQ(none.size(), 1u);
+  EXPECT_TRUE(none[0].pose.isApprox(pose));
+  EXPECT_EQ(none[0].score, none[0].start_score);
+  EXPECT_TRUE(plane_search(dev, depth, cam, sm, {}, 18.0, 4.8f).empty());
 }

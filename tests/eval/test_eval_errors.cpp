@@ -190,6 +190,33 @@ TEST(Evaluate, SymmetricPartAndUnmatchedObject) {
   EXPECT_DOUBLE_EQ(s.loose.top, 1.0);
 }
 
+// A nut 16 mm tall with its origin on its bottom face, turned over about an axis through its
+// middle (a symmetry: x -> (x, -y, 16 - z)). Detected turned over, its origin lies 16 mm from
+// its own and 14 mm from a neighbour's: it is matched to its own and is right.
+TEST(Evaluate, MatchesThroughASymmetryAwayFromTheOrigin) {
+  Eigen::Matrix4d flip = Eigen::Matrix4d::Identity();
+  flip.topLeftCorner<3, 3>() = rot(180, {1, 0, 0});
+  flip(2, 3) = 16.0;
+  Dataset d;
+  d.root = "/nowhere";
+  d.label = "nuts";
+  d.models[1] = {38.0, {{}, {flip}}};
+  EvalImage image;
+  const Eigen::Matrix3d R = rot(20, {1, 1, 0});
+  const Eigen::Vector3d t{5, 7, 900};
+  const Eigen::Vector3d flipped_t = R * Eigen::Vector3d(0, 0, 16) + t;
+  image.gt.push_back({1, {rot(75, {0, 1, 1}), flipped_t + Eigen::Vector3d(14, 0, 0)}});
+  image.gt.push_back({1, {R, t}});
+  d.images[{0, 0}] = image;
+  const std::vector<bop::ResultRow> rows{row(0, 1, R * rot(180, {1, 0, 0}), flipped_t)};
+  const EvalSummary s = evaluate(d, rows);
+  ASSERT_EQ(s.results.size(), 1u);
+  EXPECT_EQ(s.results[0].gt_index, 1);
+  EXPECT_NEAR(s.results[0].translation_mm, 0, 1e-9);
+  EXPECT_NEAR(s.results[0].rotation_deg, 0, 1e-6);
+  EXPECT_DOUBLE_EQ(s.loose.top, 1.0);
+}
+
 TEST(Evaluate, PerObjectFiguresRankEachObjectsRowsAlone) {
   Dataset d = two_part_dataset();
   d.models[2] = {30.0, {}};

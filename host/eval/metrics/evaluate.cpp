@@ -30,24 +30,28 @@ double fraction(std::size_t part, std::size_t whole) {
   return whole ? double(part) / double(whole) : 0.0;
 }
 
-// Matches r to the instance of its obj_id nearest in translation and measures its errors.
+// Matches r to the instance of its obj_id whose nearest symmetric copy (pose_error.hpp) is
+// nearest in translation, and measures its errors against that copy. Matching on the model
+// origins alone fails for a part turned over about an axis away from its origin (a nut whose
+// origin is on one face): its origin lands a part's height away, often nearer another part's.
 void measure(HypothesisResult& r, const EvalImage& image, const bop::ModelInfo& model) {
-  double nearest = kInf;
+  PoseError best{kInf, kInf};
   for (std::size_t i = 0; i < image.gt.size(); ++i) {
     const auto& g = image.gt[i];
     if (g.obj_id != r.obj_id) continue;
-    const double d = (g.model_to_camera.t - r.row.t).norm();
-    if (d < nearest) nearest = d, r.gt_index = int(i);
+    const PoseError e = symmetric_pose_error(g.model_to_camera.R, g.model_to_camera.t, r.row.R,
+                                             r.row.t, model.symmetries);
+    if (e.translation_mm < best.translation_mm ||
+        (e.translation_mm == best.translation_mm && e.rotation_deg < best.rotation_deg))
+      best = e, r.gt_index = int(i);
   }
   if (r.gt_index < 0) {
     r.translation_mm = r.translation_pct = r.rotation_deg = kInf;
     return;
   }
-  const auto& gt = image.gt[std::size_t(r.gt_index)].model_to_camera;
-  const PoseError e = symmetric_pose_error(gt.R, gt.t, r.row.R, r.row.t, model.symmetries);
-  r.translation_mm = e.translation_mm;
-  r.translation_pct = 100.0 * e.translation_mm / model.diameter;
-  r.rotation_deg = e.rotation_deg;
+  r.translation_mm = best.translation_mm;
+  r.translation_pct = 100.0 * best.translation_mm / model.diameter;
+  r.rotation_deg = best.rotation_deg;
 }
 
 PrecisionAt precision_at(const std::vector<HypothesisResult>& results, const OperatingPoint& at) {
