@@ -59,6 +59,12 @@ void add_detect_cli_options(CLI::App* verb, DetectCliOptions& a, const std::stri
       "a feature key votes for at most this many model pairs per model point (the most "
           "common keys, such as a flat face's, keep that many evenly spaced), in [0, 10000]; "
           "0: every pair (Drost)");
+  add("noise-voxel", p.noise_voxel,
+      "noisy depth: the scene's subsampling voxels are up to this many times longer along the "
+          "camera's axis than across (the noise is estimated in each image; the full factor "
+          "from 0.6 voxels of noise on, linear from 0.45: 3 % of the diameter and more at the "
+          "default voxel), so a surface thickened by noise keeps about a clean one's points, "
+          "in [1, 4]; 1: cubic voxels, the model's");
   add("candidates", a.candidates,
       "best pose clusters per hypothesis refined and verified, in [1, 64]");
   add("plane-search", p.plane_search,

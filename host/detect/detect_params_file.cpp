@@ -62,6 +62,7 @@ const std::map<std::string, Field>& fields() {
       {"spread-votes", count(&DetectParams::spread_votes)},
       {"local-peaks", count(&DetectParams::local_peaks)},
       {"bucket-cap", real(&DetectParams::bucket_cap)},
+      {"noise-voxel", real(&DetectParams::noise_voxel)},
       {"candidates", count(&DetectParams::candidates)},
       {"plane-search", real(&DetectParams::plane_search)},
       {"refine-iterations", count(&DetectParams::refine_iterations)},

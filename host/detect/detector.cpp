@@ -16,6 +16,7 @@
 #include "host/detect/bin_region.hpp"
 #include "host/detect/bin_spec.hpp"
 #include "host/detect/cloud_image.hpp"
+#include "host/detect/depth_noise.hpp"
 #include "host/detect/image_memory.hpp"
 #include "host/detect/ppf_pose.hpp"
 #include "host/detect/pose_refine.hpp"
@@ -61,6 +62,7 @@ std::optional<ParamProblem> find_param_problem(const DetectParams& p) {
       {p.spread_votes <= 1, {"spread-votes", double(p.spread_votes), "{0, 1}"}},
       {p.local_peaks <= 1, {"local-peaks", double(p.local_peaks), "{0, 1}"}},
       {in(p.bucket_cap, 0, 10000), {"bucket-cap", p.bucket_cap, "[0, 10000]"}},
+      {in(p.noise_voxel, 1, 4), {"noise-voxel", p.noise_voxel, "[1, 4]"}},
       {p.candidates >= 1 && p.candidates <= 64, {"candidates", double(p.candidates), "[1, 64]"}},
       {in(p.plane_search, 0, 1), {"plane-search", p.plane_search, "[0, 1]"}},
       {p.refine_iterations <= 100, {"refine-iterations", double(p.refine_iterations), "[0, 100]"}},
@@ -454,6 +456,15 @@ std::vector<Detection> Detector::detect(const DepthImage& depth, const bp_camera
     std::cerr << "warning: " << masked.warning << "\n";
     warned_no_bin_ = true;
   }
+  // Noisy depth: a coarser scene voxel (depth_noise.hpp).
+  Stopwatch noise_clock;
+  const double noise = params_.noise_voxel > 1 ? depth_noise_mm(depth, cam) : 0.0;
+  const double voxel_factor = scene_voxel_factor(noise, model_.voxel_size, params_.noise_voxel);
+  t.stages.push_back({"noise", noise_clock.lap()});
+  if (voxel_factor > 1)
+    region_report_ += fmt::format("{}depth noise {:.2f} mm ({:.2f} voxels): scene voxels {:.2f} times deeper",
+                                  region_report_.empty() ? "" : "; ", noise,
+                                  noise / model_.voxel_size, voxel_factor);
   HypothesisOptions ho;
   ho.count = std::max(params_.hypotheses, params_.instances);
   ho.exclusion_radius = float(params_.exclusion_ratio * model_.diameter);
@@ -472,7 +483,8 @@ std::vector<Detection> Detector::detect(const DepthImage& depth, const bp_camera
     crop.radius = float(params_.crop_ratio * model_.diameter);
     // Equal to voxel_subsample(crop_sphere(...)) on a scene with normals everywhere.
     const NeighbourhoodSample sample =
-        sample_neighbourhood(scene, crop, prep.normals, model_.voxel_size, &t.stages, mask);
+        sample_neighbourhood(scene, crop, prep.normals, model_.voxel_size, &t.stages, mask,
+                             float(voxel_factor));
     t.prepare_ms += clock.lap();
     Detection d;
     d.neighbourhood = sample.cropped;

@@ -1,6 +1,7 @@
 #include "host/detect/scene_neighbourhood.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <numeric>
 
@@ -52,6 +53,17 @@ class LazyNormals {
   std::size_t computed_ = 0;
 };
 
+// The point as the voxel grid sees it: z divided by the stretch, so that a voxel spans
+// depth_stretch voxels along the camera's axis.
+Eigen::Vector3f squash(const Eigen::Vector3f& p, float depth_stretch) {
+  return {p.x(), p.y(), p.z() / depth_stretch};
+}
+
+void check_depth_stretch(float depth_stretch) {
+  if (!(depth_stretch >= 1 && std::isfinite(depth_stretch)))
+    throw InputError("the neighbourhood's depth stretch must be finite and at least 1");
+}
+
 // Positions (into s) of one point of smallest and one of largest coordinate per axis: they
 // fix voxel_grid's origin and dimensions.
 std::vector<std::uint32_t> extremes(const PointCloud& s) {
@@ -73,9 +85,11 @@ std::vector<std::uint32_t> extremes(const PointCloud& s) {
 NeighbourhoodSample sample_neighbourhood(const PreparedScene& scene, const CropOptions& crop,
                                          const NormalOptions& normal_opt, float voxel_size,
                                          StageTimings* timings,
-                                         const ocl::Buffer<std::uint8_t>* mask) {
+                                         const ocl::Buffer<std::uint8_t>* mask,
+                                         float depth_stretch) {
   if (!scene.device) throw InputError("sample_neighbourhood needs a scene on the device");
   check(normal_opt);
+  check_depth_stretch(depth_stretch);
   auto& dev = *scene.device->dev;
   Stopwatch clock;
   const CroppedPixels c = crop_pixels(dev, scene.device->points, scene.camera, crop, mask);
@@ -107,7 +121,7 @@ NeighbourhoodSample sample_neighbourhood(const PreparedScene& scene, const CropO
     }
     PointCloud s;
     s.points.reserve(active.size());
-    for (std::uint32_t i : active) s.points.push_back(c.points[i]);
+    for (std::uint32_t i : active) s.points.push_back(squash(c.points[i], depth_stretch));
     const VoxelSubsample sub = voxel_subsample(dev, s, voxel_size);
     subsample_ms += clock.lap();
 
@@ -141,7 +155,9 @@ NeighbourhoodSample sample_neighbourhood_reference(const PointImage& points,
                                                    const CropOptions& crop,
                                                    const NormalOptions& normal_opt,
                                                    float voxel_size,
-                                                   const std::vector<std::uint8_t>* mask) {
+                                                   const std::vector<std::uint8_t>* mask,
+                                                   float depth_stretch) {
+  check_depth_stretch(depth_stretch);
   PointImage normals = normals_from_points_reference(points, normal_opt);
   if (mask) {
     if (mask->size() != std::size_t(points.width) * points.height)
@@ -152,9 +168,13 @@ NeighbourhoodSample sample_neighbourhood_reference(const PointImage& points,
   CropOptions with_normals = crop;
   with_normals.require_normals = true;
   NeighbourhoodSample out;
-  out.cloud = voxel_subsample_reference(crop_sphere_reference(points, normals, with_normals),
-                                        voxel_size)
-                  .cloud;
+  const PointCloud cropped = crop_sphere_reference(points, normals, with_normals);
+  PointCloud squashed = cropped;
+  for (Eigen::Vector3f& p : squashed.points) p = squash(p, depth_stretch);
+  for (std::uint32_t i : voxel_subsample_reference(squashed, voxel_size).kept) {
+    out.cloud.points.push_back(cropped.points[i]);
+    out.cloud.normals.push_back(cropped.normals[i]);
+  }
   out.cropped = crop_pixels_reference(points, crop, mask).pixels.size();
   out.normals = std::size_t(points.width) * points.height;
   out.rounds = 1;

@@ -38,10 +38,13 @@ inline constexpr std::size_t kLazyNormalRounds = 3;
 // "subsample" and "normals" to timings if given. With a "may be used" mask (scene_mask.hpp) only
 // the pixels it keeps enter the crop; normals are still fitted to every measured point near a
 // kept one (a part's normal next to the bin's wall is the part's, whatever the mask says).
+// depth_stretch >= 1: the voxels are that many times longer along the camera's z axis (noisy
+// depth thickens surfaces along the rays; depth_noise.hpp), the same across.
 NeighbourhoodSample sample_neighbourhood(const PreparedScene& scene, const CropOptions& crop,
                                          const NormalOptions& normals, float voxel_size,
                                          StageTimings* timings = nullptr,
-                                         const ocl::Buffer<std::uint8_t>* mask = nullptr);
+                                         const ocl::Buffer<std::uint8_t>* mask = nullptr,
+                                         float depth_stretch = 1.0f);
 
 // Reference: all normals of the image, crop_sphere_reference, voxel_subsample_reference; with a
 // mask, the masked pixels' normals are dropped before the crop.
@@ -49,6 +52,7 @@ NeighbourhoodSample sample_neighbourhood_reference(const PointImage& points,
                                                    const CropOptions& crop,
                                                    const NormalOptions& normals,
                                                    float voxel_size,
-                                                   const std::vector<std::uint8_t>* mask = nullptr);
+                                                   const std::vector<std::uint8_t>* mask = nullptr,
+                                                   float depth_stretch = 1.0f);
 
 }  // namespace binpick

@@ -204,6 +204,8 @@ TEST_F(DetectCli, ParamsFileAppliesAndCommandLineWins) {
   refused_as_option("--bucket-cap inf", "bucket-cap inf must be in [0, 10000]");
   refused_in_file(R"({"plane_search": 2})", "plane-search 2 must be in [0, 1]");
   refused_as_option("--plane-search -0.5", "plane-search -0.5 must be in [0, 1]");
+  refused_in_file(R"({"noise_voxel": 0.5})", "noise-voxel 0.5 must be in [1, 4]");
+  refused_as_option("--noise-voxel 5", "noise-voxel 5 must be in [1, 4]");
   // A capped table detects too.
   r = test::run_binpick(fmt::format("detect --model {} --dataset {} --out {} --scenes 0 --hypotheses 1 --bucket-cap 3",
                                     model_, (*dir_ / "data").string(), out.string()));

@@ -515,3 +515,50 @@ TEST(SampleNeighbourhood, EqualsCropThenSubsampleWithNormalsEverywhere) {
   EXPECT_GT(multi_round, 0u);
   EXPECT_GT(saved, 0u);
 }
+
+// Voxels stretched along the camera's axis (noisy depth, depth_noise.hpp): the neighbourhood is
+// exactly the points whose squashed copies (z / stretch) voxel subsampling keeps; on a noisy
+// image it keeps fewer than cubic voxels do, the reference agrees within rounding, and a stretch
+// below 1 is refused.
+TEST(SampleNeighbourhood, DepthStretchKeepsThePointsOfTheSquashedCloud) {
+  std::mt19937 rng(17);
+  const bp_camera cam = camera(240, 180, 200.0f);
+  const DepthImage depth = random_depth(rng, cam, 4.0f);
+  ScenePrepOptions with, without;
+  with.normals.max_distance = without.normals.max_distance = 10.0f;
+  without.normals_everywhere = false;
+  const PreparedScene full = prepare_scene(test_device(), depth, cam, with);
+  const PreparedScene lazy = prepare_scene(test_device(), depth, cam, without);
+  CropOptions opt;
+  const std::size_t i = full.points.xyzw.size() / 8;  // a pixel in the middle rows
+  opt.centre = Eigen::Vector3f(full.points.xyzw[4 * i], full.points.xyzw[4 * i + 1],
+                               full.points.xyzw[4 * i + 2]);
+  opt.radius = 90.0f;
+  const float voxel = 8.0f;  // several pixels a voxel: the noise fills voxels along z
+  const std::size_t cubic =
+      sample_neighbourhood(lazy, opt, without.normals, voxel).cloud.points.size();
+  for (float stretch : {1.5f, 2.5f}) {
+    const NeighbourhoodSample got =
+        sample_neighbourhood(lazy, opt, without.normals, voxel, nullptr, nullptr, stretch);
+    const PointCloud cropped = crop_sphere(full, opt);
+    PointCloud squashed = cropped;
+    for (Eigen::Vector3f& p : squashed.points) p.z() /= stretch;
+    PointCloud want;
+    for (std::uint32_t k : voxel_subsample(test_device(), squashed, voxel).kept) {
+      want.points.push_back(cropped.points[k]);
+      want.normals.push_back(cropped.normals[k]);
+    }
+    ASSERT_EQ(got.cloud.points, want.points) << stretch;
+    ASSERT_EQ(got.cloud.normals, want.normals) << stretch;
+    EXPECT_LT(got.cloud.points.size(), cubic) << stretch;
+    const NeighbourhoodSample ref =
+        sample_neighbourhood_reference(full.points, opt, without.normals, voxel, nullptr, stretch);
+    EXPECT_NEAR(double(ref.cloud.points.size()), double(got.cloud.points.size()),
+                2 + 0.02 * got.cloud.points.size());
+  }
+  EXPECT_THROW(sample_neighbourhood(lazy, opt, without.normals, voxel, nullptr, nullptr, 0.5f),
+               InputError);
+  EXPECT_THROW(sample_neighbourhood_reference(full.points, opt, without.normals, voxel, nullptr,
+                                              NAN),
+               InputError);
+}
