@@ -456,15 +456,16 @@ std::vector<Detection> Detector::detect(const DepthImage& depth, const bp_camera
     std::cerr << "warning: " << masked.warning << "\n";
     warned_no_bin_ = true;
   }
-  // Noisy depth: a coarser scene voxel (depth_noise.hpp).
+  // Noisy depth: scene voxels longer along the camera's axis (depth_noise.hpp).
   Stopwatch noise_clock;
   const double noise = params_.noise_voxel > 1 ? depth_noise_mm(depth, cam) : 0.0;
   const double voxel_factor = scene_voxel_factor(noise, model_.voxel_size, params_.noise_voxel);
   t.stages.push_back({"noise", noise_clock.lap()});
   if (voxel_factor > 1)
-    region_report_ += fmt::format("{}depth noise {:.2f} mm ({:.2f} voxels): scene voxels {:.2f} times deeper",
-                                  region_report_.empty() ? "" : "; ", noise,
-                                  noise / model_.voxel_size, voxel_factor);
+    region_report_ +=
+        fmt::format("{}depth noise {:.2f} mm ({:.2f} voxels): scene voxels {:.2f} times deeper",
+                    region_report_.empty() ? "" : "; ", noise, noise / model_.voxel_size,
+                    voxel_factor);
   HypothesisOptions ho;
   ho.count = std::max(params_.hypotheses, params_.instances);
   ho.exclusion_radius = float(params_.exclusion_ratio * model_.diameter);
@@ -481,7 +482,8 @@ std::vector<Detection> Detector::detect(const DepthImage& depth, const bp_camera
     CropOptions crop;
     crop.centre = hyps[k].point;
     crop.radius = float(params_.crop_ratio * model_.diameter);
-    // Equal to voxel_subsample(crop_sphere(...)) on a scene with normals everywhere.
+    // Equal to voxel_subsample(crop_sphere(...)) on a scene with normals everywhere (with the
+    // crop's z divided by the voxel factor for the grid: depth_stretch).
     const NeighbourhoodSample sample =
         sample_neighbourhood(scene, crop, prep.normals, model_.voxel_size, &t.stages, mask,
                              float(voxel_factor));
