@@ -122,7 +122,7 @@ std::vector<float> edge_step_scores_reference(const std::vector<float>& points,
       const float fv = std::floor(cam.fy * y / z + cam.cy + 0.5f);
       if (!(fu >= 0.0f && fv >= 0.0f && fu < float(cam.width) && fv < float(cam.height))) continue;
       const float* s = &points[4 * (std::size_t(fv) * cam.width + std::size_t(fu))];
-      float e = tolerance;
+      float e = j >= edge_probes ? 0.5f * tolerance : tolerance;  // no depth (kernel's comment)
       if (s[3] != 0.0f) {
         e = (s[2] - z) * (std::sqrt(x * x + y * y + z * z) / z);
         if (e < -tolerance) continue;

@@ -101,6 +101,29 @@ TEST(PlaneSearch, EdgeStepScoresMatchReference) {
   EXPECT_THROW(upload_plane_search_model(dev, no_normals, model.cloud, sm.centre), InputError);
 }
 
+// No depth anywhere: every edge probe counts a full tolerance (a shadow or a drop), every point
+// of the part's own surface half of one (the void beside a pile or the sensor's loss on real
+// surface: kernels/plane_search.cl), so the score is half the tolerance, on the device and in
+// the reference.
+TEST(PlaneSearch, NoDepthCountsAFullToleranceAtTheEdgesAndHalfUnderThePart) {
+  auto& dev = test::test_device();
+  const PpfModel& model = plate_model();
+  const bp_camera cam = test::plate_camera();
+  const std::vector<float> empty(4 * std::size_t(cam.width) * cam.height, 0.0f);
+  const ocl::Buffer<float> points(dev, std::span<const float>(empty));
+  const PlaneSearchModel sm =
+      upload_plane_search_model(dev, model.edge_probes, model.cloud, centroid(model.cloud));
+  const std::vector<Eigen::Isometry3d> poses = {test::plate_pose()};
+  const float got = edge_step_scores(dev, point_depths(dev, points, cam), cam, sm, poses, 1, 4.8f)[0];
+  EXPECT_NEAR(got, 2.4f, 1e-4f);  // float sums over a few thousand probes
+  PointCloud all = model.edge_probes;
+  all.points.insert(all.points.end(), model.cloud.points.begin(), model.cloud.points.end());
+  all.normals.insert(all.normals.end(), model.cloud.normals.begin(), model.cloud.normals.end());
+  EXPECT_NEAR(edge_step_scores_reference(empty, cam, all, model.edge_probes.points.size(), poses,
+                                         1, 4.8f)[0],
+              2.4f, 1e-4f);
+}
+
 TEST(PlaneSearch, FindsThePlateShiftedAndTurnedOnAPlate) {
   auto& dev = test::test_device();
   const PpfModel& model = plate_model();
