@@ -3,10 +3,12 @@
 // rendered pixel given the projector raster of sensor_projector.comp. A pixel has no depth
 // out of the scanning range, in a projector shadow (farther than the nearest surface the
 // projector sees there, beyond a tolerance), at a grazing angle to the camera or the
-// projector, in a specular highlight (optional), or near a depth jump; otherwise its depth gets axial noise a + b z^2 and is
-// quantised. Shadows are dark in the gray image; nothing else changes it.
+// projector, in a specular highlight (optional), near a depth jump, or in a patch of lost
+// depth (optional); otherwise its depth gets axial noise a + b z^2 and is quantised. Shadows
+// are dark in the gray image; nothing else changes it.
 // C++ reference: sensor_measure_reference (synth/sensor/sensor_reference.cpp), operation for
-// operation; the noise hash repeats synth/render/bin_noise.hpp word for word.
+// operation; the noise hash repeats synth/render/bin_noise.hpp word for word, the patches'
+// field synth/sensor/sensor_patches.hpp.
 layout(local_size_x = 16, local_size_y = 16) in;
 
 layout(std430, binding = 0) readonly buffer Depth { float depth[]; };
@@ -31,11 +33,12 @@ layout(push_constant) uniform Params {
   uint seed_lo, seed_hi;
   uint flags, stage;
   float cos_specular;
+  float patch_inv_mm, patch_threshold;
 } p;
 
-const uint kSensorEffects = 1u, kSensorShadows = 2u, kShadowGray = 51u;
+const uint kSensorEffects = 1u, kSensorShadows = 2u, kSensorPatches = 4u, kShadowGray = 51u;
 const uint kValid = 0u, kNoSurface = 1u, kOutOfRange = 2u, kShadow = 3u, kGrazing = 4u,
-           kSpecular = 5u, kEdge = 6u;
+           kSpecular = 5u, kEdge = 6u, kPatch = 7u;
 
 uint pcg_hash(uint x) {
   const uint state = x * 747796405u + 2891336453u;
@@ -161,6 +164,60 @@ bool near_edge(Surfel s) {
   return false;
 }
 
+// The patches' field, synth/sensor/sensor_patches.hpp line for line.
+float patch_lattice(uint key, int x, int y, int z) {
+  uint h = pcg_hash(uint(x) ^ key);
+  h = pcg_hash(h ^ uint(y));
+  h = pcg_hash(h ^ uint(z));
+  return float(h >> 8) * 5.9604645e-08;
+}
+
+float patch_weight(float f) {
+  precise float a = 3.0 - 2.0 * f;
+  precise float w = (f * f) * a;
+  return w;
+}
+
+float patch_lerp(float a, float b, float w) {
+  precise float r = a + w * (b - a);
+  return r;
+}
+
+float patch_value_noise(uint key, float x, float y, float z) {
+  const float x0 = floor(x), y0 = floor(y), z0 = floor(z);
+  const int ix = int(x0), iy = int(y0), iz = int(z0);
+  precise float fx = x - x0, fy = y - y0, fz = z - z0;
+  const float wx = patch_weight(fx), wy = patch_weight(fy), wz = patch_weight(fz);
+  float c[2][2];
+  for (int k = 0; k < 2; ++k)
+    for (int j = 0; j < 2; ++j)
+      c[k][j] = patch_lerp(patch_lattice(key, ix, iy + j, iz + k),
+                           patch_lattice(key, ix + 1, iy + j, iz + k), wx);
+  return patch_lerp(patch_lerp(c[0][0], c[0][1], wy), patch_lerp(c[1][0], c[1][1], wy), wz);
+}
+
+const float kPatchRotation[9] = float[9](
+    0.599884033203125, -0.5937347412109375, 0.5363006591796875,
+    0.7526092529296875, 0.646209716796875, -0.12640380859375,
+    -0.271514892578125, 0.4794464111328125, 0.834503173828125);
+
+float patch_field(float px, float py, float pz) {
+  const uint key = pcg_hash(p.seed_lo ^ pcg_hash(p.seed_hi ^ 0x243f6a88u));
+  precise float qx = px * p.patch_inv_mm, qy = py * p.patch_inv_mm, qz = pz * p.patch_inv_mm;
+  const float r[9] = kPatchRotation;
+  precise float x = (r[0] * qx + r[1] * qy) + r[2] * qz;
+  precise float y = (r[3] * qx + r[4] * qy) + r[5] * qz;
+  precise float z = (r[6] * qx + r[7] * qy) + r[8] * qz;
+  const float coarse = patch_value_noise(key, x, y, z);
+  precise float x2 = 2.0 * x + 0.5, y2 = 2.0 * y + 0.5, z2 = 2.0 * z + 0.5;
+  const float fine = patch_value_noise(pcg_hash(key ^ 0x85a308d3u), x2, y2, z2);
+  precise float field = coarse + 0.5 * fine;
+  return field;
+}
+
+// Whether the pixel lies in a patch without depth: the field at its (ideal) point.
+bool in_patch(Surfel s) { return patch_field(s.pt.x, s.pt.y, s.pt.z) < p.patch_threshold; }
+
 // Noise along the ray, then quantisation.
 float measured_depth(uint i, float z) {
   precise float axial = p.noise_a_mm + p.noise_b_per_mm * (z * z);
@@ -200,6 +257,7 @@ void main() {
   else if (grazing(s)) why = kGrazing;
   else if (specular(s)) why = kSpecular;
   else if (near_edge(s)) why = kEdge;
+  else if ((p.flags & kSensorPatches) != 0u && in_patch(s)) why = kPatch;
   dropout_out[i] = why;
   gray_out[i] = why == kShadow ? kShadowGray : gray[i];
   if (why != kValid) {

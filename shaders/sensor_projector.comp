@@ -26,6 +26,7 @@ layout(push_constant) uniform Params {
   uint seed_lo, seed_hi;
   uint flags, stage;
   float cos_specular;
+  float patch_inv_mm, patch_threshold;  // sensor_measure.comp's patches; unused here
 } p;
 
 const uint kInfinityBits = 0x7f800000u;

@@ -8,7 +8,11 @@ patches, not pixel by pixel). For measuring detection under missing depth:
 copies the BOP dataset SRC (a directory with test/NNNNNN/depth/*.png) to DST and, in each depth
 image, keeps only the pixels where a smooth random field (bilinear over a grid of --blob pixels)
 lies above the quantile that leaves about --valid of the pixels with depth valid. Seeded.
-Needs numpy and pillow (pip install numpy pillow)."""
+Needs numpy and pillow (pip install numpy pillow).
+
+For new data, `binpick synth --sensor-model structured-light --dropout-share S` does this inside
+the sensor model, with patches of a size in mm fixed to the surfaces (docs/sensor_model.md);
+this tool stays for datasets already made."""
 import argparse
 import glob
 import os

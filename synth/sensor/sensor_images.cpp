@@ -15,6 +15,7 @@ std::string dropout_name(Dropout d) {
     case Dropout::grazing: return "grazing";
     case Dropout::specular: return "specular";
     case Dropout::edge: return "edge";
+    case Dropout::patch: return "patch";
   }
   return "unknown";
 }
@@ -31,7 +32,7 @@ std::string DropoutCounts::summary() const {
   std::string out = fmt::format("valid {:.1f} % of surface pixels (", 100 * (*this)[Dropout::valid] / total);
   const char* sep = "";
   for (Dropout d : {Dropout::shadow, Dropout::grazing, Dropout::specular, Dropout::edge,
-                    Dropout::out_of_range}) {
+                    Dropout::patch, Dropout::out_of_range}) {
     out += fmt::format("{}{} {:.1f} %", sep, dropout_name(d), 100 * (*this)[d] / total);
     sep = ", ";
   }

@@ -11,9 +11,9 @@ namespace binpick {
 
 // Why a pixel has no depth (first reason that applies, in this order); valid: it has depth.
 enum class Dropout : std::uint8_t {
-  valid = 0, no_surface, out_of_range, shadow, grazing, specular, edge
+  valid = 0, no_surface, out_of_range, shadow, grazing, specular, edge, patch
 };
-inline constexpr std::size_t kDropoutKinds = 7;
+inline constexpr std::size_t kDropoutKinds = 8;
 std::string dropout_name(Dropout d);
 
 // The ideal images as the renderer delivers them (RenderedBin's fields of the same names).

@@ -7,6 +7,7 @@
 
 #include "host/core/error.hpp"
 #include "synth/sensor/sensor_params.hpp"
+#include "synth/sensor/sensor_patches.hpp"
 
 namespace binpick {
 namespace {
@@ -37,6 +38,14 @@ void check(const SensorModel& m) {
   if (!(m.min_range_mm > 0 && m.min_range_mm < m.max_range_mm && m.max_range_mm <= 1e6))
     throw InputError(fmt::format("--range must be MIN,MAX with 0 < MIN < MAX <= 1e6 mm, got {},{}",
                                  m.min_range_mm, m.max_range_mm));
+  within(m.dropout_share, 0, 0.95, "--dropout-share", "");
+  // At least 1 mm: smaller patches are single pixels at any sensible resolution, and the
+  // field's lattice coordinates (point / patch) stay far inside int32 over the whole range.
+  within(m.dropout_patch_mm, 1, 1000, "--dropout-patch", " mm");
+  // The other structured-light options are harmless with the ideal sensor; a share asked for
+  // and silently not applied would be measured as if it were.
+  if (m.dropout_share > 0 && m.kind != SensorModel::Kind::structured_light)
+    throw InputError("--dropout-share needs --sensor-model structured-light");
 }
 
 std::string sensor_kind_name(SensorModel::Kind kind) {
@@ -57,7 +66,9 @@ SensorParams sensor_params(const RenderCamera& c, const SensorModel& m, std::uin
   p.fx = float(c.fx), p.fy = float(c.fy), p.cx = float(c.cx), p.cy = float(c.cy);
   const bool structured = m.kind == SensorModel::Kind::structured_light;
   const bool shadows = structured && m.baseline_mm != 0;
-  p.flags = (structured ? kSensorEffects : 0u) | (shadows ? kSensorShadows : 0u);
+  const bool patches = structured && m.dropout_share > 0;
+  p.flags = (structured ? kSensorEffects : 0u) | (shadows ? kSensorShadows : 0u) |
+            (patches ? kSensorPatches : 0u);
 
   // The shift fx_p b / z of the scanning range spans fx_p |b| (1/min - 1/max) cells; the
   // offset puts its smallest value at 0. One spare cell for the floor of the far edge.
@@ -89,6 +100,10 @@ SensorParams sensor_params(const RenderCamera& c, const SensorModel& m, std::uin
   p.quant_mm = float(m.quantisation_mm), p.quant_ref_mm = float(m.quantisation_ref_mm);
   const std::uint64_t stream = seed ^ 0x5e45e0a7b1c2d3f5ull;  // not the renderer's stream
   p.seed_lo = std::uint32_t(stream), p.seed_hi = std::uint32_t(stream >> 32);
+  if (patches) {
+    p.patch_inv_mm = float(1 / m.dropout_patch_mm);
+    p.patch_threshold = patch_threshold(m.dropout_share);
+  }
   return p;
 }
 

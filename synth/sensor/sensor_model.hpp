@@ -1,7 +1,7 @@
 // What a structured-light depth sensor makes of an ideal rendered depth image: projector
 // shadows (the projector sits a baseline away from the camera), no depth at grazing angles and
 // at depth discontinuities, axial noise growing with the square of the distance, depth
-// quantisation, a scanning range and, optionally, specular highlights. docs/sensor_model.md
+// quantisation, a scanning range and, optionally, specular highlights and depth lost in patches. docs/sensor_model.md
 // gives the formulas and where the default figures come from.
 #pragma once
 
@@ -50,6 +50,12 @@ struct SensorModel {
   double quantisation_ref_mm = 1000;
   // Scanning range: no depth nearer or farther (and the nearer surfaces cast no shadow).
   double min_range_mm = 300, max_range_mm = 3000;
+  // Shiny sheet metal: depth lost in patches fixed to the surfaces, about dropout_patch_mm
+  // across (a smooth random field below a threshold: synth/sensor/sensor_patches.hpp), taking
+  // this share, in [0, 0.95], of the pixels that would otherwise have depth. 0: off (the output
+  // is the same as without the field, bit for bit). The patch size is in [1, 1000] mm.
+  double dropout_share = 0;
+  double dropout_patch_mm = 20;
 };
 
 // Throws InputError naming the command-line option of the first field that is NaN or out of

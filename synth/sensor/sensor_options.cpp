@@ -104,6 +104,16 @@ void add_sensor_options(CLI::App* verb, SensorModel& m) {
       ->expected(2)
       ->check(number_in(1e-6, 1e6, " mm"))
       ->default_str(fmt::format("{},{}", m.min_range_mm, m.max_range_mm));
+  verb->add_option("--dropout-share", m.dropout_share,
+                   "shiny metal: share of the pixels that would have depth that lose it in "
+                   "patches fixed to the surfaces, in [0, 0.95]; 0: off")
+      ->check(number_in(0, 0.95, ""))
+      ->capture_default_str();
+  verb->add_option("--dropout-patch", m.dropout_patch_mm,
+                   "size of those patches on the surface (the random field's correlation "
+                   "length), mm in [1, 1000]")
+      ->check(number_in(1, 1000, " mm"))
+      ->capture_default_str();
 }
 
 }  // namespace binpick::cli
@@ -111,7 +121,7 @@ void add_sensor_options(CLI::App* verb, SensorModel& m) {
 namespace binpick {
 
 nlohmann::json sensor_model_json(const SensorModel& m) {
-  return {{"kind", sensor_kind_name(m.kind)},
+  nlohmann::json out = {{"kind", sensor_kind_name(m.kind)},
           {"baseline_mm", m.baseline_mm},
           {"projector_scale", m.projector_scale},
           {"shadow_tolerance_mm", m.shadow_tolerance_mm},
@@ -126,6 +136,13 @@ nlohmann::json sensor_model_json(const SensorModel& m) {
           {"quantisation_ref_mm", m.quantisation_ref_mm},
           {"min_range_mm", m.min_range_mm},
           {"max_range_mm", m.max_range_mm}};
+  // Only when on: a dataset made before the patches existed, or without them, keeps the same
+  // manifest and stays resumable; any share or patch size asked for is compared.
+  if (m.dropout_share > 0) {
+    out["dropout_share"] = m.dropout_share;
+    out["dropout_patch_mm"] = m.dropout_patch_mm;
+  }
+  return out;
 }
 
 }  // namespace binpick

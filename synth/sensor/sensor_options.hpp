@@ -18,7 +18,8 @@ void add_sensor_options(CLI::App* verb, SensorModel& model);
 
 namespace binpick {
 
-// The model as JSON (every field, kind as on the command line): for a dataset's manifest, so
+// The model as JSON (every field, kind as on the command line; the patch fields only when the
+// share is above 0, so manifests from before them still match): for a dataset's manifest, so
 // a rerun with other sensor options is noticed.
 nlohmann::json sensor_model_json(const SensorModel& model);
 

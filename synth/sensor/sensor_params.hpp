@@ -24,14 +24,18 @@ struct SensorParams {
   float noise_a_mm = 0, noise_b_per_mm = 0, added_sigma_mm = 0;
   float quant_mm = 0, quant_ref_mm = 0;
   std::uint32_t seed_lo = 0, seed_hi = 0;
-  std::uint32_t flags = 0;  // kSensorEffects | kSensorShadows
+  std::uint32_t flags = 0;  // kSensorEffects | kSensorShadows | kSensorPatches
   std::uint32_t stage = 0;  // sensor_projector.comp: 0 clears the raster, 1 splats
   float cos_specular = 2;   // > 1: no specular dropout
+  // Patchy dropout (sensor_patches.hpp): 1 / the patch size, and the field's threshold.
+  float patch_inv_mm = 0, patch_threshold = -1;
 };
-static_assert(sizeof(SensorParams) == 116, "push constant block of the sensor shaders");
+// 124 of the 128 bytes of push constants every Vulkan device offers.
+static_assert(sizeof(SensorParams) == 124, "push constant block of the sensor shaders");
 
 inline constexpr std::uint32_t kSensorEffects = 1u;  // structured light (else: ideal, identity)
 inline constexpr std::uint32_t kSensorShadows = 2u;  // baseline != 0
+inline constexpr std::uint32_t kSensorPatches = 4u;  // dropout_share > 0
 inline constexpr std::uint32_t kShadowGray = 51u;    // the renderer's ambient term, 0.2 * 255
 inline constexpr int kMaxFootprint = 8;  // projector cells a side a pixel's splat may cover
 

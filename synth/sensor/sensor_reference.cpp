@@ -9,6 +9,7 @@
 
 #include "host/core/error.hpp"
 #include "synth/render/bin_noise.hpp"
+#include "synth/sensor/sensor_patches.hpp"
 
 namespace binpick {
 namespace {
@@ -114,6 +115,12 @@ bool near_edge(const SensorImages& in, const SensorParams& p, const Surfel& s) {
   return false;
 }
 
+// Whether the pixel lies in a patch without depth: the field at its (ideal) point.
+bool in_patch(const SensorParams& p, const Surfel& s) {
+  const float field = patch_field(patch_key(p.seed_lo, p.seed_hi), p.patch_inv_mm, s.px, s.py, s.pz);
+  return field < p.patch_threshold;
+}
+
 // Noise along the ray, then quantisation.
 float measured_depth(const SensorParams& p, std::uint32_t pixel, float z) {
   const std::uint64_t seed = (std::uint64_t(p.seed_hi) << 32) | p.seed_lo;
@@ -203,6 +210,7 @@ SensorOutput sensor_measure_reference(const SensorImages& in, const std::vector<
       else if (grazing(p, s)) why = Dropout::grazing;
       else if (specular(p, s)) why = Dropout::specular;
       else if (near_edge(in, p, s)) why = Dropout::edge;
+      else if ((p.flags & kSensorPatches) && in_patch(p, s)) why = Dropout::patch;
       out.dropout[i] = std::uint8_t(why);
       if (why == Dropout::shadow) out.gray[i] = std::uint8_t(kShadowGray);
       if (why != Dropout::valid) continue;

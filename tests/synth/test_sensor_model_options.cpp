@@ -78,6 +78,14 @@ TEST(SensorModelOptions, CheckNamesTheOption) {
       {"--range", [](SensorModel& m) { m.min_range_mm = 2000, m.max_range_mm = 1000; }},
       {"--range", [](SensorModel& m) { m.min_range_mm = 0; }},
       {"--range", [](SensorModel& m) { m.max_range_mm = NAN; }},
+      {"--dropout-share", [](SensorModel& m) { m.dropout_share = NAN; }},
+      {"--dropout-share", [](SensorModel& m) { m.dropout_share = -0.1; }},
+      {"--dropout-share", [](SensorModel& m) { m.dropout_share = 0.96; }},
+      {"--dropout-share", [](SensorModel& m) { m.dropout_share = 0.5, m.kind = SensorModel::Kind::ideal; }},
+      {"--dropout-patch", [](SensorModel& m) { m.dropout_patch_mm = 0; }},
+      {"--dropout-patch", [](SensorModel& m) { m.dropout_patch_mm = -5; }},
+      {"--dropout-patch", [](SensorModel& m) { m.dropout_patch_mm = NAN; }},
+      {"--dropout-patch", [](SensorModel& m) { m.dropout_patch_mm = 1001; }},
   };
   for (const auto& [option, change] : cases) {
     const std::string message = check_message(change);
@@ -96,7 +104,8 @@ TEST(SensorModelOptions, CommandLineParses) {
                                "--projector-scale", "0.25", "--grazing-limit", "80", "--edge-jump",
                                "8", "--edge-radius", "2", "--noise-a", "0.1", "--noise-b", "2e-7",
                                "--quantisation", "0.1", "--quantisation-ref", "0", "--range",
-                               "500,2500", "--shadow-tolerance", "3", "--specular-cone", "4"});
+                               "500,2500", "--shadow-tolerance", "3", "--specular-cone", "4",
+                               "--dropout-share", "0.7", "--dropout-patch", "35"});
   EXPECT_EQ(m.kind, SensorModel::Kind::structured_light);
   EXPECT_EQ(m.baseline_mm, -120);
   EXPECT_EQ(m.projector_scale, 0.25);
@@ -111,9 +120,20 @@ TEST(SensorModelOptions, CommandLineParses) {
   EXPECT_EQ(m.max_range_mm, 2500);
   EXPECT_EQ(m.shadow_tolerance_mm, 3);
   EXPECT_EQ(m.specular_cone_deg, 4);
+  EXPECT_EQ(m.dropout_share, 0.7);
+  EXPECT_EQ(m.dropout_patch_mm, 35);
   EXPECT_NO_THROW(check(m));
   EXPECT_EQ(parse({}).kind, SensorModel::Kind::ideal);
+  EXPECT_EQ(parse({}).dropout_share, 0);
   EXPECT_EQ(sensor_model_json(m)["kind"], "structured-light");
+  // The patches are in the manifest when on (a changed share or size is not resumed), and
+  // absent when off (manifests from before them still match).
+  EXPECT_EQ(sensor_model_json(m)["dropout_share"], 0.7);
+  EXPECT_EQ(sensor_model_json(m)["dropout_patch_mm"], 35);
+  SensorModel off = m;
+  off.dropout_share = 0;
+  EXPECT_FALSE(sensor_model_json(off).contains("dropout_share"));
+  EXPECT_FALSE(sensor_model_json(off).contains("dropout_patch_mm"));
 }
 
 TEST(SensorModelOptions, CommandLineRefusesBadValues) {
@@ -123,7 +143,9 @@ TEST(SensorModelOptions, CommandLineRefusesBadValues) {
         {"--edge-jump", "-1"}, {"--edge-radius", "9"}, {"--noise-a", "inf"}, {"--noise-b", "abc"},
         {"--quantisation", "-0.1"}, {"--range", "nan,100"}, {"--range", "100"},
         {"--sensor-model", "tof"}, {"--shadow-tolerance", "nan"}, {"--quantisation-ref", "-5"},
-        {"--specular-cone", "90"}}) {
+        {"--specular-cone", "90"}, {"--dropout-share", "nan"}, {"--dropout-share", "-0.1"},
+        {"--dropout-share", "0.96"}, {"--dropout-patch", "0"}, {"--dropout-patch", "-3"},
+        {"--dropout-patch", "NaN"}, {"--dropout-patch", "2000"}}) {
     const std::string message = parse_error({option, value});
     EXPECT_FALSE(message.empty()) << option << " " << value;
     if (option != "--range" || value != "100") {
