@@ -4,8 +4,8 @@
 
 namespace binpick {
 
-double edge_step(const TwinEvidence& e, double missing_rate, double gate) {
-  return std::max(0.0, e.mean - missing_rate * gate + 2.0 * e.standard_error);
+double edge_step(const TwinEvidence& e) {
+  return std::max(0.0, e.mean + 2.0 * e.standard_error);
 }
 
 double edge_factor(double step, double scale, double gate) {

@@ -7,12 +7,16 @@
 // everywhere but at its edges, where the sensor sees the sheet run on. Beyond a right pose's
 // edges the sensor sees a step down: at least the part's thickness, often much more (a part
 // it lies across, the floor), or no depth (the projector's shadow at an edge). So at every
-// edge probe the depth excess along the ray is taken as the twin test takes it (clamped to the
-// tolerance; no depth facing the camera counts as the tolerance, the pose's own share of
-// missing depth taken off; something in front says nothing), and the mean plus two standard
+// edge probe with depth the depth excess along the ray is taken as the twin test takes it
+// (clamped to the tolerance; something in front says nothing), and the mean plus two standard
 // errors is how far the pose's edges are seen to step down at most. The score is multiplied
 // by that step over `scale` tolerances, at most 1: a pose whose edges show no step keeps
 // little, one whose edges drop by a tolerance keeps all.
+//
+// No depth beyond an edge says nothing (NoDepth::neutral). It once counted as a step of the
+// whole tolerance, with the pose's own share of missing depth taken off the mean; but a sensor
+// that loses depth in patches (shiny sheet metal) loses it beyond some edges and not others,
+// and the pose whose edges happened to lie in the patches won. Measured: docs/pipeline.md.
 //
 // Measured before building it (a prototype on the refined poses of 34 structured-light images
 // of 120 mm and 150 mm plates among other parts, ranks recomputed): top-ranked right 17 -> 28
@@ -23,8 +27,8 @@
 
 namespace binpick {
 
-// max(0, mean - missing_rate x gate + 2 standard errors) of the edge probes' evidence (mm).
-double edge_step(const TwinEvidence& e, double missing_rate, double gate);
+// max(0, mean + 2 standard errors) of the edge probes' evidence (mm).
+double edge_step(const TwinEvidence& e);
 
 // min(1, step / (scale x gate)); 1 for scale <= 0 or gate <= 0 (no test).
 double edge_factor(double step, double scale, double gate);

@@ -18,7 +18,7 @@ constexpr double kMissingCos = 0.5;
 TwinEvidence twin_evidence(std::span<const float> residuals, std::span<const std::uint8_t> classes,
                            const Eigen::Matrix3d& R, const Eigen::Vector3d& t,
                            const PointCloud& probes, std::span<const std::uint32_t> probe_twin,
-                           std::uint32_t which, double gate) {
+                           std::uint32_t which, double gate, NoDepth no_depth) {
   const std::size_t n_probes = probes.points.size();
   if (residuals.size() != n_probes || classes.size() != n_probes || probe_twin.size() != n_probes ||
       probes.normals.size() != n_probes)
@@ -40,8 +40,9 @@ TwinEvidence twin_evidence(std::span<const float> residuals, std::span<const std
       // A surface seen obliquely often gives no depth on real material; one facing the camera
       // gives depth unless shadowed, which the pose's own share without depth stands for.
       if (c < kMissingCos) continue;
-      excess = gate;
       ++e.missing;
+      if (no_depth == NoDepth::neutral) continue;
+      excess = gate;
     } else if (std::isfinite(r)) {
       // r = nq . (p - q) is negative where the sensor saw farther along the ray.
       excess = std::clamp(-double(r) / c, -gate, gate);
@@ -107,11 +108,13 @@ void twin_test(const FitSumsFn& sums_of, const bp_camera& cam, const FitGeometry
     }
     r.score *= excess_factor(r.twin_excess, band);
     if (!edges_on) continue;
+    // No depth beyond an edge says nothing (edge_test.hpp says why).
     const TwinEvidence e = twin_evidence(probe_residuals, probe_classes, r.R, r.t, model.probes,
-                                         model.probe_twin, model.twins, r.tolerance);
+                                         model.probe_twin, model.twins, r.tolerance,
+                                         NoDepth::neutral);
     if (e.n < opt.min_probes) continue;
     r.edge_tested = true;
-    r.edge_step = edge_step(e, missing_rate, r.tolerance);
+    r.edge_step = edge_step(e);
     r.score *= edge_factor(r.edge_step, opt.edge_scale, r.tolerance);
   }
 }

@@ -47,15 +47,22 @@ struct TwinEvidence {
   std::size_t n = 0, missing = 0;
 };
 
+// How a probe that faces the camera but has no depth counts.
+enum class NoDepth {
+  seen_through,  // as the gate (the twin test: a hole's bottom the projector cannot light)
+  neutral,       // not at all, only in `missing` (the edge test)
+};
+
 // The evidence about look-alike `which` from a probe pass (pose_fit_shared.h: one residual,
 // NaN where a probe gives no ICP term, and one class per probe) at pose (R, t): each probe's
-// depth excess along its ray, clamped to [-gate, gate]; seen through without a term and no
-// depth count as gate; hidden, and in front without a term, are skipped. Probes of other
-// look-alikes are skipped.
+// depth excess along its ray, clamped to [-gate, gate]; seen through without a term counts as
+// gate, no depth as `no_depth` says; hidden, and in front without a term, are skipped. Probes
+// of other look-alikes are skipped.
 TwinEvidence twin_evidence(std::span<const float> residuals, std::span<const std::uint8_t> classes,
                            const Eigen::Matrix3d& R, const Eigen::Vector3d& t,
                            const PointCloud& probes, std::span<const std::uint32_t> probe_twin,
-                           std::uint32_t which, double gate);
+                           std::uint32_t which, double gate,
+                           NoDepth no_depth = NoDepth::seen_through);
 
 // max(0, mean - missing_rate x gate - 2 standard errors): missing_rate is the share of the
 // pose's visible points without depth. 0 with fewer than min_probes probes (untested).

@@ -66,6 +66,12 @@ TEST(TwinTest, SeenThroughAndNoDepthCountAsTheGateInFrontAndHiddenSayNothing) {
   ASSERT_EQ(e.n, 5u);
   EXPECT_EQ(e.missing, 1u);
   EXPECT_NEAR(e.mean, (5.0 + 5.0 + 5.0 - 5.0 + 0.0) / 5.0, 1e-9);
+  // The edge test's reading: no depth says nothing, and is still counted as missing.
+  const TwinEvidence neutral = twin_evidence(r, cls, Eigen::Matrix3d::Identity(), kAhead, probes,
+                                             twin, 0, 5.0, NoDepth::neutral);
+  ASSERT_EQ(neutral.n, 4u);
+  EXPECT_EQ(neutral.missing, 1u);
+  EXPECT_NEAR(neutral.mean, (5.0 + 5.0 - 5.0 + 0.0) / 4.0, 1e-9);
   // A probe without depth seen obliquely (70 degrees) says nothing: such surfaces often give
   // none on real material.
   PointCloud oblique = facing_probes(1);
