@@ -99,8 +99,11 @@ BinFit fit_bin(ocl::Device& dev, const PlaneSamples& s, const BinFitOptions& opt
   // "Up" is the normal of a large plane facing the camera that spans much of the image: the floor
   // with flat parts on it, or a layer of parts. With the camera tilted far (30 degrees) the near
   // wall's outer face is such a plane too, often the largest, and heights along its normal put
-  // the rim and that face at one "height". So the candidates are tried largest first, at most
-  // kUpCandidates, and up is the first whose rim is found.
+  // the rim and that face at one "height"; and in a bin full of bulky parts the floor is hidden
+  // and the largest such plane is a layer of the pile, along which some "rim" is found too. So
+  // each of the kUpCandidates largest is tried, and up is the one whose rim holds the most
+  // samples: the true rim runs along the whole frame at one height only along the true up
+  // (measured: docs/pipeline.md, "Finding the bin").
   std::vector<const FoundPlane*> candidates;
   for (const FoundPlane& p : planes)
     if (p.normal.z() <= -std::cos(60 * kDeg) && image_span(s, p) >= 0.25) candidates.push_back(&p);
@@ -116,7 +119,11 @@ BinFit fit_bin(ocl::Device& dev, const PlaneSamples& s, const BinFitOptions& opt
   ro.focal = focal_estimate(s);
   Eigen::Vector3d up, e1, e2;
   RimFit rim;
-  for (std::size_t c = 0; c < ups.size() && !rim.found; ++c) {
+  struct Choice {
+    Eigen::Vector3d up, e1, e2;
+    RimFit rim;
+  } best;
+  for (std::size_t c = 0; c < ups.size(); ++c) {
     up = ups[c];
     // Then again with up from the rim's own plane (rim_normal), which is level where the first
     // plane may lean; also when no frame was found at the first up: a floor plane found on
@@ -138,8 +145,10 @@ BinFit fit_bin(ocl::Device& dev, const PlaneSamples& s, const BinFitOptions& opt
       if (!level || std::acos(std::min(1.0, level->dot(up))) < 0.1 * kDeg) break;
       up = *level;
     }
+    if (rim.found && (!best.rim.found || rim.points > best.rim.points)) best = {up, e1, e2, rim};
   }
-  if (!rim.found) return bin;
+  if (!best.rim.found) return bin;
+  up = best.up, e1 = best.e1, e2 = best.e2, rim = best.rim;
   bin.rim_points = rim.points;
   const Eigen::Vector3d a1 = std::cos(rim.angle) * e1 + std::sin(rim.angle) * e2;
   const Eigen::Vector3d a2 = up.cross(a1);

@@ -157,6 +157,42 @@ TEST(BinFit, UpComesFromTheLevelRimNotALeaningLayer) {
   EXPECT_NEAR(b.interior.y(), s.D, 6.0);
 }
 
+// A bin full of bulky parts: a layer of the pile, sloping 23 degrees from the floor at one wall
+// to just under the rim at the other, hides the whole floor and is the most supported plane
+// facing the camera. Up is the candidate whose rim holds the most samples, the level one, not
+// the first whose "rim" is found (a band of the rim at one height along the slope's normal).
+TEST(BinFit, UpIsTheCandidateWithTheBestSupportedRimNotTheLargestPlane) {
+  BinSceneSpec s;
+  s.tilt_deg = 15;
+  s.spheres.clear();
+  BinScene scene = make_bin_scene(s);
+  const double k = (s.H - 10.0) / s.W;
+  const Eigen::Vector3d C = scene.to_bin(Eigen::Vector3d::Zero());
+  const PointImage before = depth_to_points_reference(scene.depth, scene.cam);
+  std::size_t layer = 0;
+  for (std::uint32_t v = 0; v < scene.cam.height; ++v)
+    for (std::uint32_t u = 0; u < scene.cam.width; ++u) {
+      const std::size_t i = std::size_t(v) * scene.cam.width + u;
+      const float* p = &before.xyzw[4 * i];
+      if (p[3] == 0.0f || scene.to_bin(Eigen::Vector3d(p[0], p[1], p[2])).z() > 1.0) continue;
+      const Eigen::Vector3d ray((u - scene.cam.cx) / scene.cam.fx, (v - scene.cam.cy) / scene.cam.fy, 1.0);
+      const Eigen::Vector3d d = scene.bin_to_cam.transpose() * ray;
+      const double t = (k * (C.x() + s.W / 2) - C.z()) / (d.z() - k * d.x());
+      const Eigen::Vector3d q = C + t * d;  // on the layer z = k (x + W / 2)
+      if (std::abs(q.x()) > s.W / 2 || std::abs(q.y()) > s.D / 2) continue;
+      const double z_cam = (scene.bin_to_cam * q + scene.floor_centre).z();
+      scene.depth.raw[i] = std::uint16_t(std::lround(z_cam / s.depth_scale));
+      ++layer;
+    }
+  ASSERT_GT(layer, 20000u);
+  const BinFit b = fit(scene, {BinSpec::Mode::find, {}});
+  ASSERT_TRUE(b.found) << b.why;
+  SCOPED_TRACE(describe(b));
+  EXPECT_LT(angle_deg(b.axes.col(2), scene.bin_to_cam.col(2)), 1.0);
+  EXPECT_NEAR(b.interior.x(), s.W, 6.0);
+  EXPECT_NEAR(b.interior.y(), s.D, 6.0);
+}
+
 // With half the pixels lost in blobs and stripes the fit still holds.
 TEST(BinFit, FindsTheBinThroughLargeHoles) {
   BinSceneSpec s;
