@@ -52,6 +52,29 @@ void expect_matches(const BinFit& b, const BinScene& scene, const BinSceneSpec& 
   EXPECT_NEAR(b.axes.determinant(), 1.0, 1e-9);
 }
 
+// Covers the floor's pixels with a layer z = k (x + W / 2) over the interior (bin frame: rising
+// from the floor at the -x wall), as seen along each floor pixel's ray; returns the pixels changed.
+std::size_t cover_floor(BinScene& scene, const BinSceneSpec& s, double k) {
+  const Eigen::Vector3d C = scene.to_bin(Eigen::Vector3d::Zero());
+  const PointImage before = depth_to_points_reference(scene.depth, scene.cam);
+  std::size_t covered = 0;
+  for (std::uint32_t v = 0; v < scene.cam.height; ++v)
+    for (std::uint32_t u = 0; u < scene.cam.width; ++u) {
+      const std::size_t i = std::size_t(v) * scene.cam.width + u;
+      const float* p = &before.xyzw[4 * i];
+      if (p[3] == 0.0f || scene.to_bin(Eigen::Vector3d(p[0], p[1], p[2])).z() > 1.0) continue;
+      const Eigen::Vector3d ray((u - scene.cam.cx) / scene.cam.fx, (v - scene.cam.cy) / scene.cam.fy, 1.0);
+      const Eigen::Vector3d d = scene.bin_to_cam.transpose() * ray;
+      const double t = (k * (C.x() + s.W / 2) - C.z()) / (d.z() - k * d.x());
+      const Eigen::Vector3d q = C + t * d;  // on the layer
+      if (std::abs(q.x()) > s.W / 2 || std::abs(q.y()) > s.D / 2) continue;
+      const double z_cam = (scene.bin_to_cam * q + scene.floor_centre).z();
+      scene.depth.raw[i] = std::uint16_t(std::lround(z_cam / s.depth_scale));
+      ++covered;
+    }
+  return covered;
+}
+
 }  // namespace
 
 TEST(BinFit, FindsTheBinLookingStraightDown) {
@@ -131,24 +154,7 @@ TEST(BinFit, UpComesFromTheLevelRimNotALeaningLayer) {
   s.spheres.clear();
   BinScene scene = make_bin_scene(s);
   const double k = std::tan(3.0 * M_PI / 180.0);
-  const Eigen::Vector3d C = scene.to_bin(Eigen::Vector3d::Zero());
-  const PointImage before = depth_to_points_reference(scene.depth, scene.cam);
-  std::size_t ramp = 0;
-  for (std::uint32_t v = 0; v < scene.cam.height; ++v)
-    for (std::uint32_t u = 0; u < scene.cam.width; ++u) {
-      const std::size_t i = std::size_t(v) * scene.cam.width + u;
-      const float* p = &before.xyzw[4 * i];
-      if (p[3] == 0.0f || scene.to_bin(Eigen::Vector3d(p[0], p[1], p[2])).z() > 1.0) continue;
-      const Eigen::Vector3d ray((u - scene.cam.cx) / scene.cam.fx, (v - scene.cam.cy) / scene.cam.fy, 1.0);
-      const Eigen::Vector3d d = scene.bin_to_cam.transpose() * ray;
-      const double t = (k * (C.x() + s.W / 2) - C.z()) / (d.z() - k * d.x());
-      const Eigen::Vector3d q = C + t * d;  // on the ramp z = k (x + W / 2)
-      if (std::abs(q.x()) > s.W / 2 || std::abs(q.y()) > s.D / 2) continue;
-      const double z_cam = (scene.bin_to_cam * q + scene.floor_centre).z();
-      scene.depth.raw[i] = std::uint16_t(std::lround(z_cam / s.depth_scale));
-      ++ramp;
-    }
-  ASSERT_GT(ramp, 20000u);
+  ASSERT_GT(cover_floor(scene, s, k), 20000u);
   const BinFit b = fit(scene, {BinSpec::Mode::find, {}});
   ASSERT_TRUE(b.found) << b.why;
   SCOPED_TRACE(describe(b));
@@ -167,24 +173,7 @@ TEST(BinFit, UpIsTheCandidateWithTheBestSupportedRimNotTheLargestPlane) {
   s.spheres.clear();
   BinScene scene = make_bin_scene(s);
   const double k = (s.H - 10.0) / s.W;
-  const Eigen::Vector3d C = scene.to_bin(Eigen::Vector3d::Zero());
-  const PointImage before = depth_to_points_reference(scene.depth, scene.cam);
-  std::size_t layer = 0;
-  for (std::uint32_t v = 0; v < scene.cam.height; ++v)
-    for (std::uint32_t u = 0; u < scene.cam.width; ++u) {
-      const std::size_t i = std::size_t(v) * scene.cam.width + u;
-      const float* p = &before.xyzw[4 * i];
-      if (p[3] == 0.0f || scene.to_bin(Eigen::Vector3d(p[0], p[1], p[2])).z() > 1.0) continue;
-      const Eigen::Vector3d ray((u - scene.cam.cx) / scene.cam.fx, (v - scene.cam.cy) / scene.cam.fy, 1.0);
-      const Eigen::Vector3d d = scene.bin_to_cam.transpose() * ray;
-      const double t = (k * (C.x() + s.W / 2) - C.z()) / (d.z() - k * d.x());
-      const Eigen::Vector3d q = C + t * d;  // on the layer z = k (x + W / 2)
-      if (std::abs(q.x()) > s.W / 2 || std::abs(q.y()) > s.D / 2) continue;
-      const double z_cam = (scene.bin_to_cam * q + scene.floor_centre).z();
-      scene.depth.raw[i] = std::uint16_t(std::lround(z_cam / s.depth_scale));
-      ++layer;
-    }
-  ASSERT_GT(layer, 20000u);
+  ASSERT_GT(cover_floor(scene, s, k), 20000u);
   const BinFit b = fit(scene, {BinSpec::Mode::find, {}});
   ASSERT_TRUE(b.found) << b.why;
   SCOPED_TRACE(describe(b));
