@@ -22,7 +22,8 @@
  * surface, which on shiny sheet metal comes in patches (measured on plates under 29 %-valid
  * blob-shaped depth: as a full tolerance the search drew poses off the patches that have depth,
  * top-ranked right 16 of 32 images, strict 10; half: 19, strict 15, and paper bins of plates
- * one fewer of 28; none: 19, strict 15, but four fewer in the paper bins). Written out identically in edge_step_scores_reference. */
+ * one fewer of 28; none: 19, strict 15, but four fewer in the paper bins). Written out
+ * identically in edge_step_scores_reference. */
 #pragma OPENCL FP_CONTRACT OFF
 #include "binpick_shared.h"
 

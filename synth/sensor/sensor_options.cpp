@@ -122,20 +122,20 @@ namespace binpick {
 
 nlohmann::json sensor_model_json(const SensorModel& m) {
   nlohmann::json out = {{"kind", sensor_kind_name(m.kind)},
-          {"baseline_mm", m.baseline_mm},
-          {"projector_scale", m.projector_scale},
-          {"shadow_tolerance_mm", m.shadow_tolerance_mm},
-          {"grazing_limit_deg", m.grazing_limit_deg},
-          {"specular_cone_deg", m.specular_cone_deg},
-          {"edge_jump_mm", m.edge_jump_mm},
-          {"edge_radius_px", m.edge_radius_px},
-          {"noise_a_mm", m.noise_a_mm},
-          {"noise_b_per_mm", m.noise_b_per_mm},
-          {"added_sigma_mm", m.added_sigma_mm},
-          {"quantisation_mm", m.quantisation_mm},
-          {"quantisation_ref_mm", m.quantisation_ref_mm},
-          {"min_range_mm", m.min_range_mm},
-          {"max_range_mm", m.max_range_mm}};
+                        {"baseline_mm", m.baseline_mm},
+                        {"projector_scale", m.projector_scale},
+                        {"shadow_tolerance_mm", m.shadow_tolerance_mm},
+                        {"grazing_limit_deg", m.grazing_limit_deg},
+                        {"specular_cone_deg", m.specular_cone_deg},
+                        {"edge_jump_mm", m.edge_jump_mm},
+                        {"edge_radius_px", m.edge_radius_px},
+                        {"noise_a_mm", m.noise_a_mm},
+                        {"noise_b_per_mm", m.noise_b_per_mm},
+                        {"added_sigma_mm", m.added_sigma_mm},
+                        {"quantisation_mm", m.quantisation_mm},
+                        {"quantisation_ref_mm", m.quantisation_ref_mm},
+                        {"min_range_mm", m.min_range_mm},
+                        {"max_range_mm", m.max_range_mm}};
   // Only when on: a dataset made before the patches existed, or without them, keeps the same
   // manifest and stays resumable; any share or patch size asked for is compared.
   if (m.dropout_share > 0) {

@@ -75,6 +75,16 @@ std::size_t cover_floor(BinScene& scene, const BinSceneSpec& s, double k) {
   return covered;
 }
 
+// The bin found with up within max_up_deg of the truth and the interior's size within 6 mm.
+void expect_level_interior(const BinScene& scene, const BinSceneSpec& s, double max_up_deg) {
+  const BinFit b = fit(scene, {BinSpec::Mode::find, {}});
+  ASSERT_TRUE(b.found) << b.why;
+  SCOPED_TRACE(describe(b));
+  EXPECT_LT(angle_deg(b.axes.col(2), scene.bin_to_cam.col(2)), max_up_deg);
+  EXPECT_NEAR(b.interior.x(), s.W, 6.0);
+  EXPECT_NEAR(b.interior.y(), s.D, 6.0);
+}
+
 }  // namespace
 
 TEST(BinFit, FindsTheBinLookingStraightDown) {
@@ -155,12 +165,7 @@ TEST(BinFit, UpComesFromTheLevelRimNotALeaningLayer) {
   BinScene scene = make_bin_scene(s);
   const double k = std::tan(3.0 * M_PI / 180.0);
   ASSERT_GT(cover_floor(scene, s, k), 20000u);
-  const BinFit b = fit(scene, {BinSpec::Mode::find, {}});
-  ASSERT_TRUE(b.found) << b.why;
-  SCOPED_TRACE(describe(b));
-  EXPECT_LT(angle_deg(b.axes.col(2), scene.bin_to_cam.col(2)), 0.5);
-  EXPECT_NEAR(b.interior.x(), s.W, 6.0);
-  EXPECT_NEAR(b.interior.y(), s.D, 6.0);
+  expect_level_interior(scene, s, 0.5);
 }
 
 // A bin full of bulky parts: a layer of the pile, sloping 23 degrees from the floor at one wall
@@ -174,12 +179,7 @@ TEST(BinFit, UpIsTheCandidateWithTheBestSupportedRimNotTheLargestPlane) {
   BinScene scene = make_bin_scene(s);
   const double k = (s.H - 10.0) / s.W;
   ASSERT_GT(cover_floor(scene, s, k), 20000u);
-  const BinFit b = fit(scene, {BinSpec::Mode::find, {}});
-  ASSERT_TRUE(b.found) << b.why;
-  SCOPED_TRACE(describe(b));
-  EXPECT_LT(angle_deg(b.axes.col(2), scene.bin_to_cam.col(2)), 1.0);
-  EXPECT_NEAR(b.interior.x(), s.W, 6.0);
-  EXPECT_NEAR(b.interior.y(), s.D, 6.0);
+  expect_level_interior(scene, s, 1.0);
 }
 
 // With half the pixels lost in blobs and stripes the fit still holds.
