@@ -119,21 +119,28 @@ Sides find_sides(const std::vector<double>& xs, double width, double half_spacin
 
 }  // namespace
 
+BorderBand border_band(const PlaneSamples& s, double band, std::size_t stride) {
+  BorderBand out;
+  const double bw = band * s.width, bh = band * s.height;
+  std::size_t seen = 0;
+  for (std::size_t i = 0; i < s.points.size(); ++i) {
+    const int sides = (s.u[i] < bw ? 1 : 0) | (s.u[i] >= s.width - bw ? 2 : 0) |
+                      (s.v[i] < bh ? 4 : 0) | (s.v[i] >= s.height - bh ? 8 : 0);
+    if (!sides || seen++ % stride != 0) continue;
+    out.index.push_back(i);
+    out.points.push_back(s.points[i]);
+    out.sides.push_back(std::uint8_t(sides));
+  }
+  return out;
+}
+
 RimFit fit_rim(const PlaneSamples& s, const Eigen::Vector3d& up, const Eigen::Vector3d& e1,
                const Eigen::Vector3d& e2, const RimOptions& opt) {
   RimFit rim;
-  const double bw = opt.band * s.width, bh = opt.band * s.height;
-  const auto side_mask = [&](std::size_t i) {
-    return (s.u[i] < bw ? 1 : 0) | (s.u[i] >= s.width - bw ? 2 : 0) | (s.v[i] < bh ? 4 : 0) |
-           (s.v[i] >= s.height - bh ? 8 : 0);
-  };
-  std::vector<std::size_t> band;
+  const BorderBand border = border_band(s, opt.band);
+  const std::vector<std::size_t>& band = border.index;
   std::vector<double> heights;
-  for (std::size_t i = 0; i < s.points.size(); ++i)
-    if (side_mask(i)) {
-      band.push_back(i);
-      heights.push_back(up.dot(s.points[i].cast<double>()));
-    }
+  for (std::size_t i : band) heights.push_back(up.dot(s.points[i].cast<double>()));
   if (band.size() < 50) {
     rim.why = "too few points with depth along the image border";
     return rim;
@@ -159,7 +166,7 @@ RimFit fit_rim(const PlaneSamples& s, const Eigen::Vector3d& up, const Eigen::Ve
       if (std::abs(heights[j] - centre) <= 1.5 * opt.tol) {
         on_rim.push_back(band[j]);
         sum += heights[j];
-        for (int b = 0; b < 4; ++b) sides[b] += (side_mask(band[j]) >> b) & 1;
+        for (int b = 0; b < 4; ++b) sides[b] += (border.sides[j] >> b) & 1;
       }
     const double side_need = std::max(5.0, 0.05 * double(on_rim.size()));
     int covered = 0;

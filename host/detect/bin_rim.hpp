@@ -36,6 +36,16 @@ struct RimOptions {
   double focal = 0;     // pixels; with the samples' stride it gives their spacing on the rim
 };
 
+// The samples in the border band (fit_rim's), with the sides of the image each lies along.
+struct BorderBand {
+  std::vector<std::size_t> index;  // in the PlaneSamples
+  std::vector<Eigen::Vector3f> points;
+  std::vector<std::uint8_t> sides;  // bit 0 left, 1 right, 2 top, 3 bottom
+};
+
+// Every stride-th sample in the band (stride 1: all of them).
+BorderBand border_band(const PlaneSamples& samples, double band, std::size_t stride = 1);
+
 // 1. Heights of the samples in the border band, histogram of tol-wide bins; the highest peak
 //    (at least 3 % of the biggest and 1 % of the band) whose points lie along at least three
 //    of the four sides of the image is the rim (a robot arm or a part at the border covers one).

@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <random>
 
 #include "host/core/error.hpp"
 #include "host/detect/bin_fit.hpp"
@@ -180,6 +181,36 @@ TEST(BinFit, UpIsTheCandidateWithTheBestSupportedRimNotTheLargestPlane) {
   const double k = (s.H - 10.0) / s.W;
   ASSERT_GT(cover_floor(scene, s, k), 20000u);
   expect_level_interior(scene, s, 1.0);
+}
+
+// A bin full of bulky parts seen tilted, and nothing around it (the ground is cut away): a
+// layer of the pile sloping from the floor at one wall to under the rim at the other hides the
+// floor, and balls of 25-45 mm lie on it. No plane facing the camera is level (the walls' faces
+// lean 75 degrees or more from the optical axis), so none of the planes gives up; the direction
+// along which the rim holds the most samples does (bin_up.hpp).
+TEST(BinFit, UpFromTheRimWhenNoPlaneIsLevel) {
+  for (double tilt : {15.0, 25.0}) {
+    SCOPED_TRACE(testing::Message() << "tilt " << tilt);
+    BinSceneSpec s;
+    s.tilt_deg = tilt;
+    s.distance = 900;
+    s.spheres.clear();
+    const double k = (s.H - 40.0) / s.W;  // the layer: z = k (x + W / 2)
+    std::mt19937 rng(7);
+    std::uniform_real_distribution<double> unit(0.0, 1.0);
+    for (int i = 0; i < 40; ++i) {
+      const double r = 25 + 20 * unit(rng), x = (unit(rng) - 0.5) * (s.W - 2 * r);
+      s.spheres.push_back({x, (unit(rng) - 0.5) * (s.D - 2 * r), k * (x + s.W / 2) + 0.5 * r, r});
+    }
+    BinScene scene = make_bin_scene(s);
+    ASSERT_GT(cover_floor(scene, s, k), 5000u);
+    const PointImage pts = depth_to_points_reference(scene.depth, scene.cam);
+    for (std::size_t i = 0; i < scene.depth.raw.size(); ++i)
+      if (pts.xyzw[4 * i + 3] != 0.0f &&
+          scene.to_bin({pts.xyzw[4 * i], pts.xyzw[4 * i + 1], pts.xyzw[4 * i + 2]}).z() < -10)
+        scene.depth.raw[i] = 0;  // the ground
+    expect_level_interior(scene, s, 1.0);
+  }
 }
 
 // With half the pixels lost in blobs and stripes the fit still holds.
