@@ -32,6 +32,12 @@ void add_detect_cli_options(CLI::App* verb, DetectCliOptions& a, const std::stri
       "reference points / subsampled scene points, in (0, 1]");
   add("hypotheses", a.hypotheses,
       "highest points tried per image");
+  add("more-hypotheses", a.more_hypotheses,
+      "when no pose of the first --hypotheses scores --confident or more, this many more "
+          "highest points are tried and all ranked together (a bin with other parts mixed in "
+          "puts highest points on them), in [0, 1000]; 0: never");
+  add("confident", p.confident,
+      "a verified score at which the first hypotheses suffice, in [0, 1]");
   add("exclusion-ratio", p.exclusion_ratio,
       "radius excluded around a highest point, fraction of the diameter");
   add("crop-ratio", p.crop_ratio,
@@ -124,6 +130,7 @@ void add_detect_cli_options(CLI::App* verb, DetectCliOptions& a, const std::stri
 DetectParams resolve(const DetectCliOptions& a) {
   DetectParams p = a.params;
   p.hypotheses = narrow(a.hypotheses, "--hypotheses");
+  p.more_hypotheses = narrow(a.more_hypotheses, "--more-hypotheses");
   p.peaks_per_ref = narrow(a.peaks_per_ref, "--peaks-per-ref");
   p.candidates = narrow(a.candidates, "--candidates");
   p.unique_votes = narrow(a.unique_votes, "--unique-votes");

@@ -51,6 +51,8 @@ const std::map<std::string, Field>& fields() {
   static const std::map<std::string, Field> table = {
       {"ref-ratio", real(&DetectParams::ref_ratio)},
       {"hypotheses", count(&DetectParams::hypotheses)},
+      {"more-hypotheses", count(&DetectParams::more_hypotheses)},
+      {"confident", real(&DetectParams::confident)},
       {"exclusion-ratio", real(&DetectParams::exclusion_ratio)},
       {"crop-ratio", real(&DetectParams::crop_ratio)},
       {"cluster-distance", real(&DetectParams::cluster_distance)},

@@ -45,12 +45,40 @@ double sum_ms(const StageTimings& t, std::size_t from) {
   return ms;
 }
 
+// The order of the results: the verified score, ties to the more voted.
+bool ranks_before(const Detection& a, const Detection& b) {
+  if (a.score != b.score) return a.score > b.score;
+  return a.votes > b.votes;
+}
+
 }  // namespace
+
+std::size_t hypotheses_sought(const DetectParams& p) {
+  if (p.instances > 0) return std::max(p.hypotheses, p.instances);
+  return std::size_t(p.hypotheses) + p.more_hypotheses;
+}
+
+std::vector<Detection> Detector::in_rounds(std::size_t found,
+                                           const std::function<void(std::size_t, std::size_t)>& vote,
+                                           const std::function<std::vector<Detection>()>& rank) const {
+  const std::size_t first =
+      params_.instances > 0 ? found : std::min<std::size_t>(found, params_.hypotheses);
+  vote(0, first);
+  std::vector<Detection> out = rank();
+  if (first == found || (!out.empty() && out.front().score >= params_.confident)) return out;
+  // The second round's candidates are refined and ranked with the first's, as if all had been
+  // tried at once: the rival test compares poses of neighbouring hypotheses (measured: ranking
+  // the rounds apart lost the right plate of one image that one batch kept).
+  vote(first, found);
+  return rank();
+}
 
 std::optional<ParamProblem> find_param_problem(const DetectParams& p) {
   const std::pair<bool, ParamProblem> rules[] = {
       {in(p.ref_ratio, 0, 1) && p.ref_ratio > 0, {"ref-ratio", p.ref_ratio, "(0, 1]"}},
       {p.hypotheses >= 1 && p.hypotheses <= 1000, {"hypotheses", double(p.hypotheses), "[1, 1000]"}},
+      {p.more_hypotheses <= 1000, {"more-hypotheses", double(p.more_hypotheses), "[0, 1000]"}},
+      {in(p.confident, 0, 1), {"confident", p.confident, "[0, 1]"}},
       {in(p.exclusion_ratio, 0, 100), {"exclusion-ratio", p.exclusion_ratio, "[0, 100]"}},
       {in(p.crop_ratio, 0, 100) && p.crop_ratio > 0, {"crop-ratio", p.crop_ratio, "(0, 100]"}},
       {in(p.cluster_distance, 0, 100), {"cluster-distance", p.cluster_distance, "[0, 100]"}},
@@ -383,11 +411,7 @@ std::vector<Detection> Detector::refine_and_rank(
   t.refine_ms += ms;
   t.stages.push_back({"refine+verify", ms});
   std::erase_if(detections, [](const Detection& d) { return d.votes == 0; });
-  std::stable_sort(detections.begin(), detections.end(),
-                   [](const Detection& a, const Detection& b) {
-                     if (a.score != b.score) return a.score > b.score;
-                     return a.votes > b.votes;
-                   });
+  std::stable_sort(detections.begin(), detections.end(), ranks_before);
   return detections;
 }
 
@@ -467,7 +491,7 @@ std::vector<Detection> Detector::detect(const DepthImage& depth, const bp_camera
                     region_report_.empty() ? "" : "; ", noise, noise / model_.voxel_size,
                     voxel_factor);
   HypothesisOptions ho;
-  ho.count = std::max(params_.hypotheses, params_.instances);
+  ho.count = hypotheses_sought(params_);
   ho.exclusion_radius = float(params_.exclusion_ratio * model_.diameter);
   Stopwatch hyp_clock;
   const std::vector<Hypothesis> hyps =
@@ -476,43 +500,49 @@ std::vector<Detection> Detector::detect(const DepthImage& depth, const bp_camera
   t.stages.push_back({"hypotheses", hyp_clock.lap()});
   t.prepare_ms += clock.lap();
 
-  std::vector<Detection> detections;
+  std::vector<Detection> voted;
   std::vector<std::vector<PoseCluster>> candidates;
-  for (std::size_t k = 0; k < hyps.size(); ++k) {
-    CropOptions crop;
-    crop.centre = hyps[k].point;
-    crop.radius = float(params_.crop_ratio * model_.diameter);
-    // Equal to voxel_subsample(crop_sphere(...)) on a scene with normals everywhere (with the
-    // crop's z divided by the voxel factor for the grid: depth_stretch).
-    const NeighbourhoodSample sample =
-        sample_neighbourhood(scene, crop, prep.normals, model_.voxel_size, &t.stages, mask,
-                             float(voxel_factor));
-    t.prepare_ms += clock.lap();
-    Detection d;
-    d.neighbourhood = sample.cropped;
-    if (sample.cloud.points.size() < kMinCropPoints) {
-      // Nothing to vote on (a hole, a speck of depth, the edge of the region): said, not voted.
+  const auto vote = [&](std::size_t from, std::size_t to) {
+    clock.lap();
+    for (std::size_t k = from; k < to; ++k) {
+      CropOptions crop;
+      crop.centre = hyps[k].point;
+      crop.radius = float(params_.crop_ratio * model_.diameter);
+      // Equal to voxel_subsample(crop_sphere(...)) on a scene with normals everywhere (with the
+      // crop's z divided by the voxel factor for the grid: depth_stretch).
+      const NeighbourhoodSample sample =
+          sample_neighbourhood(scene, crop, prep.normals, model_.voxel_size, &t.stages, mask,
+                               float(voxel_factor));
+      t.prepare_ms += clock.lap();
+      Detection d;
+      d.neighbourhood = sample.cropped;
+      if (sample.cloud.points.size() < kMinCropPoints) {
+        // Nothing to vote on (a hole, a speck of depth, the edge of the region): said, not voted.
+        if (neighbourhoods) neighbourhoods->push_back(sample.cloud);
+        d.hypothesis = hyps[k];
+        d.index = static_cast<std::uint32_t>(k);
+        d.subsampled = sample.cloud.points.size();
+        d.reason = fmt::format(
+            "skipped: the crop has {} points with depth, {} with a normal after subsampling "
+            "(fewer than {})",
+            sample.cropped, sample.cloud.points.size(), kMinCropPoints);
+        skipped_.push_back(d);
+        continue;
+      }
+      candidates.push_back(vote_and_cluster(sample.cloud, d, t));
+      clock.lap();
       if (neighbourhoods) neighbourhoods->push_back(sample.cloud);
       d.hypothesis = hyps[k];
       d.index = static_cast<std::uint32_t>(k);
-      d.subsampled = sample.cloud.points.size();
-      d.reason = fmt::format(
-          "skipped: the crop has {} points with depth, {} with a normal after subsampling "
-          "(fewer than {})",
-          sample.cropped, sample.cloud.points.size(), kMinCropPoints);
-      skipped_.push_back(d);
-      continue;
+      voted.push_back(d);
     }
-    candidates.push_back(vote_and_cluster(sample.cloud, d, t));
-    clock.lap();
-    if (neighbourhoods) neighbourhoods->push_back(sample.cloud);
-    d.hypothesis = hyps[k];
-    d.index = static_cast<std::uint32_t>(k);
-    detections.push_back(d);
-  }
-  t.hypotheses += hyps.size();
-  detections = refine_and_rank(std::move(detections), candidates, scene.device->points, cam, t, true,
-                               masked.bin ? &*masked.bin : nullptr);
+    t.hypotheses += to - from;
+  };
+  const auto rank = [&] {
+    return refine_and_rank(voted, candidates, scene.device->points, cam, t, true,
+                           masked.bin ? &*masked.bin : nullptr);
+  };
+  std::vector<Detection> detections = in_rounds(hyps.size(), vote, rank);
   if (times) *times += t;
   return detections;
 }
@@ -533,41 +563,48 @@ std::vector<Detection> Detector::detect(const PointCloud& input, DetectTimes* ti
   if (cloud.normals.empty())
     cloud.normals = cloud_normals(cloud, float(params_.normal_ratio * model_.diameter));
   CloudHypothesisOptions ho;
-  ho.hypotheses.count = std::max(params_.hypotheses, params_.instances);
+  ho.hypotheses.count = hypotheses_sought(params_);
   ho.hypotheses.exclusion_radius = float(params_.exclusion_ratio * model_.diameter);
   const std::vector<Hypothesis> hyps = find_hypotheses(cloud, ho);
   const double prep_ms = clock.lap();
   t.prepare_ms += prep_ms;
   t.stages.push_back({"cloud hypotheses", prep_ms});
-
-  std::vector<Detection> detections;
-  std::vector<std::vector<PoseCluster>> candidates;
-  for (std::size_t k = 0; k < hyps.size(); ++k) {
-    CropOptions crop;
-    crop.centre = hyps[k].point;
-    crop.radius = float(params_.crop_ratio * model_.diameter);
-    const PointCloud neighbourhood = crop_sphere(cloud, crop);
-    Detection d;
-    d.neighbourhood = neighbourhood.points.size();
-    // The scene is subsampled like the model (its voxel), so that densities, and so votes, match.
-    const VoxelSubsample sub = voxel_subsample(dev_, neighbourhood, model_.voxel_size);
-    const double ms = clock.lap();
-    t.prepare_ms += ms;
-    t.stages.push_back({"crop+subsample", ms});
-    candidates.push_back(vote_and_cluster(sub.cloud, d, t));
-    clock.lap();
-    d.hypothesis = hyps[k];
-    d.index = static_cast<std::uint32_t>(k);
-    detections.push_back(d);
-  }
-  t.hypotheses += hyps.size();
   // Verification needs what the sensor saw along each ray: the cloud seen through a virtual
   // camera (scene_cloud.hpp).
   const CloudImage image = cloud_point_image(cloud, 0.5f * model_.voxel_size);
   const ocl::Buffer<float> points(dev_, std::span<const float>(image.points.xyzw),
                                   CL_MEM_READ_ONLY);
   t.prepare_ms += clock.lap();
-  detections = refine_and_rank(std::move(detections), candidates, points, image.camera, t, false);
+
+  std::vector<Detection> voted;
+  std::vector<std::vector<PoseCluster>> candidates;
+  const auto vote = [&](std::size_t from, std::size_t to) {
+    clock.lap();
+    for (std::size_t k = from; k < to; ++k) {
+      CropOptions crop;
+      crop.centre = hyps[k].point;
+      crop.radius = float(params_.crop_ratio * model_.diameter);
+      const PointCloud neighbourhood = crop_sphere(cloud, crop);
+      Detection d;
+      d.neighbourhood = neighbourhood.points.size();
+      // The scene is subsampled like the model (its voxel), so that densities, and so votes,
+      // match.
+      const VoxelSubsample sub = voxel_subsample(dev_, neighbourhood, model_.voxel_size);
+      const double ms = clock.lap();
+      t.prepare_ms += ms;
+      t.stages.push_back({"crop+subsample", ms});
+      candidates.push_back(vote_and_cluster(sub.cloud, d, t));
+      clock.lap();
+      d.hypothesis = hyps[k];
+      d.index = static_cast<std::uint32_t>(k);
+      voted.push_back(d);
+    }
+    t.hypotheses += to - from;
+  };
+  const auto rank = [&] {
+    return refine_and_rank(voted, candidates, points, image.camera, t, false);
+  };
+  std::vector<Detection> detections = in_rounds(hyps.size(), vote, rank);
   if (times) *times += t;
   return detections;
 }

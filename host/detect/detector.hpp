@@ -6,6 +6,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <optional>
 #include <string>
 #include <utility>
@@ -35,6 +36,12 @@ class SharedScene;
 struct DetectParams {
   double ref_ratio = 0.2;          // reference points / subsampled scene points (2 %: fast)
   std::uint32_t hypotheses = 5;    // highest points tried
+  // Beyond the paper: when no pose of those scores `confident` or more, this many more highest
+  // points are tried, and all are ranked together (0: never). A bin full of parts with others
+  // mixed in puts the highest points of the low-passed image on the larger parts; a pose
+  // scoring 0.7 or more is seldom wrong (docs/pipeline.md, "More hypotheses").
+  std::uint32_t more_hypotheses = 5;
+  double confident = 0.7;
   double exclusion_ratio = 1.2;    // radius excluded around a highest point
   double crop_ratio = 1.0;         // radius of the neighbourhood voted on
   double cluster_distance = 0.144; // translation threshold of pose clustering
@@ -106,6 +113,10 @@ struct ParamProblem {
   std::string message;  // a text parameter's complaint ("'x': expected ..."); then no value/range
 };
 std::optional<ParamProblem> find_param_problem(const DetectParams& params);
+
+// Highest points sought in an image: hypotheses + more_hypotheses, or max(hypotheses,
+// instances) with instances.
+std::size_t hypotheses_sought(const DetectParams& params);
 // The complaint after the parameter's name: "V must be in RANGE", or a text parameter's message.
 std::string describe(const ParamProblem& problem);
 // InputError naming the parameter ("detection parameter ref-ratio ...") for a value out of range.
@@ -223,6 +234,13 @@ class Detector {
   // in a pixel, not the surface along the ray: the twin test (twin_test.hpp), which weighs
   // millimetres of depth at a few hundred points, runs only on a sensor's image (measured: on
   // the shaft's cloud it turned a right pose end for end).
+  // vote(from, to) votes on the hypotheses [from, to) and keeps them; rank() refines,
+  // verifies and ranks all kept so far. The first `hypotheses` of the `found`, then, if no pose
+  // scores `confident` or more, the rest as well, all ranked together. With `instances`, all
+  // in one round.
+  std::vector<Detection> in_rounds(std::size_t found,
+                                   const std::function<void(std::size_t, std::size_t)>& vote,
+                                   const std::function<std::vector<Detection>()>& rank) const;
   std::vector<Detection> refine_and_rank(std::vector<Detection> detections,
                                          const std::vector<std::vector<PoseCluster>>& candidates,
                                          const ocl::Buffer<float>& points, const bp_camera& cam,

@@ -161,7 +161,8 @@ TEST_F(DetectCli, WritesResultsBestFirstResumesAndIsDeterministic) {
 
 TEST_F(DetectCli, ParamsFileAppliesAndCommandLineWins) {
   const fs::path params = *dir_ / "params.json";
-  { std::ofstream(params) << R"({"hypotheses": 1, "ref_ratio": 0.05})"; }
+  // One highest point and no second round (a 5 % reference set is seldom confident).
+  { std::ofstream(params) << R"({"hypotheses": 1, "more_hypotheses": 0, "ref_ratio": 0.05})"; }
   const fs::path out = *dir_ / "params.csv";
   auto r = test::run_binpick(fmt::format("detect --model {} --dataset {} --out {} --params {} --scenes 0",
                                          model_, (*dir_ / "data").string(), out.string(), params.string()));
@@ -206,8 +207,10 @@ TEST_F(DetectCli, ParamsFileAppliesAndCommandLineWins) {
   refused_as_option("--plane-search -0.5", "plane-search -0.5 must be in [0, 1]");
   refused_in_file(R"({"noise_voxel": 0.5})", "noise-voxel 0.5 must be in [1, 4]");
   refused_as_option("--noise-voxel 5", "noise-voxel 5 must be in [1, 4]");
+  refused_in_file(R"({"more_hypotheses": 1001})", "more-hypotheses 1001 must be in [0, 1000]");
+  refused_in_file(R"({"confident": 2})", "confident 2 must be in [0, 1]");
   // A capped table detects too.
-  r = test::run_binpick(fmt::format("detect --model {} --dataset {} --out {} --scenes 0 --hypotheses 1 --bucket-cap 3",
+  r = test::run_binpick(fmt::format("detect --model {} --dataset {} --out {} --scenes 0 --hypotheses 1 --more-hypotheses 0 --bucket-cap 3",
                                     model_, (*dir_ / "data").string(), out.string()));
   ASSERT_EQ(r.status, 0) << r.err;
   EXPECT_EQ(bop::read_results_csv(out).size(), 1u);

@@ -1,10 +1,12 @@
 // The instance budget (--instances N): the selection on hand-made poses (best first, score 0 and
 // duplicates of one part left out, at most N), and on a synthetic bin of 35 brackets through the
 // command line: N = 10 gives more than 5 rows an image, no two on one part; N = 0 gives exactly
-// the rows of a run without the option (the paper's one per hypothesis). And the budget per
-// image from BOP's target list (detect --targets).
+// the rows of a run without the option (the paper's one per hypothesis). The second round of
+// highest points (--more-hypotheses) only when no pose is confident. And the budget per image
+// from BOP's target list (detect --targets).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <fstream>
 #include <map>
 #include <string>
@@ -114,8 +116,9 @@ TEST(DetectInstances, BudgetOnABinOf35Parts) {
   const auto detect = [&](const std::string& name, const std::string& extra) {
     return bins.detect(name, extra).first;
   };
-  const fs::path paper = detect("paper.csv", "");
-  const fs::path zero = detect("zero.csv", "--instances 0");
+  // The paper's setting: 5 highest points, no second round (--more-hypotheses).
+  const fs::path paper = detect("paper.csv", "--more-hypotheses 0");
+  const fs::path zero = detect("zero.csv", "--instances 0 --more-hypotheses 0");
   const fs::path ten = detect("ten.csv", "--instances 10");
   EXPECT_EQ(test::without_time(test::slurp(zero)), test::without_time(test::slurp(paper)));
 
@@ -154,6 +157,41 @@ TEST(DetectInstances, BudgetOnABinOf35Parts) {
                                                    ppfm, data, (dir / "bad.csv").string(), bad));
     EXPECT_EQ(run.status, 2) << bad;
     EXPECT_NE(run.err.find("--instances"), std::string::npos) << bad << "\n" << run.err;
+  }
+}
+
+// A second round of highest points (--more-hypotheses, --confident): never confident
+// (--confident 1) tries all 10 in every image and refines and ranks them together, exactly as
+// --hypotheses 10 does; always confident (--confident 0) gives the rows of --more-hypotheses 0.
+// Bad values: one message each.
+TEST(DetectMoreHypotheses, SecondRoundOnlyWhenNoPoseIsConfident) {
+  const BracketBins bins("detect_more");
+  ASSERT_FALSE(::testing::Test::HasFailure());
+  const auto rows = [&](const std::string& name, const std::string& extra) {
+    return test::without_time(test::slurp(bins.detect(name, extra).first));
+  };
+  const std::string five = rows("five.csv", "--more-hypotheses 0");
+  EXPECT_EQ(rows("sure.csv", "--confident 0"), five);
+  const std::string ten = rows("ten.csv", "--confident 1");
+  EXPECT_EQ(ten, rows("all.csv", "--hypotheses 10 --more-hypotheses 0"));
+  // The premise: --confident 1 is not met (every image has a second round), and it was needed.
+  for (int scene = 0; scene < 2; ++scene) {
+    std::size_t n5 = 0, n10 = 0;
+    double top5 = 0;
+    for (const auto& row : bop::read_results_csv(bins.dir / "five.csv"))
+      if (row.scene_id == scene) ++n5, top5 = std::max(top5, row.score);
+    for (const auto& row : bop::read_results_csv(bins.dir / "ten.csv")) n10 += row.scene_id == scene;
+    EXPECT_EQ(n5, 5u) << "scene " << scene;
+    EXPECT_LT(top5, 1.0) << "scene " << scene;
+    EXPECT_EQ(n10, 10u) << "scene " << scene;
+  }
+  for (const std::string bad : {"--more-hypotheses -1", "--more-hypotheses 1001",
+                                "--confident 1.5", "--confident -0.1", "--confident nan"}) {
+    const auto run = test::run_binpick(fmt::format("detect --model {} --dataset {} --out {} {}",
+                                                   bins.ppfm, bins.data,
+                                                   (bins.dir / "bad.csv").string(), bad));
+    EXPECT_EQ(run.status, 2) << bad;
+    EXPECT_NE(run.err.find(bad.substr(0, bad.find(' '))), std::string::npos) << bad << "\n" << run.err;
   }
 }
 
