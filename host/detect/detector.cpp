@@ -452,8 +452,14 @@ std::vector<Detection> Detector::detect(const DepthImage& depth, const bp_camera
   PreparedScene scene = shared ? shared->scene_for_model(dev_, depth, cam, prep)
                                : prepare_scene(dev_, depth, cam, prep);
   t.stages.insert(t.stages.end(), scene.timings.begin(), scene.timings.end());
+  // The image's depth noise: for the scene voxels (below) and the bin fit's floor.
+  Stopwatch noise_clock;
+  const double noise =
+      params_.noise_voxel > 1 || params_.bin != "none" ? depth_noise_mm(depth, cam) : 0.0;
+  t.stages.push_back({"noise", noise_clock.lap()});
   // --roi / --bin: the mask of the pixels that may be used, and the low-pass of those only.
   RegionSetup region;
+  region.noise = noise;
   region.roi = parse_roi(params_.roi);
   region.bin = parse_bin(params_.bin);
   region.margin = params_.bin_margin * model_.diameter;
@@ -481,10 +487,7 @@ std::vector<Detection> Detector::detect(const DepthImage& depth, const bp_camera
     warned_no_bin_ = true;
   }
   // Noisy depth: scene voxels longer along the camera's axis (depth_noise.hpp).
-  Stopwatch noise_clock;
-  const double noise = params_.noise_voxel > 1 ? depth_noise_mm(depth, cam) : 0.0;
   const double voxel_factor = scene_voxel_factor(noise, model_.voxel_size, params_.noise_voxel);
-  t.stages.push_back({"noise", noise_clock.lap()});
   if (voxel_factor > 1)
     region_report_ +=
         fmt::format("{}depth noise {:.2f} mm ({:.2f} voxels): scene voxels {:.2f} times deeper",

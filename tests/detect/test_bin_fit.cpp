@@ -11,6 +11,7 @@
 #include "host/detect/bin_fit.hpp"
 #include "host/detect/bin_region.hpp"
 #include "host/detect/bin_spec.hpp"
+#include "host/detect/depth_noise.hpp"
 #include "host/detect/hypotheses.hpp"
 #include "host/detect/scene_prepare.hpp"
 #include "tests/detect/bin_scene.hpp"
@@ -28,6 +29,7 @@ BinFit fit(const BinScene& scene, const BinSpec& spec) {
   const PointImage pts = depth_to_points_reference(scene.depth, scene.cam);
   BinFitOptions o;
   o.spec = spec;
+  o.noise = depth_noise_mm(scene.depth, scene.cam);
   return fit_bin(ocl::Device::shared(), pts.xyzw, pts.width, pts.height, o);
 }
 
@@ -53,9 +55,11 @@ void expect_matches(const BinFit& b, const BinScene& scene, const BinSceneSpec& 
   EXPECT_NEAR(b.axes.determinant(), 1.0, 1e-9);
 }
 
-// Covers the floor's pixels with a layer z = k (x + W / 2) over the interior (bin frame: rising
-// from the floor at the -x wall), as seen along each floor pixel's ray; returns the pixels changed.
-std::size_t cover_floor(BinScene& scene, const BinSceneSpec& s, double k) {
+// Covers the floor's pixels with a layer z = z0 + k (x + W / 2) over the interior up to x_max
+// (bin frame: rising from the -x wall), as seen along each floor pixel's ray; returns the pixels
+// changed.
+std::size_t cover_floor(BinScene& scene, const BinSceneSpec& s, double k, double z0 = 0,
+                        double x_max = INFINITY) {
   const Eigen::Vector3d C = scene.to_bin(Eigen::Vector3d::Zero());
   const PointImage before = depth_to_points_reference(scene.depth, scene.cam);
   std::size_t covered = 0;
@@ -66,9 +70,9 @@ std::size_t cover_floor(BinScene& scene, const BinSceneSpec& s, double k) {
       if (p[3] == 0.0f || scene.to_bin(Eigen::Vector3d(p[0], p[1], p[2])).z() > 1.0) continue;
       const Eigen::Vector3d ray((u - scene.cam.cx) / scene.cam.fx, (v - scene.cam.cy) / scene.cam.fy, 1.0);
       const Eigen::Vector3d d = scene.bin_to_cam.transpose() * ray;
-      const double t = (k * (C.x() + s.W / 2) - C.z()) / (d.z() - k * d.x());
+      const double t = (z0 + k * (C.x() + s.W / 2) - C.z()) / (d.z() - k * d.x());
       const Eigen::Vector3d q = C + t * d;  // on the layer
-      if (std::abs(q.x()) > s.W / 2 || std::abs(q.y()) > s.D / 2) continue;
+      if (std::abs(q.x()) > s.W / 2 || std::abs(q.y()) > s.D / 2 || q.x() > x_max) continue;
       const double z_cam = (scene.bin_to_cam * q + scene.floor_centre).z();
       scene.depth.raw[i] = std::uint16_t(std::lround(z_cam / s.depth_scale));
       ++covered;
@@ -211,6 +215,46 @@ TEST(BinFit, UpFromTheRimWhenNoPlaneIsLevel) {
         scene.depth.raw[i] = 0;  // the ground
     expect_level_interior(scene, s, 1.0);
   }
+}
+
+// A full bin: a level layer of flat parts 40 mm up covers the floor but for a strip along the
+// +x wall, where the floor shows. The layer is the most supported level plane inside the rim,
+// but the floor has nothing under it: the floor is found at 0, not 40, as a plane where the
+// strip is wide (100 mm), else as the lowest points seen (30 mm; too few samples for a plane).
+TEST(BinFit, ALevelLayerOfPartsIsNotTheFloor) {
+  for (double strip : {100.0, 30.0}) {
+    SCOPED_TRACE(testing::Message() << "floor seen along a " << strip << " mm strip");
+    BinSceneSpec s;
+    s.tilt_deg = 10;
+    s.spheres.clear();
+    BinScene scene = make_bin_scene(s);
+    ASSERT_GT(cover_floor(scene, s, 0.0, 40.0, s.W / 2 - strip), 20000u);
+    const BinFit b = fit(scene, {BinSpec::Mode::find, {}});
+    ASSERT_TRUE(b.found) << b.why;
+    SCOPED_TRACE(describe(b));
+    EXPECT_NEAR(scene.to_bin(b.origin).z(), 0.0, 3.0);
+    EXPECT_NEAR(b.interior.z(), s.H, 3.0);
+    EXPECT_LT(angle_deg(b.axes.col(2), scene.bin_to_cam.col(2)), 1.0);
+  }
+}
+
+// The same rule on a noisy floor: at a noise of 1.5 tolerances (4.5 mm, as 3 % of a 150 mm
+// part) 2 % of the floor's own samples lie 3 tolerances below it; the floor is still the floor
+// plane, "under" being beyond 4 sigma of the image's noise.
+TEST(BinFit, ANoisyFloorIsStillTheFloor) {
+  BinSceneSpec s;
+  s.tilt_deg = 10;
+  BinScene scene = make_bin_scene(s);
+  std::mt19937 rng(5);
+  std::normal_distribution<double> noise(0.0, 4.5 / s.depth_scale);
+  for (std::uint16_t& d : scene.depth.raw)
+    if (d > 0) d = std::uint16_t(std::clamp(std::lround(d + noise(rng)), 1L, 65535L));
+  const BinFit b = fit(scene, {BinSpec::Mode::find, {}});
+  ASSERT_TRUE(b.found) << b.why;
+  SCOPED_TRACE(describe(b));
+  EXPECT_TRUE(b.floor_plane);
+  EXPECT_NEAR(scene.to_bin(b.origin).z(), 0.0, 3.0);
+  EXPECT_LT(angle_deg(b.axes.col(2), scene.bin_to_cam.col(2)), 1.0);
 }
 
 // With half the pixels lost in blobs and stripes the fit still holds.
