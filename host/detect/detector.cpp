@@ -45,6 +45,22 @@ double sum_ms(const StageTimings& t, std::size_t from) {
   return ms;
 }
 
+// The sphere voted on about a hypothesis' point.
+CropOptions crop_about(const Hypothesis& h, double radius) {
+  CropOptions crop;
+  crop.centre = h.point;
+  crop.radius = float(radius);
+  return crop;
+}
+
+// The detection of the k-th highest point, before voting.
+Detection detection_for(const std::vector<Hypothesis>& hyps, std::size_t k) {
+  Detection d;
+  d.hypothesis = hyps[k];
+  d.index = static_cast<std::uint32_t>(k);
+  return d;
+}
+
 // The order of the results: the verified score, ties to the more voted.
 bool ranks_before(const Detection& a, const Detection& b) {
   if (a.score != b.score) return a.score > b.score;
@@ -508,22 +524,18 @@ std::vector<Detection> Detector::detect(const DepthImage& depth, const bp_camera
   const auto vote = [&](std::size_t from, std::size_t to) {
     clock.lap();
     for (std::size_t k = from; k < to; ++k) {
-      CropOptions crop;
-      crop.centre = hyps[k].point;
-      crop.radius = float(params_.crop_ratio * model_.diameter);
       // Equal to voxel_subsample(crop_sphere(...)) on a scene with normals everywhere (with the
       // crop's z divided by the voxel factor for the grid: depth_stretch).
       const NeighbourhoodSample sample =
-          sample_neighbourhood(scene, crop, prep.normals, model_.voxel_size, &t.stages, mask,
+          sample_neighbourhood(scene, crop_about(hyps[k], params_.crop_ratio * model_.diameter),
+                               prep.normals, model_.voxel_size, &t.stages, mask,
                                float(voxel_factor));
       t.prepare_ms += clock.lap();
-      Detection d;
+      Detection d = detection_for(hyps, k);
       d.neighbourhood = sample.cropped;
       if (sample.cloud.points.size() < kMinCropPoints) {
         // Nothing to vote on (a hole, a speck of depth, the edge of the region): said, not voted.
         if (neighbourhoods) neighbourhoods->push_back(sample.cloud);
-        d.hypothesis = hyps[k];
-        d.index = static_cast<std::uint32_t>(k);
         d.subsampled = sample.cloud.points.size();
         d.reason = fmt::format(
             "skipped: the crop has {} points with depth, {} with a normal after subsampling "
@@ -535,8 +547,6 @@ std::vector<Detection> Detector::detect(const DepthImage& depth, const bp_camera
       candidates.push_back(vote_and_cluster(sample.cloud, d, t));
       clock.lap();
       if (neighbourhoods) neighbourhoods->push_back(sample.cloud);
-      d.hypothesis = hyps[k];
-      d.index = static_cast<std::uint32_t>(k);
       voted.push_back(d);
     }
     t.hypotheses += to - from;
@@ -584,11 +594,9 @@ std::vector<Detection> Detector::detect(const PointCloud& input, DetectTimes* ti
   const auto vote = [&](std::size_t from, std::size_t to) {
     clock.lap();
     for (std::size_t k = from; k < to; ++k) {
-      CropOptions crop;
-      crop.centre = hyps[k].point;
-      crop.radius = float(params_.crop_ratio * model_.diameter);
-      const PointCloud neighbourhood = crop_sphere(cloud, crop);
-      Detection d;
+      const PointCloud neighbourhood =
+          crop_sphere(cloud, crop_about(hyps[k], params_.crop_ratio * model_.diameter));
+      Detection d = detection_for(hyps, k);
       d.neighbourhood = neighbourhood.points.size();
       // The scene is subsampled like the model (its voxel), so that densities, and so votes,
       // match.
@@ -598,8 +606,6 @@ std::vector<Detection> Detector::detect(const PointCloud& input, DetectTimes* ti
       t.stages.push_back({"crop+subsample", ms});
       candidates.push_back(vote_and_cluster(sub.cloud, d, t));
       clock.lap();
-      d.hypothesis = hyps[k];
-      d.index = static_cast<std::uint32_t>(k);
       voted.push_back(d);
     }
     t.hypotheses += to - from;
