@@ -36,6 +36,7 @@ struct BinFitOptions {
   double tol = 0;             // plane and height tolerance (mm); 0: max(2, 0.3 % of the median depth)
   std::uint32_t seed = 1;     // RANSAC's draws: same image, same bin
   double min_height = 0;      // a rim lower than this over the floor is no bin (mm)
+  double min_side = 0;        // an interior narrower than this is no bin (mm)
   // The image's depth noise, sigma in mm (depth_noise.hpp): samples under a level plane by
   // more than 4 sigma (and 3 tol) say it is a layer of parts, not the floor.
   double noise = 0;

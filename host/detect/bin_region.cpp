@@ -46,6 +46,7 @@ SceneRegionMask apply_region(PreparedScene& scene, const RegionSetup& setup, int
     BinFitOptions bo;
     bo.spec = setup.bin;
     bo.min_height = setup.min_height;
+    bo.min_side = setup.min_side;
     bo.noise = setup.noise;
     out.bin = known_bin ? *known_bin
                         : fit_bin(dev,

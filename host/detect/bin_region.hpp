@@ -23,6 +23,7 @@ struct RegionSetup {
   double margin = 0;  // mm, the bin's walls and rim kept out by this much
   double above = 0;   // mm, the interior reaches this far over the rim
   double min_height = 0;  // mm, a shallower "bin" is not one (BinFitOptions::min_height)
+  double min_side = 0;    // mm, nor a narrower one (BinFitOptions::min_side)
   double noise = 0;       // mm, the image's depth noise (BinFitOptions::noise)
   // Keep the floor out: points less than the bin fit's plane tolerance above a fitted floor
   // are not used (bin_interior_box); false: the floor stays, from margin below it.

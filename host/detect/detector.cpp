@@ -481,10 +481,11 @@ std::vector<Detection> Detector::detect(const DepthImage& depth, const bp_camera
   region.margin = params_.bin_margin * model_.diameter;
   region.above = model_.diameter;
   region.min_height = 0.5 * model_.diameter;  // a tray shallower than half a part holds none
-  const BinFit* known_bin = shared ? shared->bin(params_.bin, region.min_height) : nullptr;
+  region.min_side = model_.diameter;          // nor one narrower than a part
+  const BinFit* known_bin = shared ? shared->bin(params_.bin, model_.diameter) : nullptr;
   const SceneRegionMask masked =
       apply_region(scene, region, prep.lowpass_radius, &t.stages, known_bin);
-  if (shared && masked.bin) shared->keep_bin(params_.bin, region.min_height, *masked.bin);
+  if (shared && masked.bin) shared->keep_bin(params_.bin, model_.diameter, *masked.bin);
   const ocl::Buffer<std::uint8_t>* mask = masked.mask ? &*masked.mask : nullptr;
   if (region.wanted()) {
     const std::size_t valid = std::size_t(std::count_if(

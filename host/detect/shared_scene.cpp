@@ -19,14 +19,14 @@ PreparedScene SharedScene::scene_for_model(ocl::Device& dev, const DepthImage& d
   return scene;
 }
 
-const BinFit* SharedScene::bin(const std::string& spec, double min_height) const {
+const BinFit* SharedScene::bin(const std::string& spec, double part_diameter) const {
   for (const auto& [key, fit] : bins_)
-    if (key.first == spec && key.second == min_height) return &fit;
+    if (key.first == spec && key.second == part_diameter) return &fit;
   return nullptr;
 }
 
-void SharedScene::keep_bin(const std::string& spec, double min_height, const BinFit& fit) {
-  if (!bin(spec, min_height)) bins_.push_back({{spec, min_height}, fit});
+void SharedScene::keep_bin(const std::string& spec, double part_diameter, const BinFit& fit) {
+  if (!bin(spec, part_diameter)) bins_.push_back({{spec, part_diameter}, fit});
 }
 
 }  // namespace binpick

@@ -21,9 +21,10 @@ class SharedScene {
   // the preparation's stages; later calls' carry none), a copy sharing the points afterwards.
   PreparedScene scene_for_model(ocl::Device& dev, const DepthImage& depth, const bp_camera& cam,
                                 const ScenePrepOptions& opt);
-  // The bin fitted with this spec ("auto", "W,D,H") and minimum height, if a model fitted it.
-  const BinFit* bin(const std::string& spec, double min_height) const;
-  void keep_bin(const std::string& spec, double min_height, const BinFit& fit);
+  // The bin fitted with this spec ("auto", "W,D,H") for a part of this diameter (the bin's
+  // least height and width follow from it), if a model fitted it.
+  const BinFit* bin(const std::string& spec, double part_diameter) const;
+  void keep_bin(const std::string& spec, double part_diameter, const BinFit& fit);
 
  private:
   std::optional<PreparedScene> prepared_;

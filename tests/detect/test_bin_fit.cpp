@@ -367,6 +367,51 @@ TEST(BinFit, NoBinIsSaidNotGuessed) {
   EXPECT_FALSE(fit(e, {BinSpec::Mode::find, {}}).found);
 }
 
+// The paper's scenes: a heap of parts with no bin and no floor in view. Along a direction a few
+// degrees off the optical axis, a slice through the heap is one "height" along three sides of the
+// image and no frame fills it; but the heap's parts stand above the slice along the border, and a
+// rim is the highest thing there. Without this rule (kMaxAboveRim) a "bin" is found in 6 of these
+// 10 heaps (11 of 20 seeds).
+TEST(BinFit, ASliceThroughAHeapIsNoRim) {
+  for (unsigned seed = 1; seed <= 10; ++seed) {
+    SCOPED_TRACE(testing::Message() << "seed " << seed);
+    BinSceneSpec s;
+    s.H = 0.5, s.wall = 0;
+    s.spheres.clear();
+    std::mt19937 rng(seed);
+    std::uniform_real_distribution<double> unit(0.0, 1.0);
+    for (int i = 0; i < 500; ++i) {
+      const double r = 12 + 18 * unit(rng), x = (unit(rng) - 0.5) * 520, y = (unit(rng) - 0.5) * 340;
+      const double mound = (1 - std::pow(x / 280, 2)) * (1 - std::pow(y / 190, 2));
+      s.spheres.push_back({x, y, r + 120 * mound * unit(rng), r});
+    }
+    BinScene scene = make_bin_scene(s);
+    const PointImage pts = depth_to_points_reference(scene.depth, scene.cam);
+    for (std::size_t i = 0; i < scene.depth.raw.size(); ++i)
+      if (pts.xyzw[4 * i + 3] != 0.0f &&
+          scene.to_bin({pts.xyzw[4 * i], pts.xyzw[4 * i + 1], pts.xyzw[4 * i + 2]}).z() < 3)
+        scene.depth.raw[i] = 0;  // the floor and the ground
+    const BinFit b = fit(scene, {BinSpec::Mode::find, {}});
+    EXPECT_FALSE(b.found) << describe(b);
+  }
+}
+
+// A bin narrower than a part holds none: an interior under min_side either way is no bin (a
+// slice through a heap once gave one 590 x 2.4 mm, which masked out the whole image).
+TEST(BinFit, AnInteriorNarrowerThanAPartIsNoBin) {
+  const BinSceneSpec s;  // 400 x 300
+  const BinScene scene = make_bin_scene(s);
+  const PointImage pts = depth_to_points_reference(scene.depth, scene.cam);
+  BinFitOptions o;
+  o.spec = {BinSpec::Mode::find, {}};
+  o.min_side = 280;
+  EXPECT_TRUE(fit_bin(ocl::Device::shared(), pts.xyzw, pts.width, pts.height, o).found);
+  o.min_side = 320;
+  const BinFit b = fit_bin(ocl::Device::shared(), pts.xyzw, pts.width, pts.height, o);
+  EXPECT_FALSE(b.found);
+  EXPECT_NE(b.why.find("a bin needs 320.0 each way"), std::string::npos) << b.why;
+}
+
 // The highest points of the bare scene are on the rim; with the bin's mask none is, and every
 // one lies inside the interior (a margin from the walls).
 TEST(BinFit, MaskKeepsTheHighestPointsOffTheBin) {
