@@ -81,6 +81,20 @@ std::size_t samples_above(const BorderBand& band, const Eigen::Vector3d& up, dou
   return n;
 }
 
+std::string too_narrow(const Eigen::Vector2d& size, double min_side) {
+  return fmt::format("the interior found is only {:.1f} x {:.1f} mm (a bin needs {:.1f} each way)",
+                     size.x(), size.y(), min_side);
+}
+
+// The interior's width along each axis whose two sides were both seen (infinity where not).
+Eigen::Vector2d seen_widths(const RimFit& rim) {
+  Eigen::Vector2d w(INFINITY, INFINITY);
+  for (int k = 0; k < 2; ++k)
+    if (rim.seen[std::size_t(2 * k)] && rim.seen[std::size_t(2 * k + 1)])
+      w[k] = rim.edge[std::size_t(2 * k + 1)] - rim.edge[std::size_t(2 * k)];
+  return w;
+}
+
 std::string not_a_frame(double inside_share) {
   return fmt::format(
       "the structure at the highest height along the border is not a frame ({:.0f} % of the "
@@ -190,7 +204,15 @@ BinFit fit_bin(ocl::Device& dev, const PlaneSamples& s, const BinFitOptions& opt
       const Eigen::Vector3d b1 = std::cos(rim.angle) * e1 + std::sin(rim.angle) * e2;
       const double inside = share_inside(s, up, b1, up.cross(b1), rim.height, open, bin.tol);
       const std::size_t above = samples_above(band, up, rim.height + above_margin);
-      if (inside > kMaxInsideShare) {
+      // Checked here as well as at the end, so that the next candidate can win: two edges of
+      // a robot arm's face beside the bin, with the ends of the rim's near side, made a
+      // "frame" 5-65 mm wide along a searched up turned 40 degrees from the true one (a
+      // wire-mesh basket, whose thin rim holds few samples).
+      if (!(seen_widths(rim).minCoeff() >= opt.min_side)) {
+        rim.found = false;
+        rim.why = fmt::format("the frame found is only {:.1f} mm across (a bin needs {:.1f})",
+                              seen_widths(rim).minCoeff(), opt.min_side);
+      } else if (inside > kMaxInsideShare) {
         rim.found = false;
         rim.why = not_a_frame(inside);
       } else if (double(above) > kMaxAboveRim * double(rim.points)) {
@@ -294,8 +316,7 @@ BinFit fit_bin(ocl::Device& dev, const PlaneSamples& s, const BinFitOptions& opt
   }
   const Eigen::Vector2d size(edge[1] - edge[0], edge[3] - edge[2]);
   if (!(size.minCoeff() >= opt.min_side)) {
-    bin.why = fmt::format("the interior found is only {:.1f} x {:.1f} mm (a bin needs {:.1f} each way)",
-                          size.x(), size.y(), opt.min_side);
+    bin.why = too_narrow(size, opt.min_side);
     return bin;
   }
   const Eigen::Vector2d centre(0.5 * (edge[0] + edge[1]), 0.5 * (edge[2] + edge[3]));
