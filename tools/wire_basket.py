@@ -1,0 +1,107 @@
+#!/usr/bin/env python3
+"""Writes a wire-mesh basket as a binary STL for `binpick synth --bin-mesh`, to measure detection in
+a bin like the real scene binpick is judged on (a wire-mesh basket whose rim is the highest thing
+in view, the ground seen through its walls and floor, a robot arm partly in view):
+
+  tools/wire_basket.py OUT.stl [--size 600,400,300] [--bar 4] [--pitch 40] [--rim 10] [--arm]
+
+The basket is in synth's bin frame (mm, the interior floor's centre at the origin, floor at z = 0,
+z up): walls of square bars (vertical every --pitch mm, horizontal every 1.5 --pitch), a floor of
+bars every --pitch / 2 both ways with its top at z = 0, a square rim tube of --rim mm on top of the
+walls, and the ground 50 mm under the floor. With --arm, a box 160 mm wide leans 35 degrees
+outward beside the -y wall, its top 40 mm under the rim (something high beside the bin that is not
+the rim). Pass the same interior to synth: `--bin-mesh OUT.stl --bin-size 600,400,300`.
+Needs numpy (pip install numpy)."""
+import argparse
+import os
+import struct
+import sys
+
+try:
+    import numpy as np
+except ImportError:
+    sys.exit("wire_basket.py: needs numpy (pip install numpy)")
+
+# The six faces of a box by its corners (bit 0: x high, bit 1: y high, bit 2: z high), each
+# counter-clockwise seen from outside, so that normals point out.
+FACES = [(0, 2, 3, 1), (4, 5, 7, 6), (0, 1, 5, 4), (2, 6, 7, 3), (0, 4, 6, 2), (1, 3, 7, 5)]
+
+
+def box(tris, lo, hi, rotation=None, pivot=None):
+    """Appends the 12 triangles of the box [lo, hi], turned by rotation about pivot if given."""
+    c = np.array([[hi[0] if i & 1 else lo[0], hi[1] if i & 2 else lo[1], hi[2] if i & 4 else lo[2]]
+                  for i in range(8)], dtype=float)
+    if rotation is not None:
+        c = (rotation @ (c - pivot).T).T + pivot
+    for a, b, cc, d in FACES:
+        tris.append((c[a], c[b], c[cc]))
+        tris.append((c[a], c[cc], c[d]))
+
+
+def basket(W, D, H, bar, pitch, rim, arm):
+    tris = []
+    hw, hd, b = W / 2, D / 2, bar
+    for x in np.arange(-hw, hw + 1e-6, pitch / 2):  # floor: bars along y on top, along x below
+        box(tris, (x - b / 2, -hd, -b), (x + b / 2, hd, 0))
+    for y in np.arange(-hd, hd + 1e-6, pitch / 2):
+        box(tris, (-hw, y - b / 2, -2 * b), (hw, y + b / 2, -b))
+    for x in np.arange(-hw, hw + 1e-6, pitch):  # walls: vertical bars just outside the interior
+        for y0 in (-hd - b, hd):
+            box(tris, (x - b / 2, y0, -2 * b), (x + b / 2, y0 + b, H))
+    for y in np.arange(-hd, hd + 1e-6, pitch):
+        for x0 in (-hw - b, hw):
+            box(tris, (x0, y - b / 2, -2 * b), (x0 + b, y + b / 2, H))
+    for z in np.arange(0.0, H - 1, 1.5 * pitch):  # and horizontal bars outside those
+        for y0 in (-hd - 2 * b, hd + b):
+            box(tris, (-hw - 2 * b, y0, z), (hw + 2 * b, y0 + b, z + b))
+        for x0 in (-hw - 2 * b, hw + b):
+            box(tris, (x0, -hd - 2 * b, z), (x0 + b, hd + 2 * b, z + b))
+    box(tris, (-hw - rim, -hd - rim, H), (hw + rim, -hd, H + rim))  # the rim tube
+    box(tris, (-hw - rim, hd, H), (hw + rim, hd + rim, H + rim))
+    box(tris, (-hw - rim, -hd, H), (-hw, hd, H + rim))
+    box(tris, (hw, -hd, H), (hw + rim, hd, H + rim))
+    box(tris, (-1500, -1200, -60), (1500, 1200, -50))  # the ground
+    if arm:
+        a = np.radians(35)
+        R = np.array([[1, 0, 0], [0, np.cos(a), -np.sin(a)], [0, np.sin(a), np.cos(a)]])
+        box(tris, (-80, -hd - 420, H - 300), (80, -hd - 60, H - 40), R,
+            np.array([0.0, -hd - 60, H - 40]))
+    return tris
+
+
+def write_stl(path, tris):
+    tmp = path + ".part"
+    with open(tmp, "wb") as f:
+        f.write(b"binpick wire basket".ljust(80, b" "))
+        f.write(struct.pack("<I", len(tris)))
+        for t in tris:
+            n = np.cross(t[1] - t[0], t[2] - t[0])
+            n = n / (np.linalg.norm(n) + 1e-12)
+            f.write(struct.pack("<12fH", *n, *t[0], *t[1], *t[2], 0))
+    os.replace(tmp, path)
+
+
+def main():
+    p = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    p.add_argument("out", help="the STL file to write (refused if it exists)")
+    p.add_argument("--size", default="600,400,300", help="interior W,D,H in mm (synth's --bin-size)")
+    p.add_argument("--bar", type=float, default=4.0, help="bar thickness, mm")
+    p.add_argument("--pitch", type=float, default=40.0, help="wall bar spacing, mm")
+    p.add_argument("--rim", type=float, default=10.0, help="rim tube size, mm")
+    p.add_argument("--arm", action="store_true", help="a leaning box beside the -y wall")
+    a = p.parse_args()
+    try:
+        W, D, H = (float(v) for v in a.size.split(","))
+    except ValueError:
+        sys.exit(f"wire_basket.py: --size must be W,D,H in mm, got '{a.size}'")
+    if min(W, D, H) <= 0 or not (0 < a.bar < a.pitch / 2) or a.rim <= 0:
+        sys.exit("wire_basket.py: sizes must be positive and --bar under half of --pitch")
+    if os.path.exists(a.out):
+        sys.exit(f"wire_basket.py: {a.out} exists; not overwritten")
+    tris = basket(W, D, H, a.bar, a.pitch, a.rim, a.arm)
+    write_stl(a.out, tris)
+    print(f"wrote {a.out}: {len(tris)} triangles")
+
+
+if __name__ == "__main__":
+    main()
