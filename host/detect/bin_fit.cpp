@@ -4,6 +4,7 @@
 #include <array>
 #include <cmath>
 #include <numbers>
+#include <optional>
 #include <stdexcept>
 
 #include <Eigen/Geometry>
@@ -79,6 +80,52 @@ std::size_t samples_above(const BorderBand& band, const Eigen::Vector3d& up, dou
   std::size_t n = 0;
   for (const Eigen::Vector3f& p : band.points) n += up.dot(p.cast<double>()) > height;
   return n;
+}
+
+// The floor under a frame (inside(p): within it): the heights up . p of the samples inside,
+// lowest first, and the height of the level plane (within 5 degrees of up) with the most inliers
+// inside (at least 50), more than 3 tol below the rim, that has nothing under it. A level layer
+// of parts is no floor: in a full bin the most supported level plane inside is a layer of flat
+// parts some centimetres up (measured: 22-45 mm in every full bin of 350 parts), and parts seen
+// below it through the gaps would be "below the floor" (floor_check.hpp) and masked out. "Under"
+// is beyond the depth noise: at most max(20, 0.2 %) of the samples inside lie more than 3 tol and
+// 4 sigma of the image's noise below it (at 3 % noise a floor's own samples reach 3 tol below it;
+// a layer's gaps show parts and floor centimetres below).
+struct FloorUnder {
+  std::vector<double> heights;
+  std::optional<double> plane;
+};
+
+template <typename Inside>
+FloorUnder floor_under(const PlaneSamples& s, const std::vector<FoundPlane>& planes,
+                       const Eigen::Vector3d& up, const Inside& inside, double rim_height,
+                       double tol, double noise) {
+  FloorUnder f;
+  for (const auto& p : s.points)
+    if (inside(p.cast<double>())) f.heights.push_back(up.dot(p.cast<double>()));
+  std::sort(f.heights.begin(), f.heights.end());
+  const std::vector<double>& h = f.heights;
+  const std::size_t allowed_below = std::max<std::size_t>(20, h.size() / 500);
+  const double gap = std::max(3 * tol, 4 * noise);
+  std::size_t most = 0;
+  for (const FoundPlane& p : planes) {
+    if (p.normal.dot(up) < std::cos(5 * kDeg)) continue;
+    double sum = 0;
+    std::size_t count = 0;
+    for (std::uint32_t i : p.inliers) {
+      const Eigen::Vector3d q = s.points[i].cast<double>();
+      if (!inside(q)) continue;
+      sum += up.dot(q);
+      ++count;
+    }
+    const double height = count ? sum / double(count) : 0.0;
+    if (count < 50 || count <= most || height > rim_height - 3 * tol) continue;
+    const auto under = std::lower_bound(h.begin(), h.end(), height - gap) - h.begin();
+    if (std::size_t(under) > allowed_below) continue;
+    most = count;
+    f.plane = height;
+  }
+  return f;
 }
 
 std::string too_narrow(const Eigen::Vector2d& size, double min_side) {
@@ -166,6 +213,7 @@ BinFit fit_bin(ocl::Device& dev, const PlaneSamples& s, const BinFitOptions& opt
   struct Choice {
     Eigen::Vector3d up, e1, e2;
     RimFit rim;
+    bool on_floor = false;  // a level floor lies under the frame (floor_under)
   } best;
   std::size_t filled_points = 0;  // the largest structure rejected as no rim, and why
   std::string filled_why;
@@ -229,8 +277,25 @@ BinFit fit_bin(ocl::Device& dev, const PlaneSamples& s, const BinFitOptions& opt
     // searched up turned some degrees about it gathers a few more samples off the wall's outer
     // face (measured 7-9 % more), while a wrong plane's rim holds 3-20 times fewer samples.
     const double need = c < from_planes ? 1.0 : kSearchedUpMargin;
-    if (rim.found && (!best.rim.found || double(rim.points) > need * double(best.rim.points)))
-      best = {up, e1, e2, rim};
+    if (!rim.found || (best.rim.found && !(double(rim.points) > need * double(best.rim.points))))
+      continue;
+    // A frame with a level floor under it (the plane up came from, or one parallel, with
+    // nothing below it) is a bin, not a slice of a pile: an up searched along the rim must have
+    // one too to replace it. A thin rim holds few samples, and a face at one "height" with a few
+    // of them (a robot arm's beside a wire-mesh basket, seen from 2.4 m tilted 30 degrees) held
+    // 4 times as many, along an up 22 degrees off.
+    std::array<double, 4> open = rim.edge;
+    for (int k = 0; k < 4; ++k)
+      if (!rim.seen[std::size_t(k)]) open[std::size_t(k)] = k % 2 ? INFINITY : -INFINITY;
+    const Eigen::Vector3d b1 = std::cos(rim.angle) * e1 + std::sin(rim.angle) * e2, b2 = up.cross(b1);
+    const auto within = [&](const Eigen::Vector3d& p) {
+      const double q1 = b1.dot(p), q2 = b2.dot(p);
+      return q1 >= open[0] && q1 <= open[1] && q2 >= open[2] && q2 <= open[3];
+    };
+    const bool on_floor =
+        floor_under(s, planes, up, within, rim.height, bin.tol, opt.noise).plane.has_value();
+    if (best.on_floor && !on_floor) continue;
+    best = {up, e1, e2, rim, on_floor};
   }
   if (!best.rim.found) {
     if (bin.why.empty()) bin.why = filled_why;
@@ -337,40 +402,10 @@ BinFit fit_bin(ocl::Device& dev, const PlaneSamples& s, const BinFitOptions& opt
   if (opt.spec.mode == BinSpec::Mode::sized) {
     floor_h = rim.height - opt.spec.size.z();
   } else {
-    // The heights of the samples inside the rim, lowest first.
-    std::vector<double> h;
-    for (const auto& p : s.points)
-      if (inside(p.cast<double>())) h.push_back(up.dot(p.cast<double>()));
-    std::sort(h.begin(), h.end());
-    // A level layer of parts is no floor: the floor has nothing under it. In a full bin the
-    // most supported level plane inside is a layer of flat parts some centimetres up (measured:
-    // 22-45 mm in every full bin of 350 parts), and parts seen below it through the gaps would
-    // be "below the floor" (floor_check.hpp) and masked out.
-    // "Under" is beyond the depth noise: more than 3 tolerances and 4 sigma of the image's
-    // noise (at 3 % noise a floor's own samples reach 3 tolerances below it; a layer's gaps
-    // show parts and floor centimetres below).
-    const std::size_t allowed_below = std::max<std::size_t>(20, h.size() / 500);
-    const double gap = std::max(3 * bin.tol, 4 * opt.noise);
-    const auto under = [&](double height) {
-      return std::size_t(std::lower_bound(h.begin(), h.end(), height - gap) - h.begin());
-    };
-    std::size_t most = 0;
-    for (const FoundPlane& p : planes) {
-      if (p.normal.dot(up) < std::cos(5 * kDeg)) continue;
-      double sum = 0;
-      std::size_t count = 0;
-      for (std::uint32_t i : p.inliers) {
-        const Eigen::Vector3d q = s.points[i].cast<double>();
-        if (!inside(q)) continue;
-        sum += up.dot(q);
-        ++count;
-      }
-      if (count < 50 || count <= most || sum / double(count) > rim.height - 3 * bin.tol) continue;
-      if (under(sum / double(count)) > allowed_below) continue;
-      most = count;
-      floor_h = sum / double(count);
-      bin.floor_plane = true;
-    }
+    const FloorUnder f = floor_under(s, planes, up, inside, rim.height, bin.tol, opt.noise);
+    const std::vector<double>& h = f.heights;
+    bin.floor_plane = f.plane.has_value();
+    if (f.plane) floor_h = *f.plane;
     if (!bin.floor_plane) {
       if (h.size() < 20) {
         bin.why = "no points inside the rim";

@@ -24,6 +24,8 @@ struct BinSceneSpec {
   std::vector<Eigen::Vector4d> spheres = {      // x, y, z, radius in the bin frame
       {-100, -50, 25, 25}, {60, 40, 25, 25}, {120, -80, 30, 30}, {-20, 90, 20, 20}};
   double depth_scale = 0.1;
+  // More axis-aligned boxes in the bin frame (lo, hi): a robot arm, a fixture.
+  std::vector<std::pair<Eigen::Vector3d, Eigen::Vector3d>> boxes;
 };
 
 struct BinScene {
@@ -78,7 +80,7 @@ inline BinScene make_bin_scene(const BinSceneSpec& s = {}) {
   out.floor_centre = M * (-C);
   const double hw = s.W / 2, hd = s.D / 2, t = s.wall;
   struct Box { Eigen::Vector3d lo, hi; };
-  const std::vector<Box> boxes = {
+  std::vector<Box> boxes = {
       {{-hw - t, -hd - t, -20}, {hw + t, hd + t, 0}},       // floor slab
       {{-hw - t, -hd - t, 0}, {-hw, hd + t, s.H}},          // walls
       {{hw, -hd - t, 0}, {hw + t, hd + t, s.H}},
@@ -86,6 +88,7 @@ inline BinScene make_bin_scene(const BinSceneSpec& s = {}) {
       {{-hw, hd, 0}, {hw, hd + t, s.H}},
       {{-3000, -3000, -40}, {3000, 3000, -20}},             // the ground
   };
+  for (const auto& [lo, hi] : s.boxes) boxes.push_back({lo, hi});
   out.cam.depth_scale = float(s.depth_scale);
   out.depth = {out.cam.width, out.cam.height,
                std::vector<std::uint16_t>(std::size_t(out.cam.width) * out.cam.height, 0)};
