@@ -128,6 +128,25 @@ FloorUnder floor_under(const PlaneSamples& s, const std::vector<FoundPlane>& pla
   return f;
 }
 
+// The frame's first axis, a1 = cos(angle) e1 + sin(angle) e2 (bin_rim.hpp).
+Eigen::Vector3d frame_axis(const RimFit& rim, const Eigen::Vector3d& e1, const Eigen::Vector3d& e2) {
+  return std::cos(rim.angle) * e1 + std::sin(rim.angle) * e2;
+}
+
+// The interior's edges with the sides not seen left open.
+std::array<double, 4> open_edges(const RimFit& rim) {
+  std::array<double, 4> open = rim.edge;
+  for (int k = 0; k < 4; ++k)
+    if (!rim.seen[std::size_t(k)]) open[std::size_t(k)] = k % 2 ? INFINITY : -INFINITY;
+  return open;
+}
+
+bool in_frame(const Eigen::Vector3d& a1, const Eigen::Vector3d& a2, const std::array<double, 4>& edge,
+              const Eigen::Vector3d& p) {
+  const double q1 = a1.dot(p), q2 = a2.dot(p);
+  return q1 >= edge[0] && q1 <= edge[1] && q2 >= edge[2] && q2 <= edge[3];
+}
+
 std::string too_narrow(const Eigen::Vector2d& size, double min_side) {
   return fmt::format("the interior found is only {:.1f} x {:.1f} mm (a bin needs {:.1f} each way)",
                      size.x(), size.y(), min_side);
@@ -245,12 +264,10 @@ BinFit fit_bin(ocl::Device& dev, const PlaneSamples& s, const BinFitOptions& opt
     // facing a camera tilted 30 degrees, is one "height" along its normal): checked here, with
     // the sides not seen left open, so that it does not outbid the real rim (after the choice
     // the check is made again with those sides placed).
+    const Eigen::Vector3d b1 = frame_axis(rim, e1, e2), b2 = up.cross(b1);
+    const std::array<double, 4> open = open_edges(rim);
     if (rim.found) {
-      std::array<double, 4> open = rim.edge;
-      for (int k = 0; k < 4; ++k)
-        if (!rim.seen[std::size_t(k)]) open[std::size_t(k)] = k % 2 ? INFINITY : -INFINITY;
-      const Eigen::Vector3d b1 = std::cos(rim.angle) * e1 + std::sin(rim.angle) * e2;
-      const double inside = share_inside(s, up, b1, up.cross(b1), rim.height, open, bin.tol);
+      const double inside = share_inside(s, up, b1, b2, rim.height, open, bin.tol);
       const std::size_t above = samples_above(band, up, rim.height + above_margin);
       // Checked here as well as at the end, so that the next candidate can win: two edges of
       // a robot arm's face beside the bin, with the ends of the rim's near side, made a
@@ -284,14 +301,7 @@ BinFit fit_bin(ocl::Device& dev, const PlaneSamples& s, const BinFitOptions& opt
     // one too to replace it. A thin rim holds few samples, and a face at one "height" with a few
     // of them (a robot arm's beside a wire-mesh basket, seen from 2.4 m tilted 30 degrees) held
     // 4 times as many, along an up 22 degrees off.
-    std::array<double, 4> open = rim.edge;
-    for (int k = 0; k < 4; ++k)
-      if (!rim.seen[std::size_t(k)]) open[std::size_t(k)] = k % 2 ? INFINITY : -INFINITY;
-    const Eigen::Vector3d b1 = std::cos(rim.angle) * e1 + std::sin(rim.angle) * e2, b2 = up.cross(b1);
-    const auto within = [&](const Eigen::Vector3d& p) {
-      const double q1 = b1.dot(p), q2 = b2.dot(p);
-      return q1 >= open[0] && q1 <= open[1] && q2 >= open[2] && q2 <= open[3];
-    };
+    const auto within = [&](const Eigen::Vector3d& p) { return in_frame(b1, b2, open, p); };
     const bool on_floor =
         floor_under(s, planes, up, within, rim.height, bin.tol, opt.noise).plane.has_value();
     if (best.on_floor && !on_floor) continue;
@@ -303,7 +313,7 @@ BinFit fit_bin(ocl::Device& dev, const PlaneSamples& s, const BinFitOptions& opt
   }
   up = best.up, e1 = best.e1, e2 = best.e2, rim = best.rim;
   bin.rim_points = rim.points;
-  const Eigen::Vector3d a1 = std::cos(rim.angle) * e1 + std::sin(rim.angle) * e2;
+  const Eigen::Vector3d a1 = frame_axis(rim, e1, e2);
   const Eigen::Vector3d a2 = up.cross(a1);
   const Eigen::Vector3d axis[2] = {a1, a2};
   std::array<double, 4> edge = rim.edge;
@@ -394,10 +404,7 @@ BinFit fit_bin(ocl::Device& dev, const PlaneSamples& s, const BinFitOptions& opt
   if (x.x() < 0) x = -x, y = -y;
 
   // The floor: below the rim, inside the rim's rectangle.
-  const auto inside = [&](const Eigen::Vector3d& p) {
-    const double q1 = a1.dot(p), q2 = a2.dot(p);
-    return q1 >= edge[0] && q1 <= edge[1] && q2 >= edge[2] && q2 <= edge[3];
-  };
+  const auto inside = [&](const Eigen::Vector3d& p) { return in_frame(a1, a2, edge, p); };
   double floor_h = 0;
   if (opt.spec.mode == BinSpec::Mode::sized) {
     floor_h = rim.height - opt.spec.size.z();
