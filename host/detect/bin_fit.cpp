@@ -10,6 +10,7 @@
 #include <Eigen/Geometry>
 #include <fmt/format.h>
 
+#include "host/detect/bin_floor.hpp"
 #include "host/detect/bin_planes.hpp"
 #include "host/detect/bin_rim.hpp"
 #include "host/detect/bin_up.hpp"
@@ -82,52 +83,6 @@ std::size_t samples_above(const BorderBand& band, const Eigen::Vector3d& up, dou
   return n;
 }
 
-// The floor under a frame (inside(p): within it): the heights up . p of the samples inside,
-// lowest first, and the height of the level plane (within 5 degrees of up) with the most inliers
-// inside (at least 50), more than 3 tol below the rim, that has nothing under it. A level layer
-// of parts is no floor: in a full bin the most supported level plane inside is a layer of flat
-// parts some centimetres up (measured: 22-45 mm in every full bin of 350 parts), and parts seen
-// below it through the gaps would be "below the floor" (floor_check.hpp) and masked out. "Under"
-// is beyond the depth noise: at most max(20, 0.2 %) of the samples inside lie more than 3 tol and
-// 4 sigma of the image's noise below it (at 3 % noise a floor's own samples reach 3 tol below it;
-// a layer's gaps show parts and floor centimetres below).
-struct FloorUnder {
-  std::vector<double> heights;
-  std::optional<double> plane;
-};
-
-template <typename Inside>
-FloorUnder floor_under(const PlaneSamples& s, const std::vector<FoundPlane>& planes,
-                       const Eigen::Vector3d& up, const Inside& inside, double rim_height,
-                       double tol, double noise) {
-  FloorUnder f;
-  for (const auto& p : s.points)
-    if (inside(p.cast<double>())) f.heights.push_back(up.dot(p.cast<double>()));
-  std::sort(f.heights.begin(), f.heights.end());
-  const std::vector<double>& h = f.heights;
-  const std::size_t allowed_below = std::max<std::size_t>(20, h.size() / 500);
-  const double gap = std::max(3 * tol, 4 * noise);
-  std::size_t most = 0;
-  for (const FoundPlane& p : planes) {
-    if (p.normal.dot(up) < std::cos(5 * kDeg)) continue;
-    double sum = 0;
-    std::size_t count = 0;
-    for (std::uint32_t i : p.inliers) {
-      const Eigen::Vector3d q = s.points[i].cast<double>();
-      if (!inside(q)) continue;
-      sum += up.dot(q);
-      ++count;
-    }
-    const double height = count ? sum / double(count) : 0.0;
-    if (count < 50 || count <= most || height > rim_height - 3 * tol) continue;
-    const auto under = std::lower_bound(h.begin(), h.end(), height - gap) - h.begin();
-    if (std::size_t(under) > allowed_below) continue;
-    most = count;
-    f.plane = height;
-  }
-  return f;
-}
-
 // The frame's first axis, a1 = cos(angle) e1 + sin(angle) e2 (bin_rim.hpp).
 Eigen::Vector3d frame_axis(const RimFit& rim, const Eigen::Vector3d& e1, const Eigen::Vector3d& e2) {
   return std::cos(rim.angle) * e1 + std::sin(rim.angle) * e2;
@@ -139,12 +94,6 @@ std::array<double, 4> open_edges(const RimFit& rim) {
   for (int k = 0; k < 4; ++k)
     if (!rim.seen[std::size_t(k)]) open[std::size_t(k)] = k % 2 ? INFINITY : -INFINITY;
   return open;
-}
-
-bool in_frame(const Eigen::Vector3d& a1, const Eigen::Vector3d& a2, const std::array<double, 4>& edge,
-              const Eigen::Vector3d& p) {
-  const double q1 = a1.dot(p), q2 = a2.dot(p);
-  return q1 >= edge[0] && q1 <= edge[1] && q2 >= edge[2] && q2 <= edge[3];
 }
 
 std::string too_narrow(const Eigen::Vector2d& size, double min_side) {
@@ -301,9 +250,8 @@ BinFit fit_bin(ocl::Device& dev, const PlaneSamples& s, const BinFitOptions& opt
     // one too to replace it. A thin rim holds few samples, and a face at one "height" with a few
     // of them (a robot arm's beside a wire-mesh basket, seen from 2.4 m tilted 30 degrees) held
     // 4 times as many, along an up 22 degrees off.
-    const auto within = [&](const Eigen::Vector3d& p) { return in_frame(b1, b2, open, p); };
     const bool on_floor =
-        floor_under(s, planes, up, within, rim.height, bin.tol, opt.noise).plane.has_value();
+        floor_under(s, planes, up, b1, b2, open, rim.height, bin.tol, opt.noise).plane.has_value();
     if (best.on_floor && !on_floor) continue;
     best = {up, e1, e2, rim, on_floor};
   }
@@ -409,7 +357,7 @@ BinFit fit_bin(ocl::Device& dev, const PlaneSamples& s, const BinFitOptions& opt
   if (opt.spec.mode == BinSpec::Mode::sized) {
     floor_h = rim.height - opt.spec.size.z();
   } else {
-    const FloorUnder f = floor_under(s, planes, up, inside, rim.height, bin.tol, opt.noise);
+    const FloorUnder f = floor_under(s, planes, up, a1, a2, edge, rim.height, bin.tol, opt.noise);
     const std::vector<double>& h = f.heights;
     bin.floor_plane = f.plane.has_value();
     if (f.plane) floor_h = *f.plane;

@@ -73,6 +73,13 @@ std::optional<Eigen::Vector3d> rim_normal(const PlaneSamples& samples, const Rim
                                           const Eigen::Vector3d& up, double tol,
                                           double min_spread = 10.0);
 
+// Whether p lies within the frame {a1 low, a1 high, a2 low, a2 high} (edges may be infinite).
+inline bool in_frame(const Eigen::Vector3d& a1, const Eigen::Vector3d& a2,
+                     const std::array<double, 4>& edge, const Eigen::Vector3d& p) {
+  const double q1 = a1.dot(p), q2 = a2.dot(p);
+  return q1 >= edge[0] && q1 <= edge[1] && q2 >= edge[2] && q2 <= edge[3];
+}
+
 // A frame, not a layer: of the samples at the rim's height, at most this share may lie inside
 // the interior. A layer of parts at one height over the whole view is not a rim; a bin filled up
 // to its rim is not found either (the whole image is then used, with a warning).

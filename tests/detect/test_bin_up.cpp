@@ -56,7 +56,7 @@ TEST(BinUp, SupportPeaksAtTheTrueUp) {
   const std::size_t at_up = rim_support(band, up, tol);
   ASSERT_GT(at_up, 200u);
   for (double off : {1.0, 3.0, 10.0})
-    for (const Eigen::Vector3d& axis : {Eigen::Vector3d::UnitX(), Eigen::Vector3d::UnitY()}) {
+    for (const Eigen::Vector3d& axis : {Eigen::Vector3d(1, 0, 0), Eigen::Vector3d(0, 1, 0)}) {
       SCOPED_TRACE(testing::Message() << off << " degrees about " << axis.transpose());
       const Eigen::Vector3d tipped = Eigen::AngleAxisd(off * M_PI / 180, axis) * up;
       // A degree off still holds most of the rim (the 3-bin sum spans 9 mm); 3 off, not.
