@@ -24,6 +24,7 @@ struct BinSceneSpec {
   std::vector<Eigen::Vector4d> spheres = {      // x, y, z, radius in the bin frame
       {-100, -50, 25, 25}, {60, 40, 25, 25}, {120, -80, 30, 30}, {-20, 90, 20, 20}};
   double depth_scale = 0.1;
+  bool wall_px = true;  // false: no +x wall nor rim (seen through to the ground, as a mesh's)
   // More axis-aligned boxes in the bin frame (lo, hi): a robot arm, a fixture.
   std::vector<std::pair<Eigen::Vector3d, Eigen::Vector3d>> boxes;
 };
@@ -88,6 +89,7 @@ inline BinScene make_bin_scene(const BinSceneSpec& s = {}) {
       {{-hw, hd, 0}, {hw, hd + t, s.H}},
       {{-3000, -3000, -40}, {3000, 3000, -20}},             // the ground
   };
+  if (!s.wall_px) boxes.erase(boxes.begin() + 2);
   for (const auto& [lo, hi] : s.boxes) boxes.push_back({lo, hi});
   out.cam.depth_scale = float(s.depth_scale);
   out.depth = {out.cam.width, out.cam.height,

@@ -162,6 +162,26 @@ TEST(BinFit, RimSideWithoutDepthEndsAtTheFarthestPointSeen) {
   }
 }
 
+// A wall one sees through (a wire-mesh basket's): no +x wall nor rim, the ground beyond. The
+// side not seen used to run to the farthest point seen below the rim, the ground out to the
+// image's edge; it now ends where the walls' tops end, and the ground beyond is left out.
+TEST(BinFit, ASideSeenThroughEndsWhereTheWallsEnd) {
+  for (double tilt : {0.0, 15.0}) {
+    SCOPED_TRACE(testing::Message() << "tilt " << tilt);
+    BinSceneSpec s;
+    s.tilt_deg = tilt;
+    s.wall_px = false;
+    const BinScene scene = make_bin_scene(s);
+    const BinFit b = fit(scene, {BinSpec::Mode::find, {}});
+    ASSERT_TRUE(b.found) << b.why;
+    SCOPED_TRACE(describe(b));
+    EXPECT_EQ(b.unseen_sides.size(), 1u);
+    EXPECT_LT(angle_deg(b.axes.col(2), scene.bin_to_cam.col(2)), 1.0);
+    EXPECT_NEAR(b.interior.y(), s.D, 6.0);
+    EXPECT_NEAR(b.interior.x(), s.W, 15.0);
+  }
+}
+
 // The floor covered by a ramp of flat parts leaning 3 degrees (the most supported plane facing
 // the camera): "up" is taken from the level rim, not from the ramp.
 TEST(BinFit, UpComesFromTheLevelRimNotALeaningLayer) {
