@@ -370,8 +370,7 @@ BinFit fit_bin(ocl::Device& dev, const PlaneSamples& s, const BinFitOptions& opt
   }
   if (x.x() < 0) x = -x, y = -y;
 
-  // The floor: below the rim, inside the rim's rectangle.
-  const auto inside = [&](const Eigen::Vector3d& p) { return in_frame(a1, a2, edge, p); };
+  // The floor: below the rim, inside the rim's rectangle (bin_floor.hpp).
   double floor_h = 0;
   if (opt.spec.mode == BinSpec::Mode::sized) {
     floor_h = rim.height - opt.spec.size.z();
