@@ -265,8 +265,8 @@ BinFit fit_bin(ocl::Device& dev, const PlaneSamples& s, const BinFitOptions& opt
     if (!rim.found || (best.rim.found && !(double(rim.points) > need * double(best.rim.points))))
       continue;
     // A frame with a level floor under it (the plane up came from, or one parallel, with
-    // nothing below it) is a bin, not a slice of a pile: an up searched along the rim must have
-    // one too to replace it. A thin rim holds few samples, and a face at one "height" with a few
+    // nothing below it) is a bin, not a slice of a pile: a later candidate (another plane's up,
+    // or the one searched along the rim) must have one too to replace it. A thin rim holds few samples, and a face at one "height" with a few
     // of them (a robot arm's beside a wire-mesh basket, seen from 2.4 m tilted 30 degrees) held
     // 4 times as many, along an up 22 degrees off.
     const bool on_floor =
