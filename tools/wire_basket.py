@@ -4,13 +4,14 @@ a bin like the real scene binpick is judged on (a wire-mesh basket whose rim is 
 in view, the ground seen through its walls and floor, a robot arm partly in view):
 
   tools/wire_basket.py OUT.stl [--size 600,400,300] [--bar 4] [--pitch 40] [--rim 10] [--arm]
+                       [--arm-top -40]
 
 The basket is in synth's bin frame (mm, the interior floor's centre at the origin, floor at z = 0,
 z up): walls of square bars (vertical every --pitch mm, horizontal every 1.5 --pitch), a floor of
 bars every --pitch / 2 both ways with its top at z = 0, a square rim tube of --rim mm on top of the
 walls, and the ground 50 mm under the floor. With --arm, a box 160 mm wide leans 35 degrees
-outward beside the -y wall, its top 40 mm under the rim (something high beside the bin that is not
-the rim). Pass the same interior to synth: `--bin-mesh OUT.stl --bin-size 600,400,300`.
+outward beside the -y wall, its top --arm-top mm above the walls' top (default -40: under the rim;
+something high beside the bin that is not the rim; above the rim, it stands over the rim's side). Pass the same interior to synth: `--bin-mesh OUT.stl --bin-size 600,400,300`.
 Needs numpy (pip install numpy)."""
 import argparse
 import os
@@ -38,7 +39,7 @@ def box(tris, lo, hi, rotation=None, pivot=None):
         tris.append((c[a], c[cc], c[d]))
 
 
-def basket(W, D, H, bar, pitch, rim, arm):
+def basket(W, D, H, bar, pitch, rim, arm, arm_top=-40.0):
     tris = []
     hw, hd, b = W / 2, D / 2, bar
     for x in np.arange(-hw, hw + 1e-6, pitch / 2):  # floor: bars along y on top, along x below
@@ -64,8 +65,8 @@ def basket(W, D, H, bar, pitch, rim, arm):
     if arm:
         a = np.radians(35)
         R = np.array([[1, 0, 0], [0, np.cos(a), -np.sin(a)], [0, np.sin(a), np.cos(a)]])
-        box(tris, (-80, -hd - 420, H - 300), (80, -hd - 60, H - 40), R,
-            np.array([0.0, -hd - 60, H - 40]))
+        top = H + arm_top
+        box(tris, (-80, -hd - 420, top - 260), (80, -hd - 60, top), R, np.array([0.0, -hd - 60, top]))
     return tris
 
 
@@ -89,16 +90,19 @@ def main():
     p.add_argument("--pitch", type=float, default=40.0, help="wall bar spacing, mm")
     p.add_argument("--rim", type=float, default=10.0, help="rim tube size, mm")
     p.add_argument("--arm", action="store_true", help="a leaning box beside the -y wall")
+    p.add_argument("--arm-top", type=float, default=-40.0,
+                   help="with --arm: its top's height above the walls' top, mm (the rim is --rim above them)")
     a = p.parse_args()
     try:
         W, D, H = (float(v) for v in a.size.split(","))
     except ValueError:
         sys.exit(f"wire_basket.py: --size must be W,D,H in mm, got '{a.size}'")
-    if min(W, D, H) <= 0 or not (0 < a.bar < a.pitch / 2) or a.rim <= 0:
-        sys.exit("wire_basket.py: sizes must be positive and --bar under half of --pitch")
+    if min(W, D, H) <= 0 or not (0 < a.bar < a.pitch / 2) or a.rim <= 0 or abs(a.arm_top) > 2000:
+        sys.exit("wire_basket.py: sizes must be positive, --bar under half of --pitch and "
+                 "--arm-top within 2000 mm")
     if os.path.exists(a.out):
         sys.exit(f"wire_basket.py: {a.out} exists; not overwritten")
-    tris = basket(W, D, H, a.bar, a.pitch, a.rim, a.arm)
+    tris = basket(W, D, H, a.bar, a.pitch, a.rim, a.arm, a.arm_top)
     write_stl(a.out, tris)
     print(f"wrote {a.out}: {len(tris)} triangles")
 

@@ -46,6 +46,12 @@ struct BorderBand {
 // Every stride-th sample in the band (stride 1: all of them).
 BorderBand border_band(const PlaneSamples& samples, double band, std::size_t stride = 1);
 
+// How many of the band's samples stand above `height` along `up`; with one_side_may_be_covered,
+// those on the image side that holds the most of them are not counted (a sample in a corner
+// belongs to both its sides).
+std::size_t samples_above(const BorderBand& band, const Eigen::Vector3d& up, double height,
+                          bool one_side_may_be_covered);
+
 // 1. Heights of the samples in the border band, histogram of tol-wide bins; the highest peak
 //    (at least 3 % of the biggest and 1 % of the band) whose points lie along at least three
 //    of the four sides of the image is the rim (a robot arm or a part at the border covers one).

@@ -10,6 +10,7 @@
 #include "host/core/error.hpp"
 #include "host/detect/bin_fit.hpp"
 #include "host/detect/bin_region.hpp"
+#include "host/detect/bin_rim.hpp"
 #include "host/detect/bin_spec.hpp"
 #include "host/detect/depth_noise.hpp"
 #include "host/detect/hypotheses.hpp"
@@ -458,6 +459,49 @@ TEST(BinFit, AFrameOverAFloorIsNotOutbidByAFaceBesideIt) {
     ASSERT_TRUE(b.found) << describe(b);
     EXPECT_LT(angle_deg(b.axes.col(2), scene.bin_to_cam.col(2)), 1.0) << describe(b);
   }
+}
+
+// Samples above a height along the border: all of them, or all but those on the image side
+// holding the most (a corner's sample belongs to both its sides).
+TEST(BinFit, SamplesAboveCanLeaveOutTheMostCoveredImageSide) {
+  BorderBand band;
+  const auto add = [&](int n, double z, std::uint8_t sides) {
+    for (int i = 0; i < n; ++i) {
+      band.points.emplace_back(0.0f, 0.0f, float(z));
+      band.sides.push_back(sides);
+    }
+  };
+  add(5, 10, 1);   // left, above
+  add(20, 10, 8);  // bottom, above
+  add(2, 10, 9);   // the bottom-left corner, above
+  add(30, -10, 2); // right, below
+  const Eigen::Vector3d up = Eigen::Vector3d::UnitZ();
+  EXPECT_EQ(samples_above(band, up, 0.0, false), 27u);
+  EXPECT_EQ(samples_above(band, up, 0.0, true), 5u);
+  EXPECT_EQ(samples_above(band, up, 20.0, true), 0u);
+  EXPECT_EQ(samples_above(BorderBand(), up, 0.0, true), 0u);
+}
+
+// A robot arm above the rim, over one of its sides and out to the image's border, is no heap
+// standing above a slice (ASliceThroughAHeapIsNoRim): one side of the border may hold what
+// stands above the rim. Straight down and tilted, with and without holes.
+TEST(BinFit, AnArmAboveTheRimOverOneSideIsNoHeap) {
+  for (double tilt : {0.0, 20.0})
+    for (double holes : {0.0, 0.5}) {
+      SCOPED_TRACE(testing::Message() << "tilt " << tilt << ", holes " << holes);
+      BinSceneSpec s;
+      s.tilt_deg = tilt;
+      // An arm reaching down towards the rim from beside the camera: its inner face stands over
+      // the rim's -y side, from 40 mm above it to beside the camera (its top out of view).
+      s.boxes.push_back({{-100, -s.D / 2 - 400, s.H + 40}, {100, -s.D / 2 + 10, s.distance - 10}});
+      BinScene scene = make_bin_scene(s);
+      if (holes > 0) punch_holes(scene.depth, holes, 3);
+      const BinFit b = fit(scene, {BinSpec::Mode::find, {}});
+      ASSERT_TRUE(b.found) << b.why;
+      SCOPED_TRACE(describe(b));
+      EXPECT_LT(angle_deg(b.axes.col(2), scene.bin_to_cam.col(2)), 1.0);
+      EXPECT_NEAR(b.interior.x(), s.W, 6.0);
+    }
 }
 
 // The highest points of the bare scene are on the rim; with the bin's mask none is, and every
