@@ -9,9 +9,12 @@ in view, the ground seen through its walls and floor, a robot arm partly in view
 The basket is in synth's bin frame (mm, the interior floor's centre at the origin, floor at z = 0,
 z up): walls of square bars (vertical every --pitch mm, horizontal every 1.5 --pitch), a floor of
 bars every --pitch / 2 both ways with its top at z = 0, a square rim tube of --rim mm on top of the
-walls, and the ground 50 mm under the floor. With --arm, a box 160 mm wide leans 35 degrees
-outward beside the -y wall, its top --arm-top mm above the walls' top (default -40: under the rim;
-something high beside the bin that is not the rim; above the rim, it stands over the rim's side). Pass the same interior to synth: `--bin-mesh OUT.stl --bin-size 600,400,300`.
+walls, and the ground 50 mm under the floor. With --arm, a box 160 mm wide, 360 long and 260
+thick, turned 35 degrees about x: its top edge runs 60 mm outside the -y wall, --arm-top mm above
+the walls' top (default -40: under the rim), and its lower end passes through that wall and
+reaches 89 mm into the interior, 213 mm under its top, like an arm reaching into the basket
+(something high at the bin's side that is not the rim; parts dropped land on it too). Pass the
+same interior to synth: `--bin-mesh OUT.stl --bin-size 600,400,300`.
 Needs numpy (pip install numpy)."""
 import argparse
 import os
@@ -89,7 +92,8 @@ def main():
     p.add_argument("--bar", type=float, default=4.0, help="bar thickness, mm")
     p.add_argument("--pitch", type=float, default=40.0, help="wall bar spacing, mm")
     p.add_argument("--rim", type=float, default=10.0, help="rim tube size, mm")
-    p.add_argument("--arm", action="store_true", help="a leaning box beside the -y wall")
+    p.add_argument("--arm", action="store_true",
+                   help="a turned box through the -y wall, its top outside the basket")
     p.add_argument("--arm-top", type=float, default=-40.0,
                    help="with --arm: its top's height above the walls' top, mm (the rim is --rim above them)")
     a = p.parse_args()
