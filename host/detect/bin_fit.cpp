@@ -94,15 +94,15 @@ double farthest_below_rim(const PlaneSamples& s, const Eigen::Vector3d& up,
 // few degrees off makes a slice of the heap one "height" along three sides; the heap's parts
 // above the slice give it away (measured: 0.15-0.98 of the slice's count on 44 such images, 0
 // on the 152 images of bins, docs/pipeline.md).
-// One image side may be covered by something above the rim, as the rim itself may be covered
-// along one (bin_rim.hpp): a robot arm over the rim's side, out to the image's border (wire-mesh
-// baskets with an arm 150 mm above the rim: 0.2-2.5 times the rim's count, and the bin was not
-// found in 7 of 8 images or found 31-40 degrees off). So where the frame has two sides or more
-// seen and a level floor under it (floor_under), the samples above on the image side holding the
-// most of them are not counted. A slice through a heap has no floor under it (the paper's scenes
-// show none), and the heap's parts above it may lie mostly on one side: without the floor's
-// condition 15 of the 108 paper images got a "bin"; without the two sides, a slice 24 degrees
-// off in a test heap (BinFit.ASliceThroughAHeapIsNoRim).
+// One image side may be covered by something above the rim, as the rim itself may be covered along
+// one (bin_rim.hpp): a robot arm over the rim's side, out to the image's border (wire-mesh baskets
+// with an arm 150 mm above the rim: 0.2-2.5 times the rim's count; the bin was not found in 3 of 8
+// images and a wrong frame in the other 5). So where the frame has two sides or more seen and a
+// level floor under it (floor_under), the samples above on the image side holding the most of them
+// are not counted. A slice through a heap has no floor under it (the paper's scenes show none),
+// and the heap's parts above it may lie mostly on one side: without the floor's condition 15 of
+// the 108 paper images got a "bin"; without the two sides, a slice 24 degrees off in a test heap
+// (BinFit.ASliceThroughAHeapIsNoRim).
 constexpr double kMaxAboveRim = 0.1;
 
 // The frame's first axis, a1 = cos(angle) e1 + sin(angle) e2 (bin_rim.hpp).
@@ -274,14 +274,14 @@ BinFit fit_bin(ocl::Device& dev, const PlaneSamples& s, const BinFitOptions& opt
     const double need = c < from_planes ? 1.0 : kSearchedUpMargin;
     if (!rim.found || (best.rim.found && !(double(rim.points) > need * double(best.rim.points))))
       continue;
-    // A frame with a level floor under it (the plane up came from, or one parallel, with
-    // nothing below it) is a bin, not a slice of a pile: a later candidate (another plane's up,
-    // or the one searched along the rim) must have one too to replace it. A thin rim holds few samples, and a face at one "height" with a few
-    // of them (a robot arm's beside a wire-mesh basket, seen from 2.4 m tilted 30 degrees) held
-    // 4 times as many, along an up 22 degrees off. A frame found only with one image side's
-    // samples above not counted has no such hold: along a layer of parts leaning 19 degrees in
-    // a bin, the layer was a level floor under a 310 x 75 mm "frame", and the rim's high side
-    // above it one image side (BinFit.UpFromTheRimWhenNoPlaneIsLevel).
+    // A frame with a level floor under it (the plane up came from, or one parallel, with nothing
+    // below it) is a bin, not a slice of a pile: a later candidate (another plane's up, or the one
+    // searched along the rim) must have one too to replace it. A thin rim holds few samples, and a
+    // face at one "height" with a few of them (a robot arm's beside a wire-mesh basket, seen from
+    // 2.4 m tilted 30 degrees) held 4 times as many, along an up 22 degrees off. A frame found
+    // only with one image side's samples above not counted has no such hold: along a layer of
+    // parts leaning 19 degrees in a bin, the layer was a level floor under a 310 x 75 mm "frame",
+    // and the rim's high side above it one image side (BinFit.UpFromTheRimWhenNoPlaneIsLevel).
     const bool on_floor =
         !forgiven &&
         floor_under(s, planes, up, b1, b2, open, rim.height, bin.tol, opt.noise).plane.has_value();
