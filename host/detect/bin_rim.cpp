@@ -137,17 +137,17 @@ BorderBand border_band(const PlaneSamples& s, double band, std::size_t stride) {
 
 std::size_t samples_above(const BorderBand& band, const Eigen::Vector3d& up, double height,
                           bool one_side_may_be_covered) {
+  std::size_t above = 0;
   std::array<std::size_t, 4> per_side{};
-  std::vector<std::uint8_t> above_sides;
   for (std::size_t i = 0; i < band.points.size(); ++i) {
     if (!(up.dot(band.points[i].cast<double>()) > height)) continue;
-    above_sides.push_back(band.sides[i]);
+    ++above;
     for (int b = 0; b < 4; ++b) per_side[b] += (band.sides[i] >> b) & 1;
   }
-  if (!one_side_may_be_covered) return above_sides.size();
-  const auto most = std::max_element(per_side.begin(), per_side.end()) - per_side.begin();
-  return std::size_t(std::count_if(above_sides.begin(), above_sides.end(),
-                                   [&](std::uint8_t sides) { return !((sides >> most) & 1); }));
+  // A sample is counted once on each side it belongs to: those off the most covered side are
+  // all the others.
+  return one_side_may_be_covered ? above - *std::max_element(per_side.begin(), per_side.end())
+                                 : above;
 }
 
 RimFit fit_rim(const PlaneSamples& s, const Eigen::Vector3d& up, const Eigen::Vector3d& e1,
