@@ -1,0 +1,135 @@
+#!/usr/bin/env bash
+# Detection quality on a fixed list of small realistic sets: varied parts (thin plates, a
+# symmetric shaft, blocks, a bent sheet nobody tuned for), the paper's unrendered bins, bins
+# with a structured-light sensor and distractors, and wire-mesh baskets like the real scene
+# binpick is judged on (2064 x 1544 at 2 m, tilted, depth lost in patches, a robot arm).
+# For telling whether a change helps beyond the case it was made for (docs/contributing.md).
+#
+#   bench/realistic_sets.sh BINPICK WORK TAG [SET...]
+#
+# makes each set once (WORK/data/SET, kept between runs: same seeds, same bins), trains its
+# model once per binary (WORK/models/SET.ppfm), detects into WORK/TAG/SET.csv with the options in
+# $DETECT (extra `binpick detect` options, e.g. DETECT="--plane-search 0") and scores it with
+# `binpick eval --no-vsd`. Prints per set: images, top-ranked right (loose: 10 % of the diameter
+# and 15 degrees), top-ranked strict (5 %, 5 degrees), all hypotheses right, ms per hypothesis;
+# then the totals. Writes the same to WORK/TAG/summary.tsv. Detections already made for TAG are
+# kept (resumable); remove WORK/TAG to redo them. Without SETs, every set; `--list` lists them.
+# Needs python3 with numpy for the baskets (tools/wire_basket.py).
+set -euo pipefail
+here=$(cd "$(dirname "$0")" && pwd)
+tools=$here/../tools
+
+# name | binpick synth options (the sought part first; basket files are made below)
+SETS=(
+  "plate_paper|--model builtin:plate --bins 4 --objects 350 --noise 0.02 --bin-render none --seed 21"
+  "plate_paper_n5|--model builtin:plate --bins 4 --objects 350 --noise 0.05 --bin-render none --seed 22"
+  "plate_sl|--model builtin:plate --bins 4 --objects 100 --seed 31 --distractors builtin:bracket:0.125,builtin:bolt:0.125 --sensor-model structured-light --noise 0.02"
+  "plate_sl_n5|--model builtin:plate --bins 4 --objects 100 --seed 32 --distractors builtin:bracket:0.125,builtin:bolt:0.125 --sensor-model structured-light --noise 0.05"
+  "plate_mesh|--model builtin:plate --diameter 150 --bins 4 --objects 60 --seed 101 --distractors builtin:bracket,builtin:bolt,builtin:tee --sensor-model structured-light --specular-cone 8 --dropout-share 0.55 --bin-mesh @basket --width 2064 --height 1544 --camera-height 2000 --camera-tilt 20"
+  "plate_mesh_arm|--model builtin:plate --diameter 150 --bins 4 --objects 60 --seed 102 --distractors builtin:bracket,builtin:bolt,builtin:tee --sensor-model structured-light --specular-cone 8 --dropout-share 0.55 --bin-mesh @basket_arm --width 2064 --height 1544 --camera-height 2200 --camera-tilt 25"
+  "plate_mesh_armhi|--model builtin:plate --diameter 150 --bins 4 --objects 60 --seed 103 --distractors builtin:bracket,builtin:bolt,builtin:tee --sensor-model structured-light --specular-cone 8 --dropout-share 0.55 --bin-mesh @basket_armhi --width 2064 --height 1544 --camera-height 2000 --camera-tilt 20"
+  "bracket_mesh_t30|--model builtin:bracket --bins 4 --objects 60 --seed 104 --distractors builtin:plate,builtin:bolt --sensor-model structured-light --specular-cone 8 --dropout-share 0.55 --bin-mesh @basket_arm --width 2064 --height 1544 --camera-height 2400 --camera-tilt 30"
+  "bracket_sl_n3|--model builtin:bracket --bins 4 --objects 100 --seed 105 --distractors builtin:bolt,builtin:tee --sensor-model structured-light --noise 0.03"
+  "shaft_sl_n3|--model builtin:shaft --bins 4 --objects 60 --seed 106 --distractors builtin:bolt,builtin:plate --sensor-model structured-light --noise 0.03"
+  "bolt_sl_n5|--model builtin:bolt --bins 4 --objects 100 --seed 107 --distractors builtin:tee,builtin:shaft --sensor-model structured-light --noise 0.05"
+  "tee_paper_n5|--model builtin:tee --bins 4 --objects 350 --noise 0.05 --bin-render none --seed 108"
+  "bentsheet_sl_n3|--model @bentsheet --bins 4 --objects 100 --seed 109 --distractors builtin:bolt,builtin:plate --sensor-model structured-light --noise 0.03"
+  "washer_sl|--model @washer --bins 4 --objects 100 --seed 110 --distractors builtin:bolt,builtin:bracket --sensor-model structured-light --specular-cone 8 --dropout-share 0.5"
+)
+
+if [ "${1:-}" = "--list" ]; then
+  for s in "${SETS[@]}"; do echo "${s%%|*}"; done
+  exit 0
+fi
+usage="usage: bench/realistic_sets.sh BINPICK WORK TAG [SET...] | --list"
+BINPICK=$(readlink -f "${1:?$usage}")
+WORK=${2:?$usage}
+TAG=${3:?$usage}
+shift 3
+mkdir -p "$WORK"
+WORK=$(readlink -f "$WORK")
+export BINPICK_QUIET=1
+
+wanted=("$@")
+if [ ${#wanted[@]} -eq 0 ]; then
+  for s in "${SETS[@]}"; do wanted+=("${s%%|*}"); done
+fi
+
+# The files that @NAME stands for in a set's options, made on first use.
+asset() {
+  local f
+  case $1 in
+    basket) f=$WORK/assets/basket.stl
+      [ -f "$f" ] || python3 "$tools/wire_basket.py" "$f" >/dev/null ;;
+    basket_arm) f=$WORK/assets/basket_arm.stl
+      [ -f "$f" ] || python3 "$tools/wire_basket.py" "$f" --arm >/dev/null ;;
+    basket_armhi) f=$WORK/assets/basket_armhi.stl
+      [ -f "$f" ] || python3 "$tools/wire_basket.py" "$f" --arm --arm-top 150 >/dev/null ;;
+    bentsheet|washer|hexnut) f=$WORK/assets/$1.stl
+      [ -f "$f" ] || python3 "$tools/unseen_parts.py" "$WORK/assets" >/dev/null ;;
+    *) echo "realistic_sets: unknown asset @$1" >&2; exit 2 ;;
+  esac
+  [ -f "$f" ] || { echo "realistic_sets: could not make $f" >&2; exit 1; }
+  echo "$f"
+}
+
+options_of() {
+  local s
+  for s in "${SETS[@]}"; do
+    if [ "${s%%|*}" = "$1" ]; then
+      local word out=()
+      for word in ${s#*|}; do
+        if [[ $word == @* ]]; then out+=("$(asset "${word#@}")"); else out+=("$word"); fi
+      done
+      echo "${out[@]}"
+      return 0
+    fi
+  done
+  echo "realistic_sets: no set named $1 (--list lists them)" >&2
+  exit 2
+}
+
+mkdir -p "$WORK/assets" "$WORK/data" "$WORK/models" "$WORK/$TAG"
+summary=$WORK/$TAG/summary.tsv
+printf 'set\timages\ttop\tstrict\tall\thypotheses\tms_per_hypothesis\n' >"$summary"
+for set in "${wanted[@]}"; do
+  opts=$(options_of "$set") || exit 1
+  read -r -a synth_opts <<<"$opts"
+  data=$WORK/data/$set
+  # synth resumes: a finished dataset costs nothing; an interrupted one is completed.
+  "$BINPICK" synth "${synth_opts[@]}" --no-cloud --out "$data" --cache-dir "$WORK/cache" >/dev/null
+  # The part's model options are the synth options before the first that is not a model option.
+  model_opts=()
+  i=0
+  while [ $i -lt ${#synth_opts[@]} ]; do
+    case ${synth_opts[$i]} in
+      --model|--diameter|--unit-scale) model_opts+=("${synth_opts[$i]}" "${synth_opts[$((i + 1))]}") ;;
+    esac
+    i=$((i + 2))
+  done
+  stamp=$(md5sum "$BINPICK" | cut -c1-12)
+  model=$WORK/models/$set-$stamp.ppfm
+  [ -f "$model" ] || "$BINPICK" train "${model_opts[@]}" --out "$model" >/dev/null
+  csv=$WORK/$TAG/$set.csv
+  # shellcheck disable=SC2086
+  "$BINPICK" detect --model "$model" --dataset "$data" --out "$csv" ${DETECT:-} >"$WORK/$TAG/$set.detect.log"
+  [ -s "$csv" ] || { echo "realistic_sets: $set: detect wrote nothing" >&2; exit 1; }
+  "$BINPICK" eval --dataset "$data" --results "$csv" --out "$WORK/$TAG/$set.report" --no-vsd \
+    --pictures 0 --json >"$WORK/$TAG/$set.json"
+  python3 - "$WORK/$TAG/$set.json" "$set" >>"$summary" <<'PY'
+import json, sys
+row = json.load(open(sys.argv[1]))["datasets"][0]
+loose, strict = row["precision"]["loose"], row["precision"]["strict"]
+n, h = row["images"], row["hypotheses"]
+ms = row["ms_per_hypothesis"]
+print("\t".join(str(x) for x in (sys.argv[2], n, round(loose["top"] * n), round(strict["top"] * n),
+                                 round(loose["all"] * h), h, "-" if ms is None else round(ms))))
+PY
+  tail -1 "$summary"
+done
+python3 - "$summary" <<'PY'
+import sys
+rows = [l.rstrip("\n").split("\t") for l in open(sys.argv[1])][1:]
+tot = [sum(int(r[i]) for r in rows) for i in range(1, 6)]
+print("total\t%d images\ttop %d\tstrict %d\tall %d of %d" % tuple(tot))
+PY
