@@ -14,7 +14,7 @@
 # and 15 degrees), top-ranked strict (5 %, 5 degrees), all hypotheses right, ms per hypothesis;
 # then the totals. Writes the same to WORK/TAG/summary.tsv. Detections already made for TAG are
 # kept (resumable); remove WORK/TAG to redo them. Without SETs, every set; `--list` lists them.
-# Needs python3 with numpy for the baskets (tools/wire_basket.py).
+# Needs python3 with numpy for the baskets (tools/wire_basket.py). -h, --help: this text.
 set -euo pipefail
 here=$(cd "$(dirname "$0")" && pwd)
 tools=$here/../tools
@@ -37,6 +37,10 @@ SETS=(
   "washer_sl|--model @washer --bins 4 --objects 100 --seed 110 --distractors builtin:bolt,builtin:bracket --sensor-model structured-light --specular-cone 8 --dropout-share 0.5"
 )
 
+if [ "${1:-}" = "-h" ] || [ "${1:-}" = "--help" ]; then
+  sed -n '2,/^set -euo/p' "$0" | sed '$d' | sed 's/^# \{0,1\}//'
+  exit 0
+fi
 if [ "${1:-}" = "--list" ]; then
   for s in "${SETS[@]}"; do echo "${s%%|*}"; done
   exit 0
@@ -98,7 +102,7 @@ for set in "${wanted[@]}"; do
   data=$WORK/data/$set
   # synth resumes: a finished dataset costs nothing; an interrupted one is completed.
   "$BINPICK" synth "${synth_opts[@]}" --no-cloud --out "$data" --cache-dir "$WORK/cache" >/dev/null
-  # The part's model options are the synth options before the first that is not a model option.
+  # The part's model options among the synth options (every option of a set takes one value).
   model_opts=()
   i=0
   while [ $i -lt ${#synth_opts[@]} ]; do
