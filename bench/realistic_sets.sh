@@ -8,8 +8,9 @@
 #   bench/realistic_sets.sh BINPICK WORK TAG [SET...]
 #
 # makes each set once (WORK/data/SET, kept between runs: same seeds, same bins), trains its
-# model once per binary (WORK/models/SET.ppfm), detects into WORK/TAG/SET.csv with the options in
-# $DETECT (extra `binpick detect` options, e.g. DETECT="--plane-search 0") and scores it with
+# model once per binary (WORK/models/SET-MD5.ppfm, MD5 of the binary), detects into
+# WORK/TAG/SET.csv with the options in $DETECT (extra `binpick detect` options, e.g.
+# DETECT="--plane-search 0") and scores it with
 # `binpick eval --no-vsd`. Prints per set: images, top-ranked right (loose: 10 % of the diameter
 # and 15 degrees), top-ranked strict (5 %, 5 degrees), all hypotheses right, ms per hypothesis;
 # then the totals. Writes the same to WORK/TAG/summary.tsv. Detections already made for TAG are
@@ -94,6 +95,7 @@ options_of() {
 }
 
 mkdir -p "$WORK/assets" "$WORK/data" "$WORK/models" "$WORK/$TAG"
+stamp=$(md5sum "$BINPICK" | cut -c1-12)  # a model per binary: a new build retrains
 summary=$WORK/$TAG/summary.tsv
 printf 'set\timages\ttop\tstrict\tall\thypotheses\tms_per_hypothesis\n' >"$summary"
 for set in "${wanted[@]}"; do
@@ -111,7 +113,6 @@ for set in "${wanted[@]}"; do
     esac
     i=$((i + 2))
   done
-  stamp=$(md5sum "$BINPICK" | cut -c1-12)
   model=$WORK/models/$set-$stamp.ppfm
   [ -f "$model" ] || "$BINPICK" train "${model_opts[@]}" --out "$model" >/dev/null
   csv=$WORK/$TAG/$set.csv
