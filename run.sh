@@ -10,7 +10,8 @@ BUILD_PACKAGES=(
   pocl-opencl-icd ocl-icd-opencl-dev opencl-headers opencl-clhpp-headers clinfo
   mesa-vulkan-drivers libvulkan-dev vulkan-tools vulkan-validationlayers glslang-tools
   libbullet-dev libbullet-extras-dev libeigen3-dev libtinygltf-dev nlohmann-json3-dev
-  libtinyobjloader-dev libcli11-dev libspdlog-dev libpng-dev libgtest-dev libbenchmark-dev
+  libtinyobjloader-dev libcli11-dev libspdlog-dev libpng-dev libmeshoptimizer-dev libgtest-dev
+  libbenchmark-dev
   gnuplot-nox fonts-dejavu-core
 )
 BENCH_PACKAGES=(libopencv-contrib-dev)

@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include <fmt/format.h>
+#include <iostream>
 
 #include "host/core/diameter.hpp"
 #include "host/core/error.hpp"
@@ -27,6 +28,15 @@
 
 namespace binpick {
 namespace {
+
+// Says once per part when the physics' hulls come from a simplified mesh (hacd_simplify.hpp).
+void note_simplified_hulls(const std::string& what, const Mesh& part, const DecomposeOptions& o) {
+  if (part.triangles.size() <= o.max_hacd_triangles) return;
+  std::cerr << fmt::format(
+      "note: {}: {} triangles; its convex hulls for the physics come from the mesh simplified to "
+      "{} triangles (grown to cover the mesh); rendering uses the mesh as it is\n",
+      what, part.triangles.size(), o.hacd_target_triangles);
+}
 
 namespace fs = std::filesystem;
 using Clock = std::chrono::steady_clock;
@@ -100,11 +110,11 @@ SynthSummary synthesize(const Model& model, const std::string& model_description
   if (!o.bin_mesh.empty()) inputs.bin_mesh_digest = file_digest(o.bin_mesh);
   const double diameter = inputs.diameter;
   check_part_size("--model " + model_description, diameter, o.drop.bin_size_mm);
-  check_decomposable("--model " + model_description, model.mesh);
+  note_simplified_hulls("--model " + model_description, model.mesh, o.decompose);
   for (std::size_t k = 0; k < distractors.size(); ++k) {
     const std::string what = "--distractors " + o.distractors[k].model;
     check_part_size(what, inputs.distractor_diameters[k], o.drop.bin_size_mm);
-    check_decomposable(what, distractors[k].mesh);
+    note_simplified_hulls(what, distractors[k].mesh, o.decompose);
   }
   const std::vector<int> counts = kind_counts(o.drop.objects, o.distractors);
   std::vector<const Mesh*> mesh_list;

@@ -94,6 +94,8 @@ std::uint64_t decomposition_key(const Mesh& part, const DecomposeOptions& option
   h.value(static_cast<std::uint8_t>(options.add_extra_dist_points));
   h.value(static_cast<std::uint8_t>(options.add_neighbours_dist_points));
   h.value(static_cast<std::uint8_t>(options.add_faces_points));
+  h.value(static_cast<std::uint64_t>(options.max_hacd_triangles));
+  h.value(static_cast<std::uint64_t>(options.hacd_target_triangles));
   return h.digest();
 }
 

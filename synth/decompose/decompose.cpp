@@ -1,23 +1,11 @@
 // The cached entry point: look the decomposition up by content hash, else run HACD and store.
 #include "synth/decompose/decompose.hpp"
 
-#include <fmt/format.h>
 #include <spdlog/spdlog.h>
-
-#include "host/core/error.hpp"
 
 #include "synth/decompose/convex_cache.hpp"
 
 namespace binpick {
-
-void check_decomposable(const std::string& what, const Mesh& part) {
-  if (part.triangles.size() <= kMaxDecomposeTriangles) return;
-  throw InputError(fmt::format(
-      "{}: {} triangles; the convex decomposition for the physics takes at most {} (its time "
-      "grows much faster than the count): simplify the mesh, e.g. with MeshLab's quadric edge "
-      "collapse decimation or Blender's Decimate modifier",
-      what, part.triangles.size(), kMaxDecomposeTriangles));
-}
 
 ConvexParts decompose_convex(const Mesh& part, const DecomposeOptions& options) {
   if (!options.use_cache) return decompose_convex_uncached(part, options);

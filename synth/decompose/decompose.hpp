@@ -40,6 +40,11 @@ struct DecomposeOptions {
   // sticks out: the torus's 8 hulls go from 12 to 22 on average). Collision tests walk every
   // vertex: 12 kept a 350-part torus bin twice as fast as 32.
   std::size_t max_hull_vertices = 12;
+  // HACD sees at most max_hacd_triangles (hacd_simplify.hpp; every built-in part has fewer, so
+  // their hulls are HACD's on the mesh itself): a mesh of more is simplified to
+  // hacd_target_triangles first.
+  std::size_t max_hacd_triangles = 1500;
+  std::size_t hacd_target_triangles = 1000;
   bool add_extra_dist_points = true;  // needed to see the concavity of holes (a torus)
   bool add_neighbours_dist_points = false;
   bool add_faces_points = true;
@@ -47,17 +52,6 @@ struct DecomposeOptions {
   std::filesystem::path cache_dir;
   bool use_cache = true;
 };
-
-// HACD's time grows much faster than the triangle count (measured on two busy cores: the
-// built-in bolt, 480 triangles, 36 to 42 s; a 1848-triangle sphere had not finished after 300 s):
-// a model of many thousand triangles would decompose for hours, so beyond this it is refused up
-// front with the advice to simplify it. Training and detection take large meshes (a 2-million
-// triangle sphere trains in 20 s, most of it reading the file).
-inline constexpr std::size_t kMaxDecomposeTriangles = 5000;
-
-// Throws InputError, naming `what` (e.g. "--model part.stl"), for a mesh with more than
-// kMaxDecomposeTriangles triangles.
-void check_decomposable(const std::string& what, const Mesh& part);
 
 // The hulls of `part` (mm, part frame); served from the cache when the same mesh was
 // decomposed with the same options before. Throws InputError for an empty or invalid mesh.

@@ -20,6 +20,7 @@
 
 #include "host/core/error.hpp"
 #include "synth/decompose/decompose.hpp"
+#include "synth/decompose/hacd_simplify.hpp"
 #include "synth/decompose/hull_cover.hpp"
 
 namespace binpick {
@@ -28,12 +29,7 @@ namespace {
 // HACD clusters triangles through shared vertices, so a mesh whose vertices were split per
 // face (for normals, as STL and many glTF files are) would fall apart into single triangles.
 // Weld bit-identical positions and drop the triangles that collapse.
-struct WeldedMesh {
-  std::vector<Eigen::Vector3d> points;
-  std::vector<std::array<long, 3>> triangles;
-};
-
-WeldedMesh weld(const Mesh& part) {
+HacdMesh weld(const Mesh& part) {
   struct BitsHash {
     std::size_t operator()(const std::array<std::uint32_t, 3>& b) const {
       return (std::size_t{b[0]} * 73856093u) ^ (std::size_t{b[1]} * 19349663u) ^
@@ -42,7 +38,7 @@ WeldedMesh weld(const Mesh& part) {
   };
   std::unordered_map<std::array<std::uint32_t, 3>, long, BitsHash> index_of;
   std::vector<long> remap(part.positions.size());
-  WeldedMesh welded;
+  HacdMesh welded;
   for (std::size_t i = 0; i < part.positions.size(); ++i) {
     const Eigen::Vector3f p = part.positions[i] + Eigen::Vector3f::Zero();  // -0 becomes +0
     std::array<std::uint32_t, 3> bits{};
@@ -97,8 +93,10 @@ void validate(const Mesh& part) {
 
 ConvexParts decompose_convex_uncached(const Mesh& part, const DecomposeOptions& options) {
   validate(part);
-  WeldedMesh mesh = weld(part);
-  if (mesh.triangles.empty()) throw InputError("mesh has only degenerate triangles");
+  const HacdMesh welded = weld(part);
+  if (welded.triangles.empty()) throw InputError("mesh has only degenerate triangles");
+  const HacdMesh mesh =
+      simplify_for_hacd(welded, options.max_hacd_triangles, options.hacd_target_triangles);
 
   // HACD's concavity threshold depends on the model's scale (docs/synthesis.md): normalise to the
   // unit diagonal around the bounding-box centre, and undo that on the hulls.
