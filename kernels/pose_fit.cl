@@ -62,7 +62,7 @@ __kernel void pose_fit(__global const float4* points, const bp_camera cam,
     if (bp_fit_project(&f, &c, m.x, m.y, m.z, n.x, n.y, n.z, q, nq, &pixel, &cell) != 2) continue;
     const float4 p = points[pixel];
     float agree = 0.0f;
-    const uint cls = bp_fit_classify(&f, q, nq, as_float(grid[cell]), p.x, p.y, p.z, p.w, &agree);
+    const uint cls = bp_fit_classify(&f, &c, q, nq, as_float(grid[cell]), p.x, p.y, p.z, p.w, &agree);
     if (f.residuals != 0u) own_class[j] = (uchar)cls;
     ++s.count[cls];
     s.agreement += agree;

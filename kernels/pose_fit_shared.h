@@ -8,7 +8,8 @@
  * behind its near side, does not count), it is visible, and the measured point at its pixel
  * says what the sensor saw there:
  *   missing      no depth at that pixel: neutral (shadows, shiny metal, out of range);
- *   inlier       measured point within `tolerance` of the model surface (bp_fit_classify);
+ *   inlier       measured point within `tolerance` of the model surface along the ray
+ *                (bp_fit_classify);
  *   see-through  otherwise, measured depth farther: the sensor looks through the part;
  *   occluded     otherwise, measured depth nearer: something lies in front of the part.
  * Visible points with a measured point within `gate` along the ray also give one point-to-plane
@@ -28,6 +29,12 @@
  * twin test, host/detect/twin_test.hpp, needs to tell no depth from something in front). */
 #ifndef BINPICK_POSE_FIT_SHARED_H
 #define BINPICK_POSE_FIT_SHARED_H
+
+#ifdef __OPENCL_VERSION__
+#define BP_FIT_SQRT sqrt
+#else
+#define BP_FIT_SQRT std::sqrt
+#endif
 
 /* Work items per pose: one work group fits one pose. */
 #define BP_FIT_GROUP 64
@@ -103,20 +110,31 @@ BP_FN int bp_fit_project(const bp_pose_fit* f, const bp_camera* cam, float mx, f
 }
 
 /* The class of a visible model point q (normal nq) at depth q[2] whose cell's nearest model
- * depth is zmin, given the measured point p there (w = 0: no data). An inlier lies within the
- * tolerance of the model's tangent plane (a pixel spans a range of depths on a sloped surface,
- * so the depth difference alone would reject a right pose's sloped faces) and not farther than
- * three tolerances along the ray (the plane test is lenient near grazing). */
-BP_FN bp_u32 bp_fit_classify(const bp_pose_fit* f, const float* q, const float* nq, float zmin,
-                             float px, float py, float pz, float pw, float* agreement) {
+ * depth is zmin, given the measured point p there (w = 0: no data). An inlier's measured point
+ * lies within the tolerance of the model's tangent plane *along the ray*, and not farther than
+ * three tolerances in depth. Along the ray, because a depth sensor's noise lies along its rays:
+ * the point-to-plane distance r shrinks it by the cosine c between the normal and the ray, so
+ * on faces seen obliquely nearly every noisy point agreed, and at 5 % noise a plate seen edge
+ * on, or a shaft's flanks, outscored a part seen face on. But a pixel also spans a width of the
+ * surface (the measured point may come from anywhere in it, the model point is at one place),
+ * which moves r by up to half the pixel's width times the sine. So |r| may reach
+ * tolerance x c + pixel / 2 x sine: the same share of a right pose's points agrees whichever
+ * way its faces turn. */
+BP_FN bp_u32 bp_fit_classify(const bp_pose_fit* f, const bp_camera* cam, const float* q,
+                             const float* nq, float zmin, float px, float py, float pz, float pw,
+                             float* agreement) {
   *agreement = 0.0f;
   if (q[2] > zmin + f->slack) return BP_FIT_HIDDEN;
   if (pw == 0.0f) return BP_FIT_MISSING;
   const float dz = pz - q[2];
   const float r = nq[0] * (px - q[0]) + nq[1] * (py - q[1]) + nq[2] * (pz - q[2]);
-  if (r <= f->tolerance && -r <= f->tolerance && dz <= 3.0f * f->tolerance &&
-      -dz <= 3.0f * f->tolerance) {
-    const float u = r / f->tolerance;
+  const float qq = q[0] * q[0] + q[1] * q[1] + q[2] * q[2];
+  const float nn = nq[0] * nq[0] + nq[1] * nq[1] + nq[2] * nq[2];
+  float c = -(nq[0] * q[0] + nq[1] * q[1] + nq[2] * q[2]) / BP_FIT_SQRT(qq * nn);
+  c = c < 1.0f ? c : 1.0f;
+  const float allowed = f->tolerance * c + 0.5f * (q[2] / cam->fx) * BP_FIT_SQRT(1.0f - c * c);
+  if (r <= allowed && -r <= allowed && dz <= 3.0f * f->tolerance && -dz <= 3.0f * f->tolerance) {
+    const float u = r / allowed;
     *agreement = 1.0f - u * u;
     return BP_FIT_INLIER;
   }

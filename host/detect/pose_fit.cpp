@@ -182,7 +182,7 @@ std::vector<FitSums> pose_fit_sums_reference(const PointImage& image, const bp_c
       if (project(j) != 2) continue;
       const float* p = &image.xyzw[std::size_t(pixel) * 4];
       float agree = 0;
-      const unsigned cls = bp_fit_classify(&f, q, nq, grid[cell], p[0], p[1], p[2], p[3], &agree);
+      const unsigned cls = bp_fit_classify(&f, &cam, q, nq, grid[cell], p[0], p[1], p[2], p[3], &agree);
       if (f.residuals != 0) s.classes[j] = std::uint8_t(cls);
       ++s.count[cls];
       s.agreement += agree;
