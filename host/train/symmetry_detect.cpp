@@ -47,8 +47,8 @@ constexpr std::size_t kScanMisses = 12;     // a coarse step passes with at most
 constexpr std::size_t kRefinePoints = 512;  // test points of the refinement
 constexpr std::size_t kMaxRuns = 16;        // runs of passing coarse steps refined per axis
 constexpr double kSameAxisDeg = 1.0;        // candidate axes (up to sign) merged within
-// Products of generators merged within this: the elements of the groups found differ by 22.5
-// degrees or more (n <= 12, and half turns scanned at pi / n), while a generator found by the
+// Products of generators merged within this: the elements of the groups found differ by 7.5
+// degrees or more (n <= 24, and half turns scanned at pi / n), while a generator found by the
 // scan may be a fraction of a degree off and products add its error up.
 constexpr double kSameRotationDeg = 5.0;
 constexpr std::size_t kFeatureAxes = 12;  // of each kind when all moments are equal
@@ -173,8 +173,16 @@ AxisResult examine_axis(const SurfaceTest& test, const Vector3d& axis) {
   r.continuous = std::all_of(std::begin(kContinuousAngles), std::end(kContinuousAngles),
                              [&](double angle) { return test.accepts(rotation(axis, angle)); });
   if (r.continuous) return r;
+  // Every turn of the group, not only the first: near 2 pi / n the orders lie a degree or two
+  // apart, within the test's tolerance (a 14-tooth gear on a round shaft passes a 24-degree
+  // turn, a fifteenth, and fails 48), so the largest n whose first turn passes may be no group.
+  const auto all_turns_pass = [&](int n) {
+    for (int k = 1; k <= n / 2; ++k)
+      if (!test.accepts(rotation(axis, 2 * kPi * k / n))) return false;
+    return true;
+  };
   for (int n = kSymmetryMaxFold; n >= 2; --n)
-    if (test.accepts(rotation(axis, 2 * kPi / n))) {
+    if (all_turns_pass(n)) {
       r.order = n;
       break;
     }

@@ -96,13 +96,18 @@ Eigen::Matrix4d turn(const Eigen::Vector3d& axis, double angle, const Eigen::Vec
 }
 
 // A right prism over a regular n-gon of circumradius r (a vertex on +x), z from 0 to h,
-// outward and counter-clockwise.
-Mesh prism(int n, float r, float h) {
+// outward and counter-clockwise; with r_alt > 0, over a 2n-gon whose vertices alternate between
+// r and r_alt (a gear of n teeth).
+Mesh prism(int n, float r, float h, float r_alt = 0) {
   Mesh m;
+  const int corners = r_alt > 0 ? 2 * n : n;
   for (float z : {0.0f, h})
-    for (int i = 0; i < n; ++i)
-      m.positions.emplace_back(r * std::cos(2 * kPi * i / n), r * std::sin(2 * kPi * i / n), z);
-  const auto N = std::uint32_t(n);
+    for (int i = 0; i < corners; ++i) {
+      const float radius = r_alt > 0 && i % 2 == 1 ? r_alt : r;
+      const double a = 2 * kPi * i / corners;
+      m.positions.emplace_back(radius * std::cos(a), radius * std::sin(a), z);
+    }
+  const auto N = std::uint32_t(corners);
   m.positions.emplace_back(0, 0, 0);
   m.positions.emplace_back(0, 0, h);
   for (std::uint32_t i = 0; i < N; ++i) {
@@ -183,6 +188,19 @@ TEST(SymmetryDetect, BoxesAndPrisms) {
   const Mesh hex = prism(6, 15, 10);
   const Eigen::Vector3d hc(0, 0, 5);
   EXPECT_EQ(compare(found_on(hex), dihedral(6, hc), hex), "");
+
+  // A gear of 14 teeth on a round shaft standing on one face (no half turn swaps its ends,
+  // which would generate the fourteen turns from two half turns): fourteenfold. With orders up
+  // to 12 it came out sevenfold; with the first turn of each order alone, "fifteenfold" with
+  // two elements (a 24-degree turn moves the teeth within the test's tolerance, 48 does not).
+  Mesh gear = prism(14, 15, 10, 12.5f);
+  Mesh boss = prism(28, 6, 40);
+  const auto base = std::uint32_t(gear.positions.size());
+  for (const auto& p : boss.positions) gear.positions.push_back(p + Eigen::Vector3f(0, 0, 10));
+  for (const auto& t : boss.triangles) gear.triangles.push_back({base + t[0], base + t[1], base + t[2]});
+  PartSymmetries c14;
+  for (int k = 1; k < 14; ++k) c14.discrete.push_back(turn({0, 0, 1}, 2 * k * kPi / 14, hc));
+  EXPECT_EQ(compare(found_on(gear), c14, gear), "");
 
   // A cube: three equal moments; the 23 rotations of the octahedral group. Also turned off the
   // axes and with its corners moved by up to 0.1 mm (axes from faces and vertices, off by a
