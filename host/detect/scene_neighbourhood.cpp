@@ -80,6 +80,30 @@ std::vector<std::uint32_t> extremes(const PointCloud& s) {
   return out;
 }
 
+// The positions (into s) of the points that share a voxel of the grid with a listed one: the
+// candidates to win those voxels once the listed ones are out. The cell is computed as the
+// subsampling kernel does; a point rounded into a neighbouring cell only costs a round more,
+// since the result is checked, not assumed.
+std::vector<std::uint32_t> voxel_mates(const PointCloud& s, float voxel_size,
+                                       const std::vector<std::uint32_t>& listed) {
+  const VoxelGrid g = voxel_grid(s, voxel_size);
+  const auto cell = [&](const Eigen::Vector3f& p) {
+    const Eigen::Vector3f f = (p - g.origin) * g.inv_voxel;
+    std::uint64_t c[3];
+    for (int a = 0; a < 3; ++a)
+      c[a] = std::min<std::uint64_t>(static_cast<std::uint64_t>(std::max(0.0f, std::floor(f[a]))),
+                                     g.dims[a] - 1);
+    return (c[2] * g.dims[1] + c[1]) * g.dims[0] + c[0];
+  };
+  std::vector<std::uint64_t> cells;
+  for (std::uint32_t k : listed) cells.push_back(cell(s.points[k]));
+  std::sort(cells.begin(), cells.end());
+  std::vector<std::uint32_t> out;
+  for (std::uint32_t k = 0; k < s.points.size(); ++k)
+    if (std::binary_search(cells.begin(), cells.end(), cell(s.points[k]))) out.push_back(k);
+  return out;
+}
+
 }  // namespace
 
 NeighbourhoodSample sample_neighbourhood(const PreparedScene& scene, const CropOptions& crop,
@@ -140,6 +164,16 @@ NeighbourhoodSample sample_neighbourhood(const PreparedScene& scene, const CropO
         out.cloud.normals.push_back(normals.normal(i));
       }
       break;
+    }
+    // A voxel whose winner has no normal goes to the next nearest point of it: compute the
+    // normals of all its points now, so the next round's winner there is known. One winner at a
+    // time took up to 46 rounds (or all of S after kLazyNormalRounds) under patchy depth.
+    std::vector<std::uint32_t> failed;
+    for (std::size_t j = 0; j < sub.kept.size(); ++j)
+      if (normals.state(need_idx[j]) == kInvalid) failed.push_back(sub.kept[j]);
+    if (!last && !failed.empty()) {
+      normals.compute(to_crop(voxel_mates(s, voxel_size, failed)));
+      normals_ms += clock.lap();
     }
     drop_invalid();
   }

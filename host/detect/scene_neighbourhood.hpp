@@ -9,9 +9,10 @@
 //      and side (they fix the voxel grid's origin and size);
 //   3. if all of them are valid, subsampling the valid points V of S gives the same result:
 //      V has the same extremes (so the same grid) and every voxel's winner in S (nearest its
-//      centre, then lowest index) is in V, so it wins in V too; otherwise drop the invalid ones
-//      from S and go to 2 (rarely more than one extra round; after a few, all normals of S
-//      are computed at once).
+//      centre, then lowest index) is in V, so it wins in V too; otherwise compute the normals
+//      of every point in the voxels whose winner has none (their next winners), drop the
+//      invalid ones from S and go to 2. Usually one or two extra rounds; after a few, all
+//      normals of S are computed at once.
 #pragma once
 
 #include <cstddef>

@@ -516,6 +516,49 @@ TEST(SampleNeighbourhood, EqualsCropThenSubsampleWithNormalsEverywhere) {
   EXPECT_GT(saved, 0u);
 }
 
+// Patchy depth, as structured light gives on shiny parts: most pixels lost, in single pixels
+// and blobs, so many a voxel's nearest point has too few neighbours for a normal. The result is
+// still exactly the eager one, and the normals computed stay a small share of the crop: the
+// points of a voxel whose winner has no normal are computed together, not one a round (which
+// ran out of rounds and computed all of the crop: every crop here, before).
+TEST(SampleNeighbourhood, PatchyDepthComputesFewNormals) {
+  std::mt19937 rng(23);
+  std::uniform_real_distribution<float> U(0.0f, 1.0f);
+  const bp_camera cam = camera(480, 360, 2000.0f);  // about half a millimetre a pixel
+  DepthImage depth = random_depth(rng, cam, 0.5f);
+  for (std::uint32_t v = 0; v < cam.height; ++v)
+    for (std::uint32_t u = 0; u < cam.width; ++u) {
+      const bool blob = (u / 24 + v / 18) % 3 == 0 && U(rng) < 0.9f;
+      if (blob || U(rng) < 0.75f) depth.raw[v * cam.width + u] = 0;
+    }
+  ScenePrepOptions with, without;
+  with.normals.max_distance = without.normals.max_distance = 10.0f;
+  without.normals_everywhere = false;
+  const PreparedScene full = prepare_scene(test_device(), depth, cam, with);
+  const PreparedScene lazy = prepare_scene(test_device(), depth, cam, without);
+  std::size_t cropped = 0, computed = 0, invalid = 0;
+  for (int t = 0; t < 6; ++t) {
+    std::size_t i = 0;
+    do i = std::size_t(U(rng) * float(cam.width * cam.height - 1));
+    while (full.points.xyzw[4 * i + 3] == 0.0f);
+    CropOptions opt;
+    opt.centre = Eigen::Vector3f(full.points.xyzw[4 * i], full.points.xyzw[4 * i + 1],
+                                 full.points.xyzw[4 * i + 2]);
+    opt.radius = 60.0f;
+    const float voxel = 6.0f;
+    const NeighbourhoodSample got = sample_neighbourhood(lazy, opt, without.normals, voxel);
+    const PointCloud cropped_full = crop_sphere(full, opt);
+    const VoxelSubsample want = voxel_subsample(test_device(), cropped_full, voxel);
+    ASSERT_EQ(got.cloud.points, want.cloud.points) << t;
+    ASSERT_EQ(got.cloud.normals, want.cloud.normals) << t;
+    cropped += got.cropped;
+    computed += got.normals;
+    invalid += got.cropped - cropped_full.points.size();
+  }
+  EXPECT_GT(invalid, cropped / 50);  // the depth is patchy enough to need rounds
+  EXPECT_LT(computed, cropped / 4) << computed << " normals of " << cropped << " cropped";
+}
+
 // Voxels stretched along the camera's axis (noisy depth, depth_noise.hpp): the neighbourhood is
 // exactly the points whose squashed copies (z / stretch) voxel subsampling keeps; on a noisy
 // image it keeps fewer than cubic voxels do, the reference agrees within rounding, and a stretch
