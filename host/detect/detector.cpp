@@ -297,7 +297,7 @@ void take_pose(Detection& d, const RefinedPose& r, std::uint64_t votes, std::uin
 std::vector<Detection> Detector::refine_and_rank(
     std::vector<Detection> detections, const std::vector<std::vector<PoseCluster>>& candidates,
     const ocl::Buffer<float>& points, const bp_camera& cam, DetectTimes& t, bool sensor,
-    const BinFit* bin) {
+    const BinFit* bin, PlaneSearchMemo* searched) {
   Stopwatch clock;
   std::vector<PoseToRefine> poses;
   struct Owner {
@@ -330,9 +330,14 @@ std::vector<Detection> Detector::refine_and_rank(
       starts.push_back(start);
     }
   std::vector<PlaneSearchResult> found;
-  if (search && !starts.empty())
-    found = plane_search(dev_, point_depths(dev_, points, cam), cam, plane_search_model_, starts,
-                         params_.plane_search * model_.diameter, float(tolerance));
+  if (search && !starts.empty()) {
+    const double span = params_.plane_search * model_.diameter;
+    const ocl::Buffer<float> depth = point_depths(dev_, points, cam);
+    found = searched ? plane_search(*searched, dev_, depth, cam, plane_search_model_, starts, span,
+                                    float(tolerance))
+                     : plane_search(dev_, depth, cam, plane_search_model_, starts, span,
+                                    float(tolerance));
+  }
   std::size_t next = 0;
   for (std::size_t k = 0; k < candidates.size(); ++k)
     for (std::uint32_t c = 0; c < candidates[k].size(); ++c, ++next) {
@@ -552,9 +557,10 @@ std::vector<Detection> Detector::detect(const DepthImage& depth, const bp_camera
     }
     t.hypotheses += to - from;
   };
+  PlaneSearchMemo searched;  // the first round's searches, for the second
   const auto rank = [&] {
     return refine_and_rank(voted, candidates, scene.device->points, cam, t, true,
-                           masked.bin ? &*masked.bin : nullptr);
+                           masked.bin ? &*masked.bin : nullptr, &searched);
   };
   std::vector<Detection> detections = in_rounds(hyps.size(), vote, rank);
   if (times) *times += t;

@@ -244,7 +244,8 @@ class Detector {
   std::vector<Detection> refine_and_rank(std::vector<Detection> detections,
                                          const std::vector<std::vector<PoseCluster>>& candidates,
                                          const ocl::Buffer<float>& points, const bp_camera& cam,
-                                         DetectTimes& t, bool sensor, const BinFit* bin = nullptr);
+                                         DetectTimes& t, bool sensor, const BinFit* bin = nullptr,
+                                         PlaneSearchMemo* searched = nullptr);
 
   ocl::Device& dev_;
   double program_build_s_ = 0;

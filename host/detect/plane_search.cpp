@@ -212,4 +212,23 @@ std::vector<PlaneSearchResult> plane_search(ocl::Device& dev, const ocl::Buffer<
   return best;
 }
 
+std::vector<PlaneSearchResult> plane_search(PlaneSearchMemo& memo, ocl::Device& dev,
+                                            const ocl::Buffer<float>& depth, const bp_camera& cam,
+                                            const PlaneSearchModel& model,
+                                            const std::vector<Eigen::Isometry3d>& starts,
+                                            double span, float tolerance) {
+  std::size_t known = 0;
+  while (known < memo.starts.size() && known < starts.size() &&
+         memo.starts[known].matrix() == starts[known].matrix())
+    ++known;
+  std::vector<PlaneSearchResult> found(memo.found.begin(), memo.found.begin() + long(known));
+  const std::vector<Eigen::Isometry3d> rest(starts.begin() + long(known), starts.end());
+  const std::vector<PlaneSearchResult> more =
+      plane_search(dev, depth, cam, model, rest, span, tolerance);
+  found.insert(found.end(), more.begin(), more.end());
+  memo.starts = starts;
+  memo.found = found;
+  return found;
+}
+
 }  // namespace binpick

@@ -85,4 +85,22 @@ std::vector<PlaneSearchResult> plane_search(ocl::Device& dev, const ocl::Buffer<
                                             const std::vector<Eigen::Isometry3d>& starts,
                                             double span, float tolerance);
 
+// The searches done on one image so far. With a second round of hypotheses, the candidates are
+// refined and ranked again with the first round's in front (detector.cpp, in_rounds), and a
+// start's search depends only on the start and the image: the first round's are not redone
+// (a third of the search time of an image that takes two rounds).
+struct PlaneSearchMemo {
+  std::vector<Eigen::Isometry3d> starts;
+  std::vector<PlaneSearchResult> found;
+};
+
+// plane_search over the starts not in the memo: the memo's results stand for the longest
+// prefix of `starts` that equals (bit for bit) the start the memo holds at that position; the
+// memo then holds all of `starts`. The same results as plane_search on all of them.
+std::vector<PlaneSearchResult> plane_search(PlaneSearchMemo& memo, ocl::Device& dev,
+                                            const ocl::Buffer<float>& depth, const bp_camera& cam,
+                                            const PlaneSearchModel& model,
+                                            const std::vector<Eigen::Isometry3d>& starts,
+                                            double span, float tolerance);
+
 }  // namespace binpick

@@ -166,3 +166,49 @@ TEST(PlaneSearch, FindsThePlateShiftedAndTurnedOnAPlate) {
   EXPECT_EQ(none[0].score, none[0].start_score);
   EXPECT_TRUE(plane_search(dev, depth, cam, sm, {}, 18.0, 4.8f).empty());
 }
+
+// The memo of one image's searches (a second round of hypotheses brings the first round's
+// starts again, in front): the starts it holds are not searched again, the results are those of
+// searching all the starts, and a start that differs from the memo's at its position is searched
+// afresh with everything after it.
+TEST(PlaneSearch, MemoReusesTheStartsItHoldsAndEqualsASearchOfAll) {
+  auto& dev = test::test_device();
+  const PpfModel& model = plate_model();
+  const bp_camera cam = test::plate_camera();
+  const Eigen::Isometry3d pose = test::plate_pose();
+  const PlaneSearchModel sm =
+      upload_plane_search_model(dev, model.edge_probes, model.cloud, centroid(model.cloud));
+  const PointImage image = test::plate_over_plane(cam, pose, true);
+  const ocl::Buffer<float> points(dev, std::span<const float>(image.xyzw));
+  const ocl::Buffer<float> depth = point_depths(dev, points, cam);
+  const double deg = std::numbers::pi / 180;
+  const std::vector<Eigen::Isometry3d> first = {in_plane_pose(pose, sm.axis, sm.centre, 25 * deg, 9, -6),
+                                                pose};
+  std::vector<Eigen::Isometry3d> both = first;
+  both.push_back(in_plane_pose(pose, sm.axis, sm.centre, -40 * deg, -5, 7));
+  const std::vector<PlaneSearchResult> all = plane_search(dev, depth, cam, sm, both, 18.0, 4.8f);
+  const auto expect_equal = [&](const std::vector<PlaneSearchResult>& got, const char* what) {
+    ASSERT_EQ(got.size(), all.size()) << what;
+    for (std::size_t k = 0; k < got.size(); ++k) {
+      EXPECT_EQ(got[k].score, all[k].score) << what << " " << k;
+      EXPECT_EQ(got[k].start_score, all[k].start_score) << what << " " << k;
+      EXPECT_TRUE(got[k].pose.matrix() == all[k].pose.matrix()) << what << " " << k;
+    }
+  };
+  PlaneSearchMemo memo;
+  EXPECT_EQ(plane_search(memo, dev, depth, cam, sm, first, 18.0, 4.8f).size(), 2u);
+  ASSERT_EQ(memo.starts.size(), 2u);
+  // A planted result shows which entries were reused: the held starts, not the new one.
+  memo.found[1].score = 123.0f;
+  std::vector<PlaneSearchResult> got = plane_search(memo, dev, depth, cam, sm, both, 18.0, 4.8f);
+  EXPECT_EQ(got[1].score, 123.0f);
+  got[1].score = all[1].score;
+  expect_equal(got, "second round");
+  EXPECT_EQ(memo.starts.size(), 3u);
+  // The first start changed: nothing after it is trusted.
+  PlaneSearchMemo stale;
+  stale.starts = {both[1], both[0]};
+  stale.found = {all[1], all[0]};
+  stale.found[0].score = stale.found[1].score = 123.0f;
+  expect_equal(plane_search(stale, dev, depth, cam, sm, both, 18.0, 4.8f), "stale memo");
+}
