@@ -82,9 +82,16 @@ options_of() {
   local s
   for s in "${SETS[@]}"; do
     if [ "${s%%|*}" = "$1" ]; then
-      local word out=()
+      local word file out=()
       for word in ${s#*|}; do
-        if [[ $word == @* ]]; then out+=("$(asset "${word#@}")"); else out+=("$word"); fi
+        # Checked here: set -e does not apply inside `options_of ... || exit`, and a failed
+        # asset would otherwise leave an empty word in the options.
+        if [[ $word == @* ]]; then
+          file=$(asset "${word#@}") || return 1
+          out+=("$file")
+        else
+          out+=("$word")
+        fi
       done
       echo "${out[@]}"
       return 0
