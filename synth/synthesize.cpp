@@ -3,9 +3,9 @@
 
 #include <chrono>
 #include <cmath>
+#include <iostream>
 
 #include <fmt/format.h>
-#include <iostream>
 
 #include "host/core/diameter.hpp"
 #include "host/core/error.hpp"

@@ -332,11 +332,9 @@ std::vector<Detection> Detector::refine_and_rank(
   std::vector<PlaneSearchResult> found;
   if (search && !starts.empty()) {
     const double span = params_.plane_search * model_.diameter;
-    const ocl::Buffer<float> depth = point_depths(dev_, points, cam);
-    found = searched ? plane_search(*searched, dev_, depth, cam, plane_search_model_, starts, span,
-                                    float(tolerance))
-                     : plane_search(dev_, depth, cam, plane_search_model_, starts, span,
-                                    float(tolerance));
+    PlaneSearchMemo none;
+    found = plane_search(searched ? *searched : none, dev_, point_depths(dev_, points, cam), cam,
+                         plane_search_model_, starts, span, float(tolerance));
   }
   std::size_t next = 0;
   for (std::size_t k = 0; k < candidates.size(); ++k)

@@ -33,6 +33,13 @@ Eigen::Vector3d centroid(const PointCloud& c) {
   return s / double(c.points.size());
 }
 
+// The plate's search model on the device: its edge probes and surface points, turned about
+// their centroid.
+PlaneSearchModel plate_search_model(ocl::Device& dev) {
+  const PpfModel& model = plate_model();
+  return upload_plane_search_model(dev, model.edge_probes, model.cloud, centroid(model.cloud));
+}
+
 double angle_between(const Eigen::Matrix3d& a, const Eigen::Matrix3d& b) {
   return Eigen::AngleAxisd(a.transpose() * b).angle();
 }
@@ -65,8 +72,7 @@ TEST(PlaneSearch, EdgeStepScoresMatchReference) {
   const std::vector<float> want_depth = point_depths_reference(image.xyzw);
   EXPECT_EQ(depth.read(dev), want_depth);
   EXPECT_GT(std::count(want_depth.begin(), want_depth.end(), 0.0f), 0);
-  const PlaneSearchModel sm =
-      upload_plane_search_model(dev, model.edge_probes, model.cloud, centroid(model.cloud));
+  const PlaneSearchModel sm = plate_search_model(dev);
   std::mt19937 rng(3);
   std::uniform_real_distribution<double> U(-1.0, 1.0);
   std::vector<Eigen::Isometry3d> poses = {pose};
@@ -111,8 +117,7 @@ TEST(PlaneSearch, NoDepthCountsAFullToleranceAtTheEdgesAndHalfUnderThePart) {
   const bp_camera cam = test::plate_camera();
   const std::vector<float> empty(4 * std::size_t(cam.width) * cam.height, 0.0f);
   const ocl::Buffer<float> points(dev, std::span<const float>(empty));
-  const PlaneSearchModel sm =
-      upload_plane_search_model(dev, model.edge_probes, model.cloud, centroid(model.cloud));
+  const PlaneSearchModel sm = plate_search_model(dev);
   const std::vector<Eigen::Isometry3d> poses = {test::plate_pose()};
   const float got = edge_step_scores(dev, point_depths(dev, points, cam), cam, sm, poses, 1, 4.8f)[0];
   EXPECT_NEAR(got, 2.4f, 1e-4f);  // float sums over a few thousand probes
@@ -126,11 +131,9 @@ TEST(PlaneSearch, NoDepthCountsAFullToleranceAtTheEdgesAndHalfUnderThePart) {
 
 TEST(PlaneSearch, FindsThePlateShiftedAndTurnedOnAPlate) {
   auto& dev = test::test_device();
-  const PpfModel& model = plate_model();
   const bp_camera cam = test::plate_camera();
   const Eigen::Isometry3d pose = test::plate_pose();
-  const PlaneSearchModel sm =
-      upload_plane_search_model(dev, model.edge_probes, model.cloud, centroid(model.cloud));
+  const PlaneSearchModel sm = plate_search_model(dev);
   // The sheet's normal is the plate's thin axis (z in the model frame).
   EXPECT_GT(std::fabs(sm.axis.z()), 0.99);
   for (bool holes_without_depth : {false, true}) {
@@ -173,11 +176,9 @@ TEST(PlaneSearch, FindsThePlateShiftedAndTurnedOnAPlate) {
 // afresh with everything after it.
 TEST(PlaneSearch, MemoReusesTheStartsItHoldsAndEqualsASearchOfAll) {
   auto& dev = test::test_device();
-  const PpfModel& model = plate_model();
   const bp_camera cam = test::plate_camera();
   const Eigen::Isometry3d pose = test::plate_pose();
-  const PlaneSearchModel sm =
-      upload_plane_search_model(dev, model.edge_probes, model.cloud, centroid(model.cloud));
+  const PlaneSearchModel sm = plate_search_model(dev);
   const PointImage image = test::plate_over_plane(cam, pose, true);
   const ocl::Buffer<float> points(dev, std::span<const float>(image.xyzw));
   const ocl::Buffer<float> depth = point_depths(dev, points, cam);

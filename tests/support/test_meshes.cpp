@@ -28,8 +28,8 @@ Mesh l_bracket() {
   return m;
 }
 
-Mesh torus() {
-  const int nu = 32, nv = 12;
+Mesh torus(int around, int across) {
+  const int nu = around, nv = across;
   const double ring = 20, tube = 6;
   Mesh m;
   for (int i = 0; i < nu; ++i)

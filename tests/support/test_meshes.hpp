@@ -13,9 +13,9 @@ namespace binpick::test {
 // from outside. HACD cuts it into 2 hulls.
 Mesh l_bracket();
 
-// Ring radius 20 mm, tube radius 6 mm (32 x 12 quads): diameter 52 mm; HACD cuts it into 8
-// hulls, one would fill the hole.
-Mesh torus();
+// Ring radius 20 mm, tube radius 6 mm (32 x 12 quads by default): diameter 52 mm; HACD cuts it
+// into 8 hulls, one would fill the hole. More quads make a dense mesh of the same shape.
+Mesh torus(int around = 32, int across = 12);
 
 // An axis-aligned box from the origin to `size`, outward-facing triangles.
 Mesh box(const Eigen::Vector3f& size);

@@ -16,24 +16,7 @@
 namespace binpick {
 namespace {
 
-// A torus (ring radius 20 mm, tube 6 mm) of `around` x `across` quads, outward-facing.
-Mesh dense_torus(int around, int across) {
-  Mesh m;
-  for (int i = 0; i < around; ++i)
-    for (int j = 0; j < across; ++j) {
-      const double u = 2 * M_PI * i / around, v = 2 * M_PI * j / across;
-      const double r = 20 + 6 * std::cos(v);
-      m.positions.emplace_back(float(r * std::cos(u)), float(r * std::sin(u)), float(6 * std::sin(v)));
-    }
-  const auto at = [&](int i, int j) { return std::uint32_t((i % around) * across + j % across); };
-  for (int i = 0; i < around; ++i)
-    for (int j = 0; j < across; ++j) {
-      m.triangles.push_back({at(i, j), at(i + 1, j), at(i + 1, j + 1)});
-      m.triangles.push_back({at(i, j), at(i + 1, j + 1), at(i, j + 1)});
-    }
-  return m;
-}
-
+// The mesh as HACD takes it.
 HacdMesh to_hacd(const Mesh& m) {
   HacdMesh h;
   for (const auto& p : m.positions) h.points.push_back(p.cast<double>());
@@ -60,7 +43,7 @@ TEST(HacdSimplify, AMeshWithinTheLimitIsUnchanged) {
 }
 
 TEST(HacdSimplify, ADenseTorusStaysAClosedTorusOfAtMostTheTarget) {
-  const HacdMesh dense = to_hacd(dense_torus(160, 60));  // 19200 triangles
+  const HacdMesh dense = to_hacd(test::torus(160, 60));  // 19200 triangles
   const HacdMesh simple = simplify_for_hacd(dense, 1500, 1000);
   ASSERT_GE(simple.triangles.size(), 100u);
   EXPECT_LE(simple.triangles.size(), 1000u);
@@ -86,7 +69,7 @@ TEST(HacdSimplify, ATargetOfZeroOrAboveTheLimitIsRefused) {
 }
 
 TEST(HacdSimplify, HullsOfASimplifiedMeshCoverTheMeshItself) {
-  const Mesh dense = dense_torus(160, 60);
+  const Mesh dense = test::torus(160, 60);
   DecomposeOptions options;
   options.use_cache = false;
   const ConvexParts parts = decompose_convex(dense, options);
