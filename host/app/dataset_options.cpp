@@ -1,4 +1,5 @@
 #include "host/app/dataset_options.hpp"
+#include <CLI/CLI.hpp>
 
 namespace binpick::cli {
 

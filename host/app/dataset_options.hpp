@@ -6,7 +6,7 @@
 #include <cstdint>
 #include <string>
 
-#include <CLI/CLI.hpp>
+#include "host/app/cli_fwd.hpp"
 
 namespace binpick::cli {
 

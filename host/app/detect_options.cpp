@@ -1,5 +1,6 @@
 #include "host/app/detect_options.hpp"
 
+#include <CLI/CLI.hpp>
 #include <set>
 
 #include <fmt/format.h>

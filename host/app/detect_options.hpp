@@ -7,7 +7,7 @@
 #include <map>
 #include <string>
 
-#include <CLI/CLI.hpp>
+#include "host/app/cli_fwd.hpp"
 
 #include "host/detect/detector.hpp"
 

@@ -1,5 +1,6 @@
 #include "host/app/model_options.hpp"
 
+#include <CLI/CLI.hpp>
 #include <string_view>
 
 #include "host/core/error.hpp"

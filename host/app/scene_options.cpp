@@ -1,4 +1,5 @@
 #include "host/app/scene_options.hpp"
+#include <CLI/CLI.hpp>
 
 #include "synth/part_mix.hpp"
 #include "synth/sensor/sensor_options.hpp"

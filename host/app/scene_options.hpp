@@ -5,7 +5,7 @@
 
 #include <string>
 
-#include <CLI/CLI.hpp>
+#include "host/app/cli_fwd.hpp"
 
 #include "synth/synthesize.hpp"
 

@@ -1,5 +1,6 @@
 #include "host/app/shard_options.hpp"
 
+#include <CLI/CLI.hpp>
 #include <fmt/format.h>
 
 #include "host/core/error.hpp"

@@ -1,5 +1,6 @@
 #include "host/app/train_options.hpp"
 
+#include <CLI/CLI.hpp>
 #include <cmath>
 
 #include <fmt/format.h>

@@ -5,7 +5,7 @@
 #include <cstdint>
 #include <string>
 
-#include <CLI/CLI.hpp>
+#include "host/app/cli_fwd.hpp"
 
 #include "host/train/ppf_model.hpp"
 

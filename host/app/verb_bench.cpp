@@ -1,6 +1,7 @@
 // `binpick bench`: how fast, and faster than what. Measures the paper's scene stage by
 // stage, the device's peaks, the scaling sweeps and OpenCV's PPF3DDetector on the same crops,
 // and writes bench.md and bench.json (bench/lib/bench_run.hpp). `./run.sh bench` runs it.
+#include <CLI/CLI.hpp>
 #include <iostream>
 #include <memory>
 

@@ -2,6 +2,7 @@
 // about two minutes on two cores: synthesise a few bins, train the model, detect, evaluate, and
 // print a short table and where the report and its pictures are. It is `binpick run` with small
 // defaults (host/tune/experiment.hpp), so running it again resumes and is fast.
+#include <CLI/CLI.hpp>
 #include <algorithm>
 #include <chrono>
 #include <filesystem>

@@ -1,6 +1,7 @@
 // `binpick detect`: finds the part in every scene of a BOP dataset (or in one point cloud) with
 // point pair feature voting around the highest points (paper section III-B/C) and writes the
 // BOP results CSV, one row per hypothesis, best first.
+#include <CLI/CLI.hpp>
 #include <chrono>
 #include <optional>
 #include <filesystem>

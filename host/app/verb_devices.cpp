@@ -1,4 +1,5 @@
 // `binpick devices`: the OpenCL and Vulkan devices found, and the ones binpick would use.
+#include <CLI/CLI.hpp>
 #include <iostream>
 #include <optional>
 #include <string>

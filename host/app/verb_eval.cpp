@@ -2,6 +2,7 @@
 // writes a report directory: report.html, report.json, curves.csv, score_curves.csv,
 // hypotheses.csv, the precision and score threshold figures and pictures of the first scenes
 // (docs/pipeline.md).
+#include <CLI/CLI.hpp>
 #include <filesystem>
 #include <iostream>
 #include <memory>

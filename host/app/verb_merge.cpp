@@ -2,6 +2,7 @@
 // does it): detect results (PATH is the --out CSV or its .parts directory) are merged into the
 // CSV; a synth dataset (PATH is its directory) is checked to hold every bin. Idempotent, and an
 // error naming the missing scenes or bins (and their shards) while any shard's work is missing.
+#include <CLI/CLI.hpp>
 #include <filesystem>
 #include <iostream>
 #include <memory>

@@ -1,5 +1,6 @@
 // `binpick parts`: list the built-in parts, write them (or a given model) as mesh files, or
 // describe a model file before using it.
+#include <CLI/CLI.hpp>
 #include <filesystem>
 #include <iostream>
 #include <memory>

@@ -2,6 +2,7 @@
 // the model trained once, detection and evaluation of each, one report with a curve per noise
 // level, and a final table. Every stage resumes, so the same command again finishes an
 // interrupted run (host/tune/experiment.hpp).
+#include <CLI/CLI.hpp>
 #include <iostream>
 #include <memory>
 #include <vector>

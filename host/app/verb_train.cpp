@@ -1,6 +1,7 @@
 // `binpick train`: samples the part's surface, voxel-subsamples it, builds the point pair
 // feature hash table on the OpenCL device, finds the part's symmetries and writes the .ppfm
 // model file.
+#include <CLI/CLI.hpp>
 #include <chrono>
 #include <cmath>
 #include <cstdint>

@@ -3,6 +3,7 @@
 // radius and the model's angle and distance steps on a small synthetic dataset, maximising
 // top-voted precision within a time budget per hypothesis; prints the table it explored and
 // writes the best parameters for `detect --params` (host/tune/tune_run.hpp).
+#include <CLI/CLI.hpp>
 #include <cstdint>
 #include <iostream>
 #include <memory>

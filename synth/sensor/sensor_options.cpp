@@ -1,5 +1,6 @@
 #include "synth/sensor/sensor_options.hpp"
 
+#include <CLI/CLI.hpp>
 #include <cmath>
 #include <map>
 

@@ -1,5 +1,6 @@
 // The sensor model's parameters: check() names the option of a bad value, the command-line
 // options parse into the model and refuse NaN and out-of-range values.
+#include <CLI/CLI.hpp>
 #include <gtest/gtest.h>
 
 #include <cmath>
