@@ -107,6 +107,12 @@ void add_detect_cli_options(CLI::App* verb, DetectCliOptions& a, const std::stri
           "sensor sees the part's edges step down by (mean over points just beyond them, plus "
           "two standard errors) over this many verification tolerances, at most 1, in [0, 10]; "
           "0: off");
+  add("verify-area", p.verify_area,
+      "seen-area test: the score is multiplied by the area the pose shows the sensor (its "
+          "visible model points weighted by how squarely they face the camera, missing depth "
+          "counting half) over this many times the part's mean projected area, at most 1: a "
+          "plate seen edge on or a part barely peeking out loses, in [0, 10]; 0: off (the default; "
+          "0.8 where steep wrong poses win, e.g. on a robot arm in view: docs/pipeline.md)");
   add("verify-rival", p.verify_rival,
       "rival test: of two poses on the same measured points, the one whose squared residuals "
           "along the rays are larger by more than this many standard errors of the paired "

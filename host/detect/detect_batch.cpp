@@ -137,6 +137,7 @@ std::string detection_line(std::size_t rank, const Detection& d) {
   if (d.twin_tested)
     line += fmt::format("; {:.2f} mm seen through where a look-alike has a hole", d.twin_excess);
   if (d.edge_tested) line += fmt::format("; edges step down by {:.2f} mm", d.edge_step);
+  if (d.area_tested) line += fmt::format("; shows {:.2f} of its mean area", d.area_share);
   if (d.rival_out_fitted)
     line += fmt::format("; out-fitted by a rival pose on {} shared points ({:.2f} against {:.2f} mm^2)",
                         d.rival_shared, d.own_ms, d.rival_ms);

@@ -1,5 +1,6 @@
 #include "host/detect/detector.hpp"
 #include "host/detect/floor_check.hpp"
+#include "host/detect/area_test.hpp"
 #include "host/detect/bin_fit.hpp"
 #include "host/detect/instance_select.hpp"
 #include "host/detect/outline_test.hpp"
@@ -117,6 +118,7 @@ std::optional<ParamProblem> find_param_problem(const DetectParams& p) {
       {in(p.verify_through, 0, 100), {"verify-through", p.verify_through, "[0, 100]"}},
       {in(p.verify_twin, 0, 1), {"verify-twin", p.verify_twin, "[0, 1]"}},
       {in(p.verify_edge, 0, 10), {"verify-edge", p.verify_edge, "[0, 10]"}},
+      {in(p.verify_area, 0, 10), {"verify-area", p.verify_area, "[0, 10]"}},
       {in(p.verify_rival, 0, 100), {"verify-rival", p.verify_rival, "[0, 100]"}},
       {in(p.bin_margin, 0, 10), {"bin-margin", p.bin_margin, "[0, 10]"}},
       {p.instances <= 1000, {"instances", double(p.instances), "[0, 1000]"}},
@@ -183,10 +185,11 @@ Detector::Detector(const PpfModel& model, const DetectParams& params, ocl::Devic
   fit_model_ = upload_fit_model(dev_, fit_cloud);
   if (params_.verify_patch > 0)
     fit_geometry_.patches = model_patches(fit_cloud, float(params_.verify_patch * model_.diameter));
-  if (params_.verify_ray > 0 || params_.verify_rival > 0) {
+  if (params_.verify_ray > 0 || params_.verify_rival > 0 || params_.verify_area > 0) {
     fit_geometry_.points = fit_cloud.points;
     fit_geometry_.normals = fit_cloud.normals;
   }
+  if (params_.verify_area > 0) fit_geometry_.mean_area = mean_projected_area(fit_cloud.normals);
   fit_geometry_.diameter = model_.diameter;
   fit_geometry_.voxel_size = model_.voxel_size;
   fit_geometry_.centroid = model_centroid(model_.cloud);
@@ -284,6 +287,8 @@ void take_pose(Detection& d, const RefinedPose& r, std::uint64_t votes, std::uin
   d.twin_excess = r.twin_excess;
   d.edge_tested = r.edge_tested;
   d.edge_step = r.edge_step;
+  d.area_tested = r.area_tested;
+  d.area_share = r.area_share;
   d.rival_out_fitted = r.rival_out_fitted;
   d.rival_shared = r.rival_shared;
   d.own_ms = r.own_ms;
@@ -357,6 +362,7 @@ std::vector<Detection> Detector::refine_and_rank(
   ro.through_weight = float(params_.verify_through);
   // The rival test needs the measured points on the pixels' rays: a sensor's image.
   ro.keep_measured = sensor && params_.verify_rival > 0;
+  ro.area_scale = float(params_.verify_area);
   const auto sums = [&](const std::vector<bp_pose_fit>& fits) {
     return pose_fit_sums(dev_, points, cam, fit_model_, fits);
   };

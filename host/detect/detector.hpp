@@ -86,6 +86,11 @@ struct DetectParams {
   // multiplied by the depth the sensor sees the part's edges step down by (an upper bound) over
   // this many verification tolerances, at most 1. Measured in docs/pipeline.md, step 9.
   double verify_edge = 1.0;
+  // Seen-area test's scale (0: off; area_test.hpp): the score is multiplied by the area the
+  // pose shows the sensor over this many times the part's mean projected area, at most 1.
+  // Off by default: measured in docs/pipeline.md, step 9, it costs as many right poses seen
+  // obliquely as it gains where steep wrong poses (a robot arm's side face) win.
+  double verify_area = 0.0;
   // Rival test's significance (standard errors; 0: off; rival_test.hpp): a pose that fits the
   // measured points it shares with another pose worse by more than this cannot outrank it.
   // Measured in docs/pipeline.md, step 9.
@@ -148,6 +153,9 @@ struct Detection {
   // The edge test's step down at the part's edges (mm, an upper bound; edge_test.hpp), if run.
   bool edge_tested = false;
   double edge_step = 0;
+  // The seen-area test's share: the area the pose shows over the part's mean (area_test.hpp).
+  bool area_tested = false;
+  double area_share = 0;
   // The rival test (rival_test.hpp): out-fitted by another pose on this many shared measured
   // points, its mean clipped squared residual there against the rival's (mm^2).
   bool rival_out_fitted = false;

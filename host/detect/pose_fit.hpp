@@ -53,8 +53,10 @@ struct FitGeometry {
   float diameter = 0, voxel_size = 0;  // mm
   Eigen::Vector3d centroid = Eigen::Vector3d::Zero();  // model frame
   ModelPatches patches;  // of the fit model's points; none (count 0): no patch test
-  // The fit model's points and normals (model frame) for the ray test; empty: no ray test.
+  // The fit model's points and normals (model frame) for the ray, rival and seen-area tests;
+  // empty: none of them.
   std::vector<Eigen::Vector3f> points, normals;
+  double mean_area = 0;  // the seen-area test's unit (area_test.hpp); 0: no test
 };
 struct FitThresholds {
   float gate = 0, tolerance = 0, slack = 0;  // mm

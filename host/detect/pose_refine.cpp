@@ -8,6 +8,7 @@
 #include <fmt/format.h>
 
 #include "host/core/error.hpp"
+#include "host/detect/area_test.hpp"
 #include "host/detect/ray_test.hpp"
 #include "host/detect/rival_test.hpp"
 
@@ -53,6 +54,8 @@ void check(const RefineOptions& o) {
     throw InputError(fmt::format("outline tolerance {} must be in [0, 1]", o.outline_ratio));
   if (bad(o.through_weight, 0, 100))
     throw InputError(fmt::format("see-through weight {} must be in [0, 100]", o.through_weight));
+  if (bad(o.area_scale, 0, 10))
+    throw InputError(fmt::format("seen-area scale {} must be in [0, 10]", o.area_scale));
   if (bad(o.ray_band_ratio, 0, 1))
     throw InputError(fmt::format("ray test band {} must be in [0, 1]", o.ray_band_ratio));
   if (bad(o.min_support_ratio, 0, 1))
@@ -147,10 +150,13 @@ std::vector<RefinedPose> refine_and_verify(const FitSumsFn& sums_of, const bp_ca
   const bool patch_test_on = g.patches.count > 0;
   const bool ray_test_on = opt.ray_band_ratio > 0 && !g.points.empty() &&
                            g.points.size() == g.normals.size() && g.points.size() == model_points;
+  const bool area_test_on = opt.area_scale > 0 && g.mean_area > 0 &&
+                            g.points.size() == model_points && g.normals.size() == model_points;
   const bool keep_measured = opt.keep_measured && g.points.size() == model_points &&
                              g.normals.size() == model_points;
   const std::vector<FitSums> sums = final_sums(tolerance, final_gate, opt.outline_ratio * g.diameter,
-                                               patch_test_on || ray_test_on || keep_measured);
+                                               patch_test_on || ray_test_on || keep_measured ||
+                                                   area_test_on);
   const double min_support = double(opt.min_support_ratio) * model_points;
   // The ray test (ray_test.hpp): each pose's spread along the rays; the image's noise is the
   // least among the poses with enough points.
@@ -201,6 +207,11 @@ std::vector<RefinedPose> refine_and_verify(const FitSumsFn& sums_of, const bp_ca
         r.patches_tested = pt.tested;
         r.patches_biased = pt.biased;
         r.score *= pt.factor();
+      }
+      if (area_test_on && s.classes.size() == model_points) {
+        r.area_tested = true;
+        r.area_share = seen_area(s.classes, r.R, r.t, g.points, g.normals) / g.mean_area;
+        r.score *= area_factor(r.area_share, opt.area_scale);
       }
       // Fewer residuals than refinement needs: too few to tell a spread from the noise.
       if (ray_test_on && ray_noise.n > 0 && ray[k].n >= opt.min_pairs) {

@@ -67,6 +67,10 @@ struct RefineOptions {
   // max(0, 1 - through_weight * see_through / support) (support: visible minus half the
   // missing, as in the score). 0: off (such points only fail to agree).
   float through_weight = 0.0f;
+  // > 0 (and the geometry's points, normals and mean area): the seen-area test
+  // (area_test.hpp). The score is multiplied by min(1, seen area / (area_scale x mean area)).
+  // 0: off.
+  float area_scale = 0.0f;
   // Keep each pose's measured points (RefinedPose::measured) for the rival test
   // (rival_test.hpp); depth images only, whose measured points lie on the pixels' rays.
   bool keep_measured = false;
@@ -86,6 +90,8 @@ struct RefinedPose {
   double twin_excess = 0;        // mm, its largest depth excess at a look-alike's probes
   bool edge_tested = false;      // the edge test ran on this pose (edge_test.hpp)
   double edge_step = 0;          // mm, the step down at its edges (an upper bound)
+  bool area_tested = false;      // the seen-area test ran on this pose (area_test.hpp)
+  double area_share = 0;         // its seen area over the part's mean area
   // The rival test (rival_test.hpp): out-fitted by another pose on shared measured points, its
   // mean clipped squared residual there (mm^2) against the rival's.
   bool rival_out_fitted = false;

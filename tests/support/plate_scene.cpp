@@ -21,39 +21,68 @@ Eigen::Isometry3d plate_pose() {
   return pose;
 }
 
-PointImage plate_over_plane(const bp_camera& cam, const Eigen::Isometry3d& pose,
-                            bool holes_without_depth) {
-  const Eigen::Matrix3d R = pose.linear();
-  const Eigen::Vector3d t = pose.translation();
-  const Eigen::Vector3d up = R * Eigen::Vector3d::UnitZ();  // towards the camera
-  const Eigen::Vector3d beneath = t - 0.75 * up;           // the plate beneath's top face
-  PointImage image;
-  image.width = cam.width;
-  image.height = cam.height;
-  image.xyzw.assign(std::size_t(cam.width) * cam.height * 4, 0.0f);
+namespace {
+
+// The plate's depth at `pose` in every pixel (a z-buffer of dense surface samples), infinite
+// where it is not.
+std::vector<float> plate_depths(const bp_camera& cam, const Eigen::Isometry3d& pose) {
   std::vector<float> zbuf(std::size_t(cam.width) * cam.height, INFINITY);
   const PointCloud dense = sample_surface(make_builtin_part("plate"), 200000);
   for (const Eigen::Vector3f& m : dense.points) {
-    const Eigen::Vector3d q = R * m.cast<double>() + t;
+    const Eigen::Vector3d q = pose * m.cast<double>();
     const long u = std::lround(cam.fx * q.x() / q.z() + cam.cx);
     const long v = std::lround(cam.fy * q.y() / q.z() + cam.cy);
     if (u < 0 || v < 0 || u >= long(cam.width) || v >= long(cam.height)) continue;
     float& z = zbuf[std::size_t(v) * cam.width + std::size_t(u)];
     z = std::min(z, float(q.z()));
   }
-  std::mt19937 rng(3);
-  std::normal_distribution<float> N(0.0f, 0.5f);
+  return zbuf;
+}
+
+// A point image of the camera's size: pixel i (ray: its direction at depth 1) at depth(i, ray)
+// along its ray plus Gaussian noise of sigma (seeded); no depth where has_depth(i) is false.
+template <class Depth, class HasDepth>
+PointImage noisy_image(const bp_camera& cam, float sigma, unsigned seed, Depth depth,
+                       HasDepth has_depth) {
+  PointImage image;
+  image.width = cam.width;
+  image.height = cam.height;
+  image.xyzw.assign(std::size_t(cam.width) * cam.height * 4, 0.0f);
+  std::mt19937 rng(seed);
+  std::normal_distribution<float> N(0.0f, sigma);
   for (std::uint32_t v = 0; v < cam.height; ++v)
     for (std::uint32_t u = 0; u < cam.width; ++u) {
       const std::size_t i = std::size_t(v) * cam.width + u;
       const Eigen::Vector3d ray((u - cam.cx) / cam.fx, (v - cam.cy) / cam.fy, 1.0);
-      const double plane = up.dot(beneath) / up.dot(ray);  // depth of the plane at this pixel
-      const float z = std::min(zbuf[i], float(plane)) + N(rng);
+      const float z = depth(i, ray) + N(rng);
       float* p = &image.xyzw[i * 4];
       p[0] = float(ray.x()) * z, p[1] = float(ray.y()) * z, p[2] = z;
-      p[3] = holes_without_depth && !std::isfinite(zbuf[i]) ? 0.0f : 1.0f;
+      p[3] = has_depth(i) ? 1.0f : 0.0f;
     }
   return image;
+}
+
+}  // namespace
+
+PointImage plate_over_plane(const bp_camera& cam, const Eigen::Isometry3d& pose,
+                            bool holes_without_depth) {
+  const Eigen::Vector3d up = pose.linear() * Eigen::Vector3d::UnitZ();  // towards the camera
+  const Eigen::Vector3d beneath = pose.translation() - 0.75 * up;  // the plate beneath's top face
+  const std::vector<float> zbuf = plate_depths(cam, pose);
+  return noisy_image(
+      cam, 0.5f, 3,
+      [&](std::size_t i, const Eigen::Vector3d& ray) {
+        const double plane = up.dot(beneath) / up.dot(ray);  // depth of the plane at this pixel
+        return std::min(zbuf[i], float(plane));
+      },
+      [&](std::size_t i) { return !(holes_without_depth && !std::isfinite(zbuf[i])); });
+}
+
+PointImage plate_over_floor(const bp_camera& cam, const Eigen::Isometry3d& pose, float floor_z) {
+  const std::vector<float> zbuf = plate_depths(cam, pose);
+  return noisy_image(
+      cam, 0.3f, 5, [&](std::size_t i, const Eigen::Vector3d&) { return std::min(zbuf[i], floor_z); },
+      [](std::size_t) { return true; });
 }
 
 FitGeometry plate_fit_geometry(const PpfModel& model) {

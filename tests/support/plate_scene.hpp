@@ -24,6 +24,10 @@ Eigen::Isometry3d plate_pose();
 PointImage plate_over_plane(const bp_camera& cam, const Eigen::Isometry3d& pose,
                             bool holes_without_depth);
 
+// The plate at `pose` over a floor floor_z from the camera (a plane facing it), 0.3 mm Gaussian
+// noise (seeded): for a plate seen steeply, where the plane beneath it would run past the camera.
+PointImage plate_over_floor(const bp_camera& cam, const Eigen::Isometry3d& pose, float floor_z);
+
 // The fit geometry the probe tests verify with: the model's diameter, voxel and centroid.
 FitGeometry plate_fit_geometry(const PpfModel& model);
 
