@@ -31,7 +31,7 @@ double seen_area(std::span<const std::uint8_t> classes, const Eigen::Matrix3d& R
     if (classes[i] == BP_FIT_HIDDEN) continue;
     const Eigen::Vector3d q = R * points[i].cast<double>() + t;
     const Eigen::Vector3d n = R * normals[i].cast<double>();
-    const double c = std::max(0.0, -n.dot(q) / (q.norm() * n.norm()));
+    const double c = std::max(0.0, ray_cosine(q, n));
     area += classes[i] == BP_FIT_MISSING ? 0.5 * c : c;
   }
   return area;

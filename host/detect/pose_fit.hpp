@@ -63,6 +63,11 @@ struct FitThresholds {
   float outline = 0;  // mm, the outline test's tolerance; 0: no outline test
   bool residuals = false;  // read back each model point's residual (the patch test)
 };
+// The cosine between a posed model point's normal nq and the ray from the point q (camera
+// frame) back to the camera: > 0 where the point faces the camera.
+inline double ray_cosine(const Eigen::Vector3d& q, const Eigen::Vector3d& nq) {
+  return -nq.dot(q) / (q.norm() * nq.norm());
+}
 // The z-buffer's slack for a tolerance: the cell is about 1.5 voxels wide, so a sloped surface
 // spans about that much depth in it, while a surface hidden behind the part's near side lies
 // farther back.

@@ -4,6 +4,8 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "host/detect/pose_fit.hpp"  // ray_cosine
+
 namespace binpick {
 
 std::vector<double> ray_residuals(std::span<const float> residuals, const Eigen::Matrix3d& R,
@@ -17,7 +19,7 @@ std::vector<double> ray_residuals(std::span<const float> residuals, const Eigen:
     if (!std::isfinite(residuals[j])) continue;
     const Eigen::Vector3d q = R * points[j].cast<double>() + t;
     const Eigen::Vector3d nq = R * normals[j].cast<double>();
-    const double c = -nq.dot(q) / (q.norm() * nq.norm());
+    const double c = ray_cosine(q, nq);
     // The kernel gives terms only to points facing the camera (within 80 degrees, so 1 / c is
     // at most about 6); a point facing away has no distance along the ray.
     if (!(c > 0.0)) continue;

@@ -34,7 +34,7 @@ TwinEvidence twin_evidence(std::span<const float> residuals, std::span<const std
     const Eigen::Vector3d q = R * probes.points[j].cast<double>() + t;
     const Eigen::Vector3d nq = R * probes.normals[j].cast<double>();
     // The cosine between the probe's normal and the ray to the camera (> 0.17 for a visible one).
-    const double c = -nq.dot(q) / (q.norm() * nq.norm());
+    const double c = ray_cosine(q, nq);
     if (!(c > 0.0)) continue;
     if (cls == BP_FIT_MISSING) {
       // A surface seen obliquely often gives no depth on real material; one facing the camera
