@@ -10,7 +10,10 @@ std::string shell_quoted(const std::string& word) {
 
 std::string shell_command(const std::vector<std::string>& words) {
   std::string line;
-  for (const std::string& w : words) line += (line.empty() ? "" : " ") + shell_quoted(w);
+  for (const std::string& w : words) {
+    if (!line.empty()) line += ' ';
+    line += shell_quoted(w);
+  }
   return line;
 }
 

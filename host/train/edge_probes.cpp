@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 
 #include <Eigen/Geometry>
 
@@ -13,7 +14,6 @@
 namespace binpick {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 constexpr int kDirections = 8;          // directions e tried in each candidate's tangent plane
 constexpr float kFreeRatio = 0.75f;     // a probe's distance to every surface sample, in margins
 constexpr float kInwardRatio = 0.5f;    // how far the face must run on behind p, in margins
@@ -36,7 +36,7 @@ PointCloud find_edge_probes(const Mesh& mesh, float voxel_size, ocl::Device& dev
     const Eigen::Vector3f& n = dense.surface.normals[i];
     const Eigen::Vector3f u = n.unitOrthogonal(), v = n.cross(u);
     for (int k = 0; k < kDirections; ++k) {
-      const float a = float(2 * kPi * k / kDirections);
+      const float a = float(2 * std::numbers::pi * k / kDirections);
       const Eigen::Vector3f e = std::cos(a) * u + std::sin(a) * v;
       const Eigen::Vector3f q = p + margin * e;
       if (any.matches(q, n) || !face.matches(p - kInwardRatio * margin * e, n)) continue;

@@ -20,7 +20,7 @@ std::string number(double v, double step) {
 
 // The unit direction rounded to 1e-4, with its first largest component positive: rounded first,
 // so that (0.7071, -0.7071, 0) does not print as its negative when rounding favours y.
-Eigen::Vector3d canonical(const Eigen::Vector3d& v) {
+Eigen::Vector3d canonical_rounded(const Eigen::Vector3d& v) {
   Eigen::Vector3d r = (v.normalized() * 1e4).array().round() / 1e4;
   Eigen::Index k;
   r.cwiseAbs().maxCoeff(&k);
@@ -32,7 +32,7 @@ std::string point(const Eigen::Vector3d& v, double step) {
   return fmt::format("({}, {}, {})", number(v.x(), step), number(v.y(), step), number(v.z(), step));
 }
 
-std::string direction(const Eigen::Vector3d& v) { return point(canonical(v), 1e-4); }
+std::string direction(const Eigen::Vector3d& v) { return point(canonical_rounded(v), 1e-4); }
 
 struct Axis {
   Eigen::Vector3d direction;
@@ -65,7 +65,7 @@ std::string describe_symmetries(const PartSymmetries& s) {
       return std::fabs(x.direction.dot(r.axis())) >= same;
     });
     if (it == axes.end())
-      axes.push_back({canonical(r.axis()), angle});
+      axes.push_back({canonical_rounded(r.axis()), angle});
     else
       it->smallest_angle = std::min(it->smallest_angle, angle);
   }

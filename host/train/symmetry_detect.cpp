@@ -22,8 +22,7 @@ namespace {
 using Eigen::Matrix3d;
 using Eigen::Vector3d;
 
-constexpr double kPi = std::numbers::pi;
-constexpr double kDeg = kPi / 180;
+constexpr double kDeg = std::numbers::pi / 180;
 
 // Reference samples this far apart (of the diameter) leave a point of the surface without a
 // sample within half the distance tolerance with probability exp(-pi 1.25^2) = 0.7 %, and
@@ -178,7 +177,7 @@ AxisResult examine_axis(const SurfaceTest& test, const Vector3d& axis) {
   // turn, a fifteenth, and fails 48), so the largest n whose first turn passes may be no group.
   const auto all_turns_pass = [&](int n) {
     for (int k = 1; k <= n / 2; ++k)
-      if (!test.accepts(rotation(axis, 2 * kPi * k / n))) return false;
+      if (!test.accepts(rotation(axis, 2 * std::numbers::pi * k / n))) return false;
     return true;
   };
   for (int n = kSymmetryMaxFold; n >= 2; --n)
@@ -365,7 +364,7 @@ PartSymmetries find_symmetries(const Mesh& mesh) {
   // Discrete: the rotations about the axes found, then the perpendicular half turns.
   std::vector<Matrix3d> generators;
   for (const auto& r : results)
-    if (r.order >= 2) generators.push_back(rotation(r.axis, 2 * kPi / r.order));
+    if (r.order >= 2) generators.push_back(rotation(r.axis, 2 * std::numbers::pi / r.order));
   for (std::size_t i = 0; i < results.size(); ++i) {
     const AxisResult& r = results[i];
     // With distinct moments about the perpendicular axes, these are principal axes, tested
@@ -377,7 +376,7 @@ PartSymmetries find_symmetries(const Mesh& mesh) {
         start = (e.col(k) - e.col(k).dot(r.axis) * r.axis).normalized();
         break;
       }
-    for (const Matrix3d& H : perpendicular_half_turns(test, r.axis, start, kPi / r.order))
+    for (const Matrix3d& H : perpendicular_half_turns(test, r.axis, start, std::numbers::pi / r.order))
       generators.push_back(H);
   }
   const std::vector<Matrix3d> group = closure(generators, kMaxFoundSymmetries);

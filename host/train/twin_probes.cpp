@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 
 #include "host/train/oriented_point_grid.hpp"
 #include "host/train/probe_surface.hpp"
@@ -11,7 +12,6 @@ namespace {
 
 // A surface agrees with a probe's normal within 30 degrees, as near_symmetry.cpp asks.
 constexpr double kSameFacingCos = 0.8660254037844386;
-constexpr double kPi = 3.14159265358979323846;
 
 // Whether the surface facing n runs on for the margin around p in every direction along it (six
 // points a margin away in p's tangent plane all lie on it, within half a probe voxel): a probe
@@ -22,7 +22,7 @@ bool on_broad_surface(const OrientedPointGrid& fine, const Eigen::Vector3f& p,
                       const Eigen::Vector3f& n, float margin) {
   const Eigen::Vector3f u = n.unitOrthogonal(), v = n.cross(u);
   for (int k = 0; k < 6; ++k) {
-    const float a = float(k * kPi / 3);
+    const float a = float(k * std::numbers::pi / 3);
     if (!fine.matches(p + margin * (std::cos(a) * u + std::sin(a) * v), n)) return false;
   }
   return true;

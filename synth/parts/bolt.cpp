@@ -40,7 +40,7 @@ Eigen::Vector3d hex_side_normal(int side) {
 
 }  // namespace
 
-PartShape make_bolt_shape() {
+BuiltinShape make_bolt_shape() {
   PartBuilder b;
   const double tip_radius = shank_radius - chamfer;
   const double head_bottom = shank_length;
@@ -71,7 +71,7 @@ PartShape make_bolt_shape() {
   }
   b.convex_polygon(head, Eigen::Vector3d::UnitZ());
 
-  PartShape shape{b.build(), {}};
+  BuiltinShape shape{b.build(), {}};
   for (int k = 1; k < 6; ++k) {
     Eigen::Matrix4d rotation = Eigen::Matrix4d::Identity();
     rotation.topLeftCorner<3, 3>() =

@@ -146,7 +146,7 @@ void add_sides(PartBuilder& b, const Plate& base, const Plate& upright) {
 
 }  // namespace
 
-PartShape make_bracket_shape() {
+BuiltinShape make_bracket_shape() {
   const Plate base{&base_point, Eigen::Vector3d::UnitZ(), base_hole_at, base_length};
   const Plate upright{&upright_point, Eigen::Vector3d::UnitX(), upright_hole_at, upright_height};
   PartBuilder b;

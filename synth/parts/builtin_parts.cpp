@@ -11,7 +11,7 @@ namespace {
 struct BuiltinPart {
   const char* name;
   const char* description;
-  PartShape (*make_shape)();
+  BuiltinShape (*make_shape)();
   double diameter;  // mm, exact after normalized()
 };
 
@@ -44,8 +44,8 @@ const BuiltinPart& find_part(const std::string& name) {
 
 // The shape moved so its bounding box is centred on the origin and scaled about the origin to
 // the part's nominal diameter; its symmetries follow (a symmetry S becomes T S T^-1).
-PartShape normalized(const BuiltinPart& part) {
-  PartShape shape = part.make_shape();
+BuiltinShape normalized(const BuiltinPart& part) {
+  BuiltinShape shape = part.make_shape();
   const Eigen::Vector3f centre = bounding_box(shape.mesh.positions).center();
   translate_mesh(shape.mesh, -centre);
   for (auto& s : shape.symmetries.continuous) s.offset -= centre.cast<double>();

@@ -7,26 +7,26 @@
 
 namespace binpick {
 
-struct PartShape {
+struct BuiltinShape {
   Mesh mesh;
   PartSymmetries symmetries;
 };
 
 // L-bracket: a base plate and a shorter upright plate at 90 degrees, one round hole in each.
-PartShape make_bracket_shape();
+BuiltinShape make_bracket_shape();
 
 // Hex bolt: hexagonal head on a cylindrical shank with a chamfered tip, along +z.
-PartShape make_bolt_shape();
+BuiltinShape make_bolt_shape();
 
 // Equal tee pipe fitting: a hollow run along x with a hollow branch along +z.
-PartShape make_tee_shape();
+BuiltinShape make_tee_shape();
 
 // Sheet-metal plate 1.5 thick in the xy plane, with two round holes and a slot laid out
 // without symmetry.
-PartShape make_plate_shape();
+BuiltinShape make_plate_shape();
 
 // Stepped shaft along z, centred on the origin, with different steps at its two ends: only its
 // axis is a symmetry.
-PartShape make_shaft_shape();
+BuiltinShape make_shaft_shape();
 
 }  // namespace binpick

@@ -195,7 +195,7 @@ void add_rim(PartBuilder& b, const std::vector<std::vector<Ray>>& cells) {
 
 }  // namespace
 
-PartShape make_plate_shape() {
+BuiltinShape make_plate_shape() {
   std::vector<std::vector<Ray>> cells;
   for (const auto& hole : holes) cells.push_back(cell_rays(hole));
   PartBuilder b;

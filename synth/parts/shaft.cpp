@@ -36,7 +36,7 @@ constexpr ProfilePoint profile[] = {
 
 }  // namespace
 
-PartShape make_shaft_shape() {
+BuiltinShape make_shaft_shape() {
   PartBuilder b;
   constexpr std::size_t n = std::size(profile);
   std::vector<Eigen::Vector3d> bottom, top;
@@ -50,7 +50,7 @@ PartShape make_shaft_shape() {
                               profile[k + 1].z);
   b.convex_polygon(top, Eigen::Vector3d::UnitZ());
 
-  PartShape shape{b.build(), {}};
+  BuiltinShape shape{b.build(), {}};
   shape.symmetries.continuous.push_back({Eigen::Vector3d::UnitZ(), Eigen::Vector3d::Zero()});
   return shape;
 }

@@ -70,7 +70,7 @@ void add_branch_wall(PartBuilder& b, double rho, double outward) {
 
 }  // namespace
 
-PartShape make_tee_shape() {
+BuiltinShape make_tee_shape() {
   PartBuilder b;
   add_run_wall(b, outer_radius, +1);
   add_run_wall(b, bore_radius, -1);
@@ -97,7 +97,7 @@ PartShape make_tee_shape() {
            b.vertex(top(bore_top[k]), up), b.vertex(top(bore_top[j]), up));
   }
 
-  PartShape shape{b.build(), {}};
+  BuiltinShape shape{b.build(), {}};
   // Half a turn about the branch axis maps the run onto itself.
   shape.symmetries.discrete.push_back(Eigen::Vector4d(-1, -1, 1, 1).asDiagonal());
   return shape;
