@@ -3,13 +3,13 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <numbers>
 #include <optional>
 #include <stdexcept>
 
 #include <Eigen/Geometry>
 #include <fmt/format.h>
 
+#include "host/core/angles.hpp"
 #include "host/detect/bin_floor.hpp"
 #include "host/detect/bin_planes.hpp"
 #include "host/detect/bin_rim.hpp"
@@ -17,8 +17,6 @@
 
 namespace binpick {
 namespace {
-
-constexpr double kDeg = std::numbers::pi / 180.0;
 
 double quantile(std::vector<double> xs, double q) {
   const std::size_t k = std::min(xs.size() - 1, std::size_t(q * double(xs.size() - 1)));

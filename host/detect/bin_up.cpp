@@ -4,14 +4,13 @@
 #include <array>
 #include <cmath>
 #include <future>
-#include <numbers>
 
 #include <Eigen/Geometry>
 
+#include "host/core/angles.hpp"
+
 namespace binpick {
 namespace {
-
-constexpr double kDeg = std::numbers::pi / 180.0;
 
 struct Scored {
   Eigen::Vector3d up;

@@ -17,7 +17,6 @@ namespace {
 constexpr int kDirections = 8;          // directions e tried in each candidate's tangent plane
 constexpr float kFreeRatio = 0.75f;     // a probe's distance to every surface sample, in margins
 constexpr float kInwardRatio = 0.5f;    // how far the face must run on behind p, in margins
-constexpr float kSameFacingCos = 0.8660254037844386f;  // 30 degrees, as twin_probes.cpp
 constexpr float kAnyFacing = -2.0f;     // a cosine every normal passes
 
 }  // namespace

@@ -12,8 +12,6 @@
 namespace binpick {
 namespace {
 
-constexpr double kSameRotationDeg = 5.0;
-
 double angle_between_deg(const Eigen::Matrix3d& A, const Eigen::Matrix3d& B) {
   const double c = std::clamp(((A.transpose() * B).trace() - 1.0) / 2.0, -1.0, 1.0);
   return std::acos(c) * 180.0 / std::numbers::pi;
@@ -23,7 +21,8 @@ double angle_between_deg(const Eigen::Matrix3d& A, const Eigen::Matrix3d& B) {
 bool covered(const Eigen::Matrix3d& R, const PartSymmetries& exact) {
   const Eigen::AngleAxisd aa(R);
   for (const auto& s : exact.continuous)
-    if (std::fabs(aa.axis().dot(s.axis.normalized())) > std::cos(kSameRotationDeg * std::numbers::pi / 180))
+    if (std::fabs(aa.axis().dot(s.axis.normalized())) >
+        std::cos(kSameRotationDeg * std::numbers::pi / 180))
       return true;
   for (const auto& m : exact.discrete)
     if (angle_between_deg(R, m.topLeftCorner<3, 3>()) < kSameRotationDeg) return true;
@@ -55,14 +54,15 @@ std::vector<Eigen::Isometry3d> find_near_symmetries(const PointCloud& model, flo
     lo = lo.cwiseMin(local), hi = hi.cwiseMax(local);
   }
   c += eig.eigenvectors() * ((lo + hi) / 2);
-  const OrientedPointGrid grid(model, voxel_size, float(std::cos(30.0 * std::numbers::pi / 180)));
+  const OrientedPointGrid grid(model, voxel_size, kSameFacingCos);
 
   std::vector<Eigen::Matrix3d> found;
   for (int axis = 2; axis >= 0; --axis) {
     const Eigen::Vector3d a = eig.eigenvectors().col(axis).normalized();
     for (int fold : {2, 3, 4, 6})
       for (int k = 1; k < fold; ++k) {
-        const Eigen::Matrix3d R = Eigen::AngleAxisd(2 * std::numbers::pi * k / fold, a).toRotationMatrix();
+        const Eigen::Matrix3d R =
+            Eigen::AngleAxisd(2 * std::numbers::pi * k / fold, a).toRotationMatrix();
         if (covered(R, exact)) continue;
         if (std::any_of(found.begin(), found.end(), [&](const Eigen::Matrix3d& F) {
               return angle_between_deg(F, R) < kSameRotationDeg;

@@ -14,6 +14,10 @@
 
 namespace binpick {
 
+// "Facing the same way" for the model's grids (near symmetries, twin and edge probes): normals
+// within 30 degrees, cos 30.
+inline constexpr float kSameFacingCos = 0.8660254037844386f;
+
 class OrientedPointGrid {
  public:
   // cloud needs unit normals; radius > 0 (mm) is the largest distance a query looks at, and

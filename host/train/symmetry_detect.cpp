@@ -11,6 +11,7 @@
 #include <Eigen/Eigenvalues>
 #include <Eigen/Geometry>
 
+#include "host/core/angles.hpp"
 #include "host/core/diameter.hpp"
 #include "host/core/error.hpp"
 #include "host/train/oriented_point_grid.hpp"
@@ -21,8 +22,6 @@ namespace {
 
 using Eigen::Matrix3d;
 using Eigen::Vector3d;
-
-constexpr double kDeg = std::numbers::pi / 180;
 
 // Reference samples this far apart (of the diameter) leave a point of the surface without a
 // sample within half the distance tolerance with probability exp(-pi 1.25^2) = 0.7 %, and
@@ -49,7 +48,6 @@ constexpr double kSameAxisDeg = 1.0;        // candidate axes (up to sign) merge
 // Products of generators merged within this: the elements of the groups found differ by 7.5
 // degrees or more (n <= 24, and half turns scanned at pi / n), while a generator found by the
 // scan may be a fraction of a degree off and products add its error up.
-constexpr double kSameRotationDeg = 5.0;
 constexpr std::size_t kFeatureAxes = 12;  // of each kind when all moments are equal
 
 struct Moments {
@@ -376,7 +374,8 @@ PartSymmetries find_symmetries(const Mesh& mesh) {
         start = (e.col(k) - e.col(k).dot(r.axis) * r.axis).normalized();
         break;
       }
-    for (const Matrix3d& H : perpendicular_half_turns(test, r.axis, start, std::numbers::pi / r.order))
+    for (const Matrix3d& H :
+         perpendicular_half_turns(test, r.axis, start, std::numbers::pi / r.order))
       generators.push_back(H);
   }
   const std::vector<Matrix3d> group = closure(generators, kMaxFoundSymmetries);

@@ -10,9 +10,6 @@
 namespace binpick {
 namespace {
 
-// A surface agrees with a probe's normal within 30 degrees, as near_symmetry.cpp asks.
-constexpr double kSameFacingCos = 0.8660254037844386;
-
 // Whether the surface facing n runs on for the margin around p in every direction along it (six
 // points a margin away in p's tangent plane all lie on it, within half a probe voxel): a probe
 // on a wall narrower than the margin (a sheet's hole wall, seen edge on over the hole) or at
@@ -39,8 +36,8 @@ TwinProbes find_twin_probes(const Mesh& mesh, float voxel_size,
   const PointCloud& surface = dense.surface;
   const PointCloud& candidates = dense.candidates;
   const float margin = kProbeMarginVoxels * probe_voxel;
-  const OrientedPointGrid grid(surface, margin, float(kSameFacingCos));
-  const OrientedPointGrid fine(surface, 0.5f * probe_voxel, float(kSameFacingCos));
+  const OrientedPointGrid grid(surface, margin, kSameFacingCos);
+  const OrientedPointGrid fine(surface, 0.5f * probe_voxel, kSameFacingCos);
   for (std::uint32_t s = 0; s < near.size(); ++s) {
     const Eigen::Isometry3d inverse = near[s].inverse();
     std::vector<std::size_t> found;
