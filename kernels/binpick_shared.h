@@ -68,6 +68,39 @@ typedef struct {
   float alpha;
 } bp_ppf_entry;
 
+/* A table entry as the vote reads it (ppf_vote.cl): the first accumulator cell of m_r's row
+ * (m_r * n_alpha) and 1.5 n_alpha - alpha_m n_alpha / (2 pi). Worked out once at upload, so the
+ * hot loop is an add, a truncation and two compares per vote instead of a subtraction, two
+ * multiplications and an add (bp_vote_bin). */
+typedef struct {
+  bp_u32 row;
+  float offset;
+} bp_vote_entry;
+
+BP_FN float bp_vote_offset(float alpha_m, float inv_step, bp_u32 n_alpha) {
+  return 1.5f * (float)n_alpha - alpha_m * inv_step;
+}
+
+/* The alpha bin of alpha_s - alpha_m wrapped into [0, n_alpha), with scaled_s = alpha_s inv_step
+ * (inv_step = n_alpha / (2 pi)). scaled_s + offset is in (n / 2, 5 n / 2) for alphas in
+ * [-pi, pi], where truncation is floor and two compares wrap it: no division. *frac is the
+ * part past the bin's start (alpha spreading votes for the neighbour on the nearer side). */
+BP_FN bp_u32 bp_vote_bin(float scaled_s, float offset, bp_u32 n_alpha, float* frac) {
+  const float u = scaled_s + offset;
+  const bp_u32 t = (bp_u32)u;
+  *frac = u - (float)t;
+  bp_u32 b = t;
+  if (b >= 2u * n_alpha) b -= 2u * n_alpha;
+  else if (b >= n_alpha) b -= n_alpha;
+  return b;
+}
+
+/* The bin next to b on the side frac lies nearer. */
+BP_FN bp_u32 bp_vote_neighbour(bp_u32 b, float frac, bp_u32 n_alpha) {
+  if (frac < 0.5f) return b == 0u ? n_alpha - 1u : b - 1u;
+  return b + 1u == n_alpha ? 0u : b + 1u;
+}
+
 /* The key of a pair that is not in the table: farther apart than max_distance, or coincident. */
 #define BP_PPF_NO_KEY 0xffffffffu
 /* Pairs with |d| <= BP_PPF_MIN_DIST_RATIO * max_distance are skipped: their angles are undefined. */

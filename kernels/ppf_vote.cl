@@ -5,7 +5,9 @@
  *   model (so model and scene features cannot drift apart). Row r of keys/alphas is s_r's.
  * ppf_vote: one work item per reference point, with its own accumulator of n_model x n_alpha
  *   integer counters in global memory (no atomics, so the votes are exact and deterministic).
- *   Every model entry (m_r, alpha_m) of the pair's key votes for (m_r, alpha_s - alpha_m).
+ *   Every model entry (m_r, alpha_m) of the pair's key votes for (m_r, alpha_s - alpha_m),
+ *   read as bp_vote_entry (binpick_shared.h: worked out at upload, the same arithmetic as the
+ *   reference's, so both count the same votes).
  *   Duplicate votes (Hinterstoisser et al. 2016): two scene points that give a reference point
  *   the same key and the same alpha_s bin vote for the same cells, and a flat or repeated
  *   surface gives thousands of such equal pairs (a plane outvotes the part beside it). With
@@ -24,34 +26,6 @@
  * the pose is s = R_s^T R_x(alpha_s - alpha_m) R_m (m - m_r) + s_r. */
 #pragma OPENCL FP_CONTRACT OFF
 #include "binpick_shared.h"
-
-/* The alpha bin of alpha_s - alpha_m wrapped into [-pi, pi), bins of 2 pi / n_alpha from -pi.
- * inv_step = n_alpha / (2 pi). The difference is in (-2 pi, 2 pi): in bins, shifted by 1.5 turns,
- * it is in (n / 2, 5 n / 2), where truncation is floor and two compares wrap it: no division
- * (the hot loop's most expensive instruction otherwise). Written out identically in
- * ppf_vote_alpha_bin (host/detect/ppf_vote.cpp), so the reference counts the same votes. */
-static inline uint vote_alpha_bin(float alpha_s, float alpha_m, float inv_step, uint n_alpha) {
-  const float u = (alpha_s - alpha_m) * inv_step + 1.5f * (float)n_alpha;
-  uint b = (uint)u;
-  if (b >= 2u * n_alpha) b -= 2u * n_alpha;
-  else if (b >= n_alpha) b -= n_alpha;
-  return b;
-}
-
-/* The alpha bin next to vote_alpha_bin's on the side its value lies nearer (alpha spreading,
- * Vidal et al. 2018: a difference near a bin edge votes for both bins, so noise that moves it
- * across the edge splits no peak). Written out identically in ppf_vote_alpha_neighbour. */
-static inline uint vote_alpha_neighbour(float alpha_s, float alpha_m, float inv_step,
-                                        uint n_alpha) {
-  const float u = (alpha_s - alpha_m) * inv_step + 1.5f * (float)n_alpha;
-  const uint t = (uint)u;
-  const float frac = u - (float)t;
-  uint b = t;
-  if (b >= 2u * n_alpha) b -= 2u * n_alpha;
-  else if (b >= n_alpha) b -= n_alpha;
-  if (frac < 0.5f) return b == 0u ? n_alpha - 1u : b - 1u;
-  return b + 1u == n_alpha ? 0u : b + 1u;
-}
 
 __kernel void ppf_scene_features(__global const float4* points, __global const float4* normals,
                                  const uint n, __global const uint* refs, const uint n_refs,
@@ -91,7 +65,7 @@ static inline bool seen_insert(__global ulong* seen, const uint slots, const ulo
 
 __kernel void ppf_vote(__global const uint* keys, __global const float* alphas, const uint n,
                        const uint first_ref, const uint count,
-                       __global const uint* offsets, __global const bp_ppf_entry* entries,
+                       __global const uint* offsets, __global const bp_vote_entry* entries,
                        const uint n_model, const bp_ppf_quant q, const float inv_step,
                        __global uint* accumulators, const uint unique, __global ulong* seen_sets,
                        const uint slots, const uint spread) {
@@ -113,20 +87,23 @@ __kernel void ppf_vote(__global const uint* keys, __global const float* alphas, 
         !seen_insert(seen, slots,
                      (ulong)key * q.n_alpha + bp_alpha_s_bin(alpha_s, inv_step, q.n_alpha)))
       continue;
+    const float scaled_s = alpha_s * inv_step;
     const uint end = offsets[key + 1];
     /* Two loops, the choice made once per pair: a branch inside the hot loop cost more than
      * the second increment itself. */
+    float frac;
     if (spread) {
       for (uint e = offsets[key]; e < end; ++e) {
-        const bp_ppf_entry entry = entries[e];
-        __global uint* row = acc + entry.point * q.n_alpha;
-        ++row[vote_alpha_bin(alpha_s, entry.alpha, inv_step, q.n_alpha)];
-        ++row[vote_alpha_neighbour(alpha_s, entry.alpha, inv_step, q.n_alpha)];
+        const bp_vote_entry entry = entries[e];
+        __global uint* row = acc + entry.row;
+        const uint b = bp_vote_bin(scaled_s, entry.offset, q.n_alpha, &frac);
+        ++row[b];
+        ++row[bp_vote_neighbour(b, frac, q.n_alpha)];
       }
     } else {
       for (uint e = offsets[key]; e < end; ++e) {
-        const bp_ppf_entry entry = entries[e];
-        ++acc[entry.point * q.n_alpha + vote_alpha_bin(alpha_s, entry.alpha, inv_step, q.n_alpha)];
+        const bp_vote_entry entry = entries[e];
+        ++acc[entry.row + bp_vote_bin(scaled_s, entry.offset, q.n_alpha, &frac)];
       }
     }
   }

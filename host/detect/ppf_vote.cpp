@@ -35,8 +35,9 @@ DeviceModel upload_model(ocl::Device& dev, const PpfModel& model, std::size_t bu
   const PpfTable& table = bucket_cap == 0 ? model.table : capped;
   d.offsets = ocl::Buffer<std::uint32_t>(dev, std::span<const std::uint32_t>(table.offsets),
                                          CL_MEM_READ_ONLY);
-  d.entries = ocl::Buffer<bp_ppf_entry>(dev, std::span<const bp_ppf_entry>(table.entries),
-                                        CL_MEM_READ_ONLY);
+  const std::vector<bp_vote_entry> entries = vote_entries(table.entries, model.quant);
+  d.entries = ocl::Buffer<bp_vote_entry>(dev, std::span<const bp_vote_entry>(entries),
+                                         CL_MEM_READ_ONLY);
   return d;
 }
 
@@ -167,25 +168,30 @@ float ppf_vote_inv_step(const bp_ppf_quant& quant) {
   return float(double(quant.n_alpha) / (2.0 * std::numbers::pi));
 }
 
+std::vector<bp_vote_entry> vote_entries(std::span<const bp_ppf_entry> entries,
+                                        const bp_ppf_quant& quant) {
+  const float inv_step = ppf_vote_inv_step(quant);
+  std::vector<bp_vote_entry> out(entries.size());
+  for (std::size_t e = 0; e < entries.size(); ++e)
+    out[e] = {entries[e].point * quant.n_alpha,
+              bp_vote_offset(entries[e].alpha, inv_step, quant.n_alpha)};
+  return out;
+}
+
 std::uint32_t ppf_vote_alpha_bin(float alpha_s, float alpha_m, const bp_ppf_quant& quant) {
-  const std::uint32_t n = quant.n_alpha;
-  const float u = (alpha_s - alpha_m) * ppf_vote_inv_step(quant) + 1.5f * float(n);
-  auto b = static_cast<std::uint32_t>(u);
-  if (b >= 2 * n) b -= 2 * n;
-  else if (b >= n) b -= n;
-  return b;
+  const float inv_step = ppf_vote_inv_step(quant);
+  float frac = 0;
+  return bp_vote_bin(alpha_s * inv_step, bp_vote_offset(alpha_m, inv_step, quant.n_alpha),
+                     quant.n_alpha, &frac);
 }
 
 std::uint32_t ppf_vote_alpha_neighbour(float alpha_s, float alpha_m, const bp_ppf_quant& quant) {
-  const std::uint32_t n = quant.n_alpha;
-  const float u = (alpha_s - alpha_m) * ppf_vote_inv_step(quant) + 1.5f * float(n);
-  const auto t = static_cast<std::uint32_t>(u);
-  const float frac = u - float(t);
-  std::uint32_t b = t;
-  if (b >= 2 * n) b -= 2 * n;
-  else if (b >= n) b -= n;
-  if (frac < 0.5f) return b == 0 ? n - 1 : b - 1;
-  return b + 1 == n ? 0 : b + 1;
+  const float inv_step = ppf_vote_inv_step(quant);
+  float frac = 0;
+  const std::uint32_t b =
+      bp_vote_bin(alpha_s * inv_step, bp_vote_offset(alpha_m, inv_step, quant.n_alpha),
+                  quant.n_alpha, &frac);
+  return bp_vote_neighbour(b, frac, quant.n_alpha);
 }
 
 std::vector<std::uint32_t> vote_accumulator_reference(const ScenePairs& pairs, std::size_t r,

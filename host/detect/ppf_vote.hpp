@@ -19,10 +19,11 @@ namespace binpick {
 struct DeviceModel {
   const PpfModel* model = nullptr;  // must outlive this
   ocl::Buffer<std::uint32_t> offsets;
-  ocl::Buffer<bp_ppf_entry> entries;
+  ocl::Buffer<bp_vote_entry> entries;  // as the vote reads them (vote_entries)
   std::size_t bucket_cap = 0;       // entries a bucket keeps (cap_ppf_buckets); 0: all
 };
-// The table as cap_ppf_buckets(model.table, bucket_cap) leaves it (0: the whole table).
+// The table as cap_ppf_buckets(model.table, bucket_cap) leaves it (0: the whole table), its
+// entries as vote_entries gives them.
 DeviceModel upload_model(ocl::Device& dev, const PpfModel& model, std::size_t bucket_cap = 0);
 
 // Reference points: m = max(1, round(ratio * n)) of n subsampled scene points, evenly spread
@@ -80,10 +81,14 @@ std::vector<VotePeak> vote_peaks(ocl::Device& dev, const DeviceModel& model,
 ScenePairs scene_pair_features_reference(const PointCloud& scene,
                                          const std::vector<std::uint32_t>& refs,
                                          const bp_ppf_quant& quant);
-// The alpha bin of alpha_s - alpha_m wrapped into [-pi, pi) (bins of 2 pi / n_alpha from -pi):
-// the same float operations as the kernel, so given the same features the votes are identical.
 // inv_step = n_alpha / (2 pi) as a float, the value the kernel gets.
 float ppf_vote_inv_step(const bp_ppf_quant& quant);
+// A table's entries as the vote kernel reads them: (m_r n_alpha, bp_vote_offset(alpha_m)).
+std::vector<bp_vote_entry> vote_entries(std::span<const bp_ppf_entry> entries,
+                                        const bp_ppf_quant& quant);
+// The alpha bin of alpha_s - alpha_m wrapped into [-pi, pi) (bins of 2 pi / n_alpha from -pi):
+// the same float operations as the kernel (bp_vote_bin on bp_vote_offset), so given the same
+// features the votes are identical.
 std::uint32_t ppf_vote_alpha_bin(float alpha_s, float alpha_m, const bp_ppf_quant& quant);
 // The neighbouring bin a spread vote also goes to: the kernel's float operations.
 std::uint32_t ppf_vote_alpha_neighbour(float alpha_s, float alpha_m, const bp_ppf_quant& quant);

@@ -201,6 +201,43 @@ TEST(PpfVote, AlphaBinWrapsAroundTheFullTurn) {
     for (float b = -pi; b < pi; b += 0.37f) EXPECT_LT(ppf_vote_alpha_bin(a, b, q), 30u);
 }
 
+// The vote's bin (an offset worked out at upload, one add in the loop) is the wrapped bin of
+// alpha_s - alpha_m in double precision, except within rounding of a bin edge; the spread vote's
+// neighbour is the bin on the nearer side; the entries keep their model point's row.
+TEST(PpfVote, VoteBinIsTheWrappedDifferenceAwayFromEdges) {
+  const bp_ppf_quant q = make_ppf_quant(50.0f, 20, 30);
+  const double pi = std::numbers::pi, step = 2 * pi / 30;
+  std::mt19937 rng(17);
+  std::uniform_real_distribution<float> angle(-float(pi), float(pi));
+  std::size_t checked = 0;
+  for (int i = 0; i < 200000; ++i) {
+    const float s = angle(rng), m = angle(rng);
+    double diff = double(s) - double(m);
+    if (diff < -pi) diff += 2 * pi;
+    if (diff >= pi) diff -= 2 * pi;
+    const double u = (diff + pi) / step;
+    const double frac = u - std::floor(u);
+    if (frac < 1e-4 || frac > 1 - 1e-4) continue;  // next to an edge: either bin
+    const auto want = static_cast<std::uint32_t>(std::floor(u)) % 30;
+    ASSERT_EQ(ppf_vote_alpha_bin(s, m, q), want) << s << " " << m;
+    const std::uint32_t side = frac < 0.5 ? (want + 29) % 30 : (want + 1) % 30;
+    if (std::fabs(frac - 0.5) > 1e-4)  // at a bin's middle: either side
+      ASSERT_EQ(ppf_vote_alpha_neighbour(s, m, q), side) << s << " " << m;
+    ++checked;
+  }
+  EXPECT_GT(checked, 199000u);
+  const std::vector<bp_ppf_entry> entries = {{0, 0.0f}, {7, -3.0f}, {4, 3.1f}};
+  const std::vector<bp_vote_entry> got = vote_entries(entries, q);
+  ASSERT_EQ(got.size(), 3u);
+  for (std::size_t e = 0; e < entries.size(); ++e) {
+    EXPECT_EQ(got[e].row, entries[e].point * 30u);
+    float frac = 0;
+    EXPECT_EQ(bp_vote_bin(0.25f * ppf_vote_inv_step(q), got[e].offset, 30, &frac),
+              ppf_vote_alpha_bin(0.25f, entries[e].alpha, q));
+  }
+  EXPECT_TRUE(vote_entries({}, q).empty());
+}
+
 // The convention proof: moving the model by a known pose, every reference point's best peak
 // must be its own model point with an alpha bin whose pose is the known one (to half a bin).
 TEST(PpfVote, PeaksOfAMovedModelGiveTheKnownPose) {
