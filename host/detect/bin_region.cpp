@@ -56,7 +56,9 @@ SceneRegionMask apply_region(PreparedScene& scene, const RegionSetup& setup, int
     out.report = describe(*out.bin);
     if (out.bin->found) {
       const bool clear = setup.clear_floor && out.bin->floor_plane;
-      region.bin = bin_interior_box(*out.bin, setup.margin, setup.above, clear ? out.bin->tol : -1);
+      region.bin = bin_interior_box(*out.bin, setup.margin, setup.above,
+                                    clear ? std::min(out.bin->tol, setup.floor_clearance_cap)
+                                          : -1);
     } else {
       out.warning = fmt::format("no bin found ({}); detecting in the whole image{}", out.bin->why,
                                 setup.roi && setup.roi->frame == RoiSpec::Frame::bin

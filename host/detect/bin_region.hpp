@@ -6,6 +6,7 @@
 #pragma once
 
 #include <cstddef>
+#include <limits>
 #include <optional>
 #include <string>
 
@@ -28,6 +29,9 @@ struct RegionSetup {
   // Keep the floor out: points less than the bin fit's plane tolerance above a fitted floor
   // are not used (bin_interior_box); false: the floor stays, from margin below it.
   bool clear_floor = true;
+  // ... but never more than this (mm): half the part's thinnest extent, so that a sheet thinner
+  // than the tolerance (1.5 mm against 3 to 6 mm at 1 to 2 m) lying on the floor stays in.
+  double floor_clearance_cap = std::numeric_limits<double>::infinity();
   bool wanted() const { return roi.has_value() || bin.mode != BinSpec::Mode::none; }
 };
 

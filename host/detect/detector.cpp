@@ -194,6 +194,7 @@ Detector::Detector(const PpfModel& model, const DetectParams& params, ocl::Devic
   fit_geometry_.voxel_size = model_.voxel_size;
   fit_geometry_.centroid = model_centroid(model_.cloud);
   outline_ratio_ = outline_ratio_for(model_.cloud, model_.diameter, params_.verify_tolerance);
+  thinnest_extent_ = thinnest_extent(model_.cloud);
   // The probes of one extra pass: the look-alikes' (twin test), then, for a thin part (no
   // outline test), the edge probes (edge test).
   twin_probes_.twins = static_cast<std::uint32_t>(model_.near_symmetries.size());
@@ -491,6 +492,7 @@ std::vector<Detection> Detector::detect(const DepthImage& depth, const bp_camera
   region.above = model_.diameter;
   region.min_height = 0.5 * model_.diameter;  // a tray shallower than half a part holds none
   region.min_side = model_.diameter;          // nor one narrower than a part
+  region.floor_clearance_cap = 0.5 * thinnest_extent_;
   const BinFit* known_bin = shared ? shared->bin(params_.bin, model_.diameter) : nullptr;
   const SceneRegionMask masked =
       apply_region(scene, region, prep.lowpass_radius, &t.stages, known_bin);

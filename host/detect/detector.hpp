@@ -273,6 +273,7 @@ class Detector {
   TwinProbeModel twin_probes_;
   FitGeometry fit_geometry_;
   float outline_ratio_ = 0;  // the verification's outline test, 0 for thin parts (outline_test.hpp)
+  double thinnest_extent_ = 0;  // mm, the model's extent along its least-variance axis
 };
 
 }  // namespace binpick

@@ -167,3 +167,46 @@ TEST(DetectBin, OnlySpecksGiveNoDetectionAndNoCrash) {
   EXPECT_NE(no_bin.region_report().find("not found"), std::string::npos) << no_bin.region_report();
   EXPECT_EQ(no_bin.skipped().size(), 2u);
 }
+
+// The last parts of a bin of sheet metal lie flat on its floor, thinner (1.5 mm) than the floor
+// fit's tolerance (3 mm here): the floor's clearance is capped at half the part's thinnest
+// extent, so the sheets stay in the region and are found. A thick part's clearance keeps the
+// whole tolerance, which would have left the sheets out with the floor (the test's premise).
+TEST(DetectBin, SheetsLyingOnTheFloorStayInTheRegion) {
+  const Eigen::Vector3f size(120.0f, 80.0f, 1.5f);
+  const PpfModel sheet = train_ppf_model(box(size), {});
+  BinSceneSpec s;
+  s.spheres.clear();
+  const std::vector<Eigen::Vector2d> centres = {{-90, -60}, {80, 50}};
+  for (const Eigen::Vector2d& c : centres)
+    s.boxes.push_back({Eigen::Vector3d(c.x() - 60, c.y() - 40, 0),
+                       Eigen::Vector3d(c.x() + 60, c.y() + 40, 1.5)});
+  const BinScene scene = make_bin_scene(s);
+  const auto kept = [](const std::string& report) {
+    const std::size_t at = report.find("mask: ");
+    return at == std::string::npos ? 0ul : std::stoul(report.substr(at + 6));
+  };
+  DetectParams p = fast_params();
+  p.bin = "auto";
+  p.hypotheses = 2;
+  p.more_hypotheses = 0;
+  {
+    Detector thick(bracket(), p);
+    (void)thick.detect(scene.depth, scene.cam);
+    EXPECT_LT(kept(thick.region_report()), 100u) << thick.region_report();
+  }
+  Detector det(sheet, p);
+  const std::vector<Detection> found = det.detect(scene.depth, scene.cam);
+  // Each sheet shows about 63 x 42 pixels at 1 m.
+  EXPECT_GT(kept(det.region_report()), 4000u) << det.region_report();
+  ASSERT_EQ(found.size(), 2u);
+  for (const Detection& d : found) {
+    const Eigen::Vector3d c = scene.to_bin(d.R * (0.5 * size.cast<double>()) + d.t);
+    double nearest = 1e9;
+    for (const Eigen::Vector2d& want : centres)
+      nearest = std::min(nearest, (c - Eigen::Vector3d(want.x(), want.y(), 0.75)).norm());
+    EXPECT_LT(nearest, 0.1 * sheet.diameter) << c.transpose();
+    // The edge test scales it by the step down at the edges: 1.5 mm of a 5.8 mm tolerance.
+    EXPECT_GT(d.score, 0.15);
+  }
+}
