@@ -1,6 +1,7 @@
 #include "host/detect/plane_search.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <numbers>
 
@@ -106,9 +107,11 @@ std::vector<float> edge_step_scores_reference(const std::vector<float>& points,
   const std::vector<float> packed = pack_poses(poses);
   for (std::size_t k = 0; k < poses.size(); ++k) {
     const float* P = &packed[12 * k];
-    float sum = 0.0f, own = 0.0f;
+    // Per lane, as the kernel's 8-wide vectors sum (probe j / stride in lane j / stride % 8).
+    std::array<float, 8> sum{}, own{};
     std::uint32_t count = 0, own_count = 0;
     for (std::size_t j = 0; j < probes.points.size(); j += stride) {
+      const std::size_t lane = (j / stride) % 8;
       const Eigen::Vector3f& q = probes.points[j];
       const Eigen::Vector3f& m = probes.normals[j];
       const float x = P[0] * q.x() + P[1] * q.y() + P[2] * q.z() + P[9];
@@ -129,15 +132,18 @@ std::vector<float> edge_step_scores_reference(const std::vector<float>& points,
         e = std::min(e, tolerance);
       }
       if (j >= edge_probes) {
-        own += std::max(e, 0.0f);
+        own[lane] += std::max(e, 0.0f);
         ++own_count;
       } else {
-        sum += e;
+        sum[lane] += e;
         ++count;
       }
     }
+    const auto total = [](const std::array<float, 8>& v) {
+      return ((v[0] + v[1]) + (v[2] + v[3])) + ((v[4] + v[5]) + (v[6] + v[7]));
+    };
     out.push_back(count >= kMinProbes && own_count >= kMinProbes
-                      ? sum / float(count) - own / float(own_count)
+                      ? total(sum) / float(count) - total(own) / float(own_count)
                       : -1.0f);
   }
   return out;
