@@ -1,9 +1,8 @@
 // Detection time per hypothesis on the paper's image size (paper section IV: 726 ms at 20 %
 // reference points, 70 ms at 2 %): a 1600 x 900 bin of the built-in bracket made by the synth
-// pipeline (70 parts, so the physics stays seconds), and one of the built-in plate (a flat part:
-// most of its pairs are coplanar and share keys, so voting dominates), the model trained once,
-// then the whole
-// Detector on the depth image. Counters are ms per hypothesis by stage: preparation (scene
+// pipeline (70 parts, so the physics stays seconds), and one of the built-in plate (a thin part:
+// its coplanar pairs share keys, and it runs the in-plane search, so refinement dominates), the
+// model trained once, then the whole Detector on the depth image. Counters are ms per hypothesis by stage: preparation (scene
 // preparation, highest points, crop, subsampling), voting (features, votes, peaks) and
 // clustering (poses, compatibility kernel, grouping). Argument: reference points in per mille.
 // With BINPICK_BENCH_SMOKE set: a 160 x 90 bin of 10 parts, one repetition.

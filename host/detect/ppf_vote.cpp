@@ -178,19 +178,17 @@ std::vector<bp_vote_entry> vote_entries(std::span<const bp_ppf_entry> entries,
   return out;
 }
 
-std::uint32_t ppf_vote_alpha_bin(float alpha_s, float alpha_m, const bp_ppf_quant& quant) {
+std::uint32_t ppf_vote_alpha_bin(float alpha_s, float alpha_m, const bp_ppf_quant& quant,
+                                 float* frac) {
   const float inv_step = ppf_vote_inv_step(quant);
-  float frac = 0;
+  float unused = 0;
   return bp_vote_bin(alpha_s * inv_step, bp_vote_offset(alpha_m, inv_step, quant.n_alpha),
-                     quant.n_alpha, &frac);
+                     quant.n_alpha, frac ? frac : &unused);
 }
 
 std::uint32_t ppf_vote_alpha_neighbour(float alpha_s, float alpha_m, const bp_ppf_quant& quant) {
-  const float inv_step = ppf_vote_inv_step(quant);
   float frac = 0;
-  const std::uint32_t b =
-      bp_vote_bin(alpha_s * inv_step, bp_vote_offset(alpha_m, inv_step, quant.n_alpha),
-                  quant.n_alpha, &frac);
+  const std::uint32_t b = ppf_vote_alpha_bin(alpha_s, alpha_m, quant, &frac);
   return bp_vote_neighbour(b, frac, quant.n_alpha);
 }
 

@@ -88,8 +88,9 @@ std::vector<bp_vote_entry> vote_entries(std::span<const bp_ppf_entry> entries,
                                         const bp_ppf_quant& quant);
 // The alpha bin of alpha_s - alpha_m wrapped into [-pi, pi) (bins of 2 pi / n_alpha from -pi):
 // the same float operations as the kernel (bp_vote_bin on bp_vote_offset), so given the same
-// features the votes are identical.
-std::uint32_t ppf_vote_alpha_bin(float alpha_s, float alpha_m, const bp_ppf_quant& quant);
+// features the votes are identical. *frac, if given: the part of the bin past its start.
+std::uint32_t ppf_vote_alpha_bin(float alpha_s, float alpha_m, const bp_ppf_quant& quant,
+                                 float* frac = nullptr);
 // The neighbouring bin a spread vote also goes to: the kernel's float operations.
 std::uint32_t ppf_vote_alpha_neighbour(float alpha_s, float alpha_m, const bp_ppf_quant& quant);
 // The accumulator (model points x alpha bins) of row r of pairs.
