@@ -6,6 +6,14 @@
 
 #ifdef __OPENCL_VERSION__
 #define BP_FN static inline
+/* Fetch the cache line at p ahead of its use. OpenCL's prefetch() does nothing on PoCL; Clang's
+ * builtin becomes the CPU's prefetch instruction. For reads scattered over an image larger than
+ * the caches, where each would otherwise stall the work item on memory. */
+#ifdef __clang__
+#define BP_PREFETCH(p) __builtin_prefetch(p)
+#else
+#define BP_PREFETCH(p) ((void)(p))
+#endif
 typedef uint bp_u32;
 typedef int bp_i32;
 #define BP_FLOOR floor

@@ -35,8 +35,11 @@ __kernel void pose_fit(__global const float4* points, const bp_camera cam,
   uint pixel = 0u, cell = 0u;
   for (uint j = lid; j < n_model; j += BP_FIT_GROUP) {
     const float4 m = model_points[j], n = model_normals[j];
-    if (bp_fit_project(&f, &c, m.x, m.y, m.z, n.x, n.y, n.z, q, nq, &pixel, &cell))
-      atomic_min(&grid[cell], as_uint(q[2]));
+    const int seen = bp_fit_project(&f, &c, m.x, m.y, m.z, n.x, n.y, n.z, q, nq, &pixel, &cell);
+    if (seen) atomic_min(&grid[cell], as_uint(q[2]));
+    /* The classification below reads this point's measured point: a pose's pixels are scattered
+     * over an image of tens of MB, and fetched now they are in the cache by then. */
+    if (seen == 2) BP_PREFETCH(points + pixel);
   }
   barrier(CLK_GLOBAL_MEM_FENCE);
 

@@ -4,10 +4,11 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
-#include <future>
 #include <numbers>
 
 #include <Eigen/Eigenvalues>
+
+#include "host/core/two_halves.hpp"
 
 namespace binpick {
 namespace {
@@ -219,9 +220,9 @@ RimFit fit_rim(const PlaneSamples& s, const Eigen::Vector3d& up, const Eigen::Ve
       scores[std::size_t(step)] = histogram_sharpness(xr, width, counts) + histogram_sharpness(yr, width, counts);
     }
   };
-  std::future<void> second = std::async(std::launch::async, score_steps, kSteps / 2, kSteps);
-  score_steps(0, kSteps / 2);
-  second.get();
+  in_two_halves(kSteps, [&](std::size_t first, std::size_t last) {
+    score_steps(int(first), int(last));
+  });
   double best = -1;
   for (int step = 0; step < kSteps; ++step)
     if (scores[std::size_t(step)] > best) best = scores[std::size_t(step)], rim.angle = angle(step);

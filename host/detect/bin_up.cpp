@@ -3,11 +3,11 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <future>
 
 #include <Eigen/Geometry>
 
 #include "host/core/angles.hpp"
+#include "host/core/two_halves.hpp"
 
 namespace binpick {
 namespace {
@@ -44,9 +44,7 @@ std::vector<Scored> score(const BorderBand& band, const std::vector<Eigen::Vecto
   const auto run = [&](std::size_t first, std::size_t last) {
     for (std::size_t k = first; k < last; ++k) out[k] = {dirs[k], rim_support(band, dirs[k], width)};
   };
-  std::future<void> second = std::async(std::launch::async, run, dirs.size() / 2, dirs.size());
-  run(0, dirs.size() / 2);
-  second.get();
+  in_two_halves(dirs.size(), run);
   return out;
 }
 

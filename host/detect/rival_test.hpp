@@ -56,11 +56,16 @@ class PosedSurface {
 
  private:
   static constexpr int kMaxRadius = 8;  // pixels
+  // The index of the model point standing for pixel (u, v), -1 if none.
+  std::int32_t nearest(int u, int v) const;
   bp_camera cam_;
-  int radius_ = 1;
-  int u0_ = 0, v0_ = 0, width_ = 0, height_ = 0;
-  std::vector<std::int32_t> nearest_;          // per window pixel, a point index or -1
-  std::vector<Eigen::Vector3f> q_, nq_;        // posed points and normals
+  float band_ = 0;                              // mm: nearer by this hides
+  int radius_ = 1;                              // pixels: a point's disc, and a cell's side
+  int u0_ = 0, v0_ = 0, cells_u_ = 0, cells_v_ = 0;  // the window's corner and its cells
+  std::vector<std::uint32_t> cell_start_;       // per cell, its first entry in cell_points_
+  std::vector<std::uint32_t> cell_points_;      // point indices, by cell, in index order
+  std::vector<Eigen::Vector3f> q_, nq_;         // posed points and normals
+  std::vector<Eigen::Vector2f> pixel_;          // their image positions
 };
 
 struct RivalComparison {
@@ -73,6 +78,15 @@ struct RivalComparison {
 RivalComparison compare_rivals(const PosedSurface& a, std::span<const Eigen::Vector3f> measured_a,
                                const PosedSurface& b, std::span<const Eigen::Vector3f> measured_b,
                                double tolerance, bool count_unexplained);
+// The same, given each pose's residuals at its own measured points (own_residuals), which a
+// pose compared with many rivals needs only once.
+std::vector<double> own_residuals(const PosedSurface& surface,
+                                  std::span<const Eigen::Vector3f> measured);
+RivalComparison compare_rivals(const PosedSurface& a, std::span<const Eigen::Vector3f> measured_a,
+                               std::span<const double> own_a, const PosedSurface& b,
+                               std::span<const Eigen::Vector3f> measured_b,
+                               std::span<const double> own_b, double tolerance,
+                               bool count_unexplained);
 
 // Poses whose posed centroids lie farther apart than this fraction of the diameter are not
 // compared (they cannot share most of their points); a pruning for speed.

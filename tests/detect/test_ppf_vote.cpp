@@ -221,8 +221,9 @@ TEST(PpfVote, VoteBinIsTheWrappedDifferenceAwayFromEdges) {
     const auto want = static_cast<std::uint32_t>(std::floor(u)) % 30;
     ASSERT_EQ(ppf_vote_alpha_bin(s, m, q), want) << s << " " << m;
     const std::uint32_t side = frac < 0.5 ? (want + 29) % 30 : (want + 1) % 30;
-    if (std::fabs(frac - 0.5) > 1e-4)  // at a bin's middle: either side
+    if (std::fabs(frac - 0.5) > 1e-4) {  // at a bin's middle: either side
       ASSERT_EQ(ppf_vote_alpha_neighbour(s, m, q), side) << s << " " << m;
+    }
     ++checked;
   }
   EXPECT_GT(checked, 199000u);

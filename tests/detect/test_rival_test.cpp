@@ -4,6 +4,7 @@
 // same points within the tolerance but worse, and must not outrank the right pose.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <random>
@@ -171,6 +172,90 @@ TEST(RivalTest, ResidualAlongTheRayFromThePosedSurfaceAtThePixel) {
   // Along the ray through `off`, the plane lies farther away: a measured point nearer than the
   // model, residual positive, about 1 / cos 60 = 2 mm.
   EXPECT_NEAR(oblique.along_ray(off), 2.0, 0.1);
+}
+
+// The posed surface as it was first written: each point facing the camera splats a disc of
+// the radius into a window, in index order, keeping per pixel the nearest in the image unless a
+// later point lies nearer the camera by more than the band. PosedSurface finds the same point
+// per pixel from a grid of cells without the window.
+double along_ray_by_splat(const Eigen::Matrix3d& R, const Eigen::Vector3d& t,
+                          const std::vector<Eigen::Vector3f>& points,
+                          const std::vector<Eigen::Vector3f>& normals, float spacing,
+                          const Eigen::Vector3f& m) {
+  const Eigen::Matrix3f Rf = R.cast<float>();
+  const Eigen::Vector3f tf = t.cast<float>();
+  std::vector<Eigen::Vector3f> q, nq;
+  std::vector<Eigen::Vector2f> pixel;
+  double depth = 0;
+  for (std::size_t j = 0; j < points.size(); ++j) {
+    const Eigen::Vector3f p = Rf * points[j] + tf, n = Rf * normals[j];
+    if (!(p.z() > 0) || -n.dot(p) < 0.17f * p.norm() * n.norm()) continue;
+    q.push_back(p);
+    nq.push_back(n.normalized());
+    pixel.emplace_back(kCam.fx * p.x() / p.z() + kCam.cx, kCam.fy * p.y() / p.z() + kCam.cy);
+    depth += p.z();
+  }
+  if (q.empty()) return std::numeric_limits<double>::quiet_NaN();
+  const int radius = std::clamp(int(std::ceil(0.75 * spacing * kCam.fx / (depth / double(q.size())))), 1, 8);
+  const int u = int(std::floor(kCam.fx * m.x() / m.z() + kCam.cx + 0.5f));
+  const int v = int(std::floor(kCam.fy * m.y() / m.z() + kCam.cy + 0.5f));
+  int nearest = -1;
+  float best = INFINITY;
+  for (std::size_t j = 0; j < q.size(); ++j) {
+    const int cu = int(std::floor(pixel[j].x() + 0.5f)), cv = int(std::floor(pixel[j].y() + 0.5f));
+    if (std::abs(u - cu) > radius || std::abs(v - cv) > radius) continue;
+    const float d2 = (Eigen::Vector2f(float(u), float(v)) - pixel[j]).squaredNorm();
+    if (d2 > float(radius * radius)) continue;
+    const float band = 2 * spacing;
+    if (nearest < 0 || q[j].z() < q[std::size_t(nearest)].z() - band ||
+        (q[j].z() <= q[std::size_t(nearest)].z() + band && d2 < best)) {
+      nearest = int(j);
+      best = d2;
+    }
+  }
+  if (nearest < 0) return std::numeric_limits<double>::quiet_NaN();
+  const Eigen::Vector3f& a = q[std::size_t(nearest)];
+  const Eigen::Vector3f& n = nq[std::size_t(nearest)];
+  return double(n.dot(m - a) / std::max(-n.dot(m.normalized()), 0.17f));
+}
+
+TEST(RivalTest, ThePointAtAPixelIsTheOneASplatOfDiscsLeaves) {
+  // Two overlapping layers of random points (a sheet and one behind it, nearer than the band
+  // at places and beyond it at others), random normals, some facing away; and a pile of many
+  // points on one spot, more than a pixel's usual few.
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<float> xy(-30.0f, 30.0f), dz(-1.0f, 12.0f), tilt(-0.6f, 0.6f);
+  std::vector<Eigen::Vector3f> points, normals;
+  for (int i = 0; i < 600; ++i) {
+    points.emplace_back(xy(rng), xy(rng), i % 2 == 0 ? 0.0f : -dz(rng));
+    normals.push_back(Eigen::Vector3f(tilt(rng), tilt(rng), i % 7 == 0 ? -1.0f : 1.0f).normalized());
+  }
+  for (int i = 0; i < 80; ++i) {
+    points.emplace_back(5.0f + 0.01f * float(i), -3.0f, -0.05f * float(i));
+    normals.emplace_back(0.0f, 0.0f, 1.0f);
+  }
+  const Eigen::Matrix3d R =
+      Eigen::AngleAxisd(M_PI, Eigen::Vector3d::UnitX()).toRotationMatrix() *
+      Eigen::AngleAxisd(0.3, Eigen::Vector3d(1, 2, 0).normalized()).toRotationMatrix();
+  const Eigen::Vector3d t(4, -2, 500);
+  for (const float spacing : {0.4f, 2.0f, 4.0f, 9.0f}) {  // radii 1, 3, 6 and the cap, 8
+    const PosedSurface surface(R, t, points, normals, kCam, spacing);
+    std::size_t found = 0;
+    for (int v = 150; v < 330; ++v)
+      for (int u = 230 + v % 2; u < 410; u += 2) {  // every other pixel: the test's time
+        const float z = 495.0f + 0.05f * float((u * 7 + v * 3) % 200);
+        const Eigen::Vector3f m((float(u) - kCam.cx) / kCam.fx * z, (float(v) - kCam.cy) / kCam.fy * z, z);
+        const double want = along_ray_by_splat(R, t, points, normals, spacing, m);
+        const double got = surface.along_ray(m);
+        if (std::isnan(want)) {
+          ASSERT_TRUE(std::isnan(got)) << u << " " << v << " spacing " << spacing;
+          continue;
+        }
+        ASSERT_EQ(got, want) << u << " " << v << " spacing " << spacing;
+        ++found;
+      }
+    EXPECT_GT(found, 700u) << spacing;  // 758 pixels with discs of one pixel, 4,580 to 8,168 else
+  }
 }
 
 TEST(RivalTest, TheShaftTurnedEndForEndCannotOutrankTheRightPose) {
