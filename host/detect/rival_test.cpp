@@ -167,10 +167,11 @@ RivalComparison compare_rivals(const PosedSurface& a, std::span<const Eigen::Vec
                                std::span<const double> own_a, const PosedSurface& b,
                                std::span<const Eigen::Vector3f> measured_b,
                                std::span<const double> own_b, double tolerance,
-                               bool count_unexplained) {
+                               bool count_unexplained, double min_shared) {
   if (own_a.size() != measured_a.size() || own_b.size() != measured_b.size())
     throw std::logic_error("compare rivals: one own residual per measured point expected");
   RivalComparison c;
+  const std::size_t total = measured_a.size() + measured_b.size();
   const double cap = tolerance * tolerance;
   double sum_a = 0, sum_b = 0, sum_d = 0, sum_d2 = 0;
   const auto add = [&](double ea, double eb) {
@@ -187,8 +188,23 @@ RivalComparison compare_rivals(const PosedSurface& a, std::span<const Eigen::Vec
     sum_d += sb - sa;
     sum_d2 += (sb - sa) * (sb - sa);
   };
-  for (std::size_t k = 0; k < measured_a.size(); ++k) add(own_a[k], b.along_ray(measured_a[k]));
-  for (std::size_t k = 0; k < measured_b.size(); ++k) add(a.along_ray(measured_b[k]), own_b[k]);
+  const auto hopeless = [&] {
+    // The most the whole union could share, against the share as rival_test checks it.
+    const std::size_t most = total - (c.union_size - c.shared);
+    if (!(double(most) < min_shared * double(total))) return false;
+    c.union_size = total;  // the share stays below min_shared, as the whole union's would
+    c.compared = 0;
+    c.stopped = true;
+    return true;
+  };
+  for (std::size_t k = 0; k < measured_a.size(); ++k) {
+    add(own_a[k], b.along_ray(measured_a[k]));
+    if (min_shared > 0 && hopeless()) return c;
+  }
+  for (std::size_t k = 0; k < measured_b.size(); ++k) {
+    add(a.along_ray(measured_b[k]), own_b[k]);
+    if (min_shared > 0 && hopeless()) return c;
+  }
   if (c.compared < 2) return c;
   const double n = double(c.compared);
   c.ms_a = sum_a / n;
@@ -244,7 +260,7 @@ void rival_test(std::vector<RefinedPose>& poses, std::span<const Eigen::Vector3f
       const auto [i, j] = pairs[p];
       compared[p] = compare_rivals(*surface[i], poses[i].measured, own[i], *surface[j],
                                    poses[j].measured, own[j], poses[i].tolerance,
-                                   opt.count_unexplained);
+                                   opt.count_unexplained, opt.min_shared);
     }
   });
   const auto out_fits = [&](std::size_t winner, std::size_t loser, double ms_w, double ms_l,

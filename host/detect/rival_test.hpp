@@ -73,20 +73,24 @@ struct RivalComparison {
   std::size_t compared = 0;                // those the means are over
   double ms_a = 0, ms_b = 0;               // mean clipped squared residual, mm^2
   double standard_error = 0;               // of the mean of (B's - A's), mm^2
+  bool stopped = false;  // given up: the poses could no longer share min_shared of the union
 };
 // A's and B's residuals on the union of their measured points.
 RivalComparison compare_rivals(const PosedSurface& a, std::span<const Eigen::Vector3f> measured_a,
                                const PosedSurface& b, std::span<const Eigen::Vector3f> measured_b,
                                double tolerance, bool count_unexplained);
 // The same, given each pose's residuals at its own measured points (own_residuals), which a
-// pose compared with many rivals needs only once.
+// pose compared with many rivals needs only once. With min_shared > 0 it gives up as soon as
+// fewer than that share of the union could have surface of both poses (most pairs near each
+// other are not rivals: a plate beside another): then `stopped`, union_size is the whole
+// union's, shared those found so far (so still below the share) and nothing is compared.
 std::vector<double> own_residuals(const PosedSurface& surface,
                                   std::span<const Eigen::Vector3f> measured);
 RivalComparison compare_rivals(const PosedSurface& a, std::span<const Eigen::Vector3f> measured_a,
                                std::span<const double> own_a, const PosedSurface& b,
                                std::span<const Eigen::Vector3f> measured_b,
                                std::span<const double> own_b, double tolerance,
-                               bool count_unexplained);
+                               bool count_unexplained, double min_shared = 0);
 
 // Poses whose posed centroids lie farther apart than this fraction of the diameter are not
 // compared (they cannot share most of their points); a pruning for speed.

@@ -357,4 +357,20 @@ TEST(RivalTest, APoseShowingLessLeavesTheRestUnexplained) {
   EXPECT_NEAR(all.ms_a, 0.04, 0.01);
   EXPECT_GT(all.ms_b, 1.0);
   EXPECT_LT(all.ms_b - all.ms_a, 4.0 * (1.0 - 0.6));
+  // Asked for a share of 80 % of the union (they share about two thirds): given up, and the
+  // share it reports fails the check as the whole count's does. Asked for 60 %: the whole
+  // comparison, the same as without the share.
+  const std::vector<double> own_a = own_residuals(a, ma), own_b = own_residuals(b, mb);
+  const RivalComparison hopeless = compare_rivals(a, ma, own_a, b, mb, own_b, 2.0, true, 0.8);
+  EXPECT_TRUE(hopeless.stopped);
+  EXPECT_EQ(hopeless.union_size, all.union_size);
+  EXPECT_LT(double(hopeless.shared), 0.8 * double(hopeless.union_size));
+  EXPECT_EQ(hopeless.compared, 0u);
+  const RivalComparison enough = compare_rivals(a, ma, own_a, b, mb, own_b, 2.0, true, 0.6);
+  EXPECT_FALSE(enough.stopped);
+  EXPECT_EQ(enough.shared, all.shared);
+  EXPECT_EQ(enough.compared, all.compared);
+  EXPECT_EQ(enough.ms_a, all.ms_a);
+  EXPECT_EQ(enough.ms_b, all.ms_b);
+  EXPECT_EQ(enough.standard_error, all.standard_error);
 }
