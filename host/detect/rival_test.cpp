@@ -58,6 +58,14 @@ PosedSurface::PosedSurface(const Eigen::Matrix3d& R, const Eigen::Vector3d& t,
   const Eigen::Matrix3f Rf = R.cast<float>();
   const Eigen::Vector3f tf = t.cast<float>();
   Eigen::Vector2f lo(INFINITY, INFINITY), hi(-INFINITY, -INFINITY);
+  // Only points near the image go into the grid: no disc of one farther out reaches a pixel
+  // of the image, where every measured point lies, and a pose with points just in front of the
+  // camera projects them millions of pixels out (a window that large would not fit in memory).
+  const float margin = float(kMaxRadius + 1);
+  const auto near_image = [&](const Eigen::Vector2f& uv) {
+    return uv.x() >= -margin && uv.y() >= -margin && uv.x() <= float(cam.width) + margin &&
+           uv.y() <= float(cam.height) + margin;
+  };
   double depth = 0;
   for (std::size_t j = 0; j < points.size(); ++j) {
     const Eigen::Vector3f q = Rf * points[j] + tf;
@@ -68,11 +76,10 @@ PosedSurface::PosedSurface(const Eigen::Matrix3d& R, const Eigen::Vector3d& t,
     q_.push_back(q);
     nq_.push_back(nq.normalized());
     pixel_.push_back(uv);
-    lo = lo.cwiseMin(uv);
-    hi = hi.cwiseMax(uv);
+    if (near_image(uv)) lo = lo.cwiseMin(uv), hi = hi.cwiseMax(uv);
     depth += q.z();
   }
-  if (q_.empty()) return;
+  if (q_.empty() || !(lo.x() <= hi.x())) return;  // no grid: no point stands for any pixel
   depth /= double(q_.size());
   // A model point stands for the pixels within 0.75 of the points' spacing of it: a pixel of
   // the model's surface has a point that near (points a spacing apart leave none farther than
@@ -86,16 +93,21 @@ PosedSurface::PosedSurface(const Eigen::Matrix3d& R, const Eigen::Vector3d& t,
   cells_v_ = (int(std::floor(hi.y())) + radius_ + 1 - v0_) / radius_ + 1;
   std::vector<std::uint32_t> cell_of(q_.size());
   cell_start_.assign(std::size_t(cells_u_) * std::size_t(cells_v_) + 1, 0);
+  constexpr std::uint32_t kNoCell = 0xffffffffu;
   for (std::size_t j = 0; j < q_.size(); ++j) {
-    const int cu = int(std::floor(pixel_[j].x() + 0.5f)), cv = int(std::floor(pixel_[j].y() + 0.5f));
+    cell_of[j] = kNoCell;
+    if (!near_image(pixel_[j])) continue;
+    const int cu = int(std::floor(pixel_[j].x() + 0.5f));
+    const int cv = int(std::floor(pixel_[j].y() + 0.5f));
     cell_of[j] = std::uint32_t((cv - v0_) / radius_) * std::uint32_t(cells_u_) +
                  std::uint32_t((cu - u0_) / radius_);
     ++cell_start_[cell_of[j] + 1];
   }
   for (std::size_t c = 1; c < cell_start_.size(); ++c) cell_start_[c] += cell_start_[c - 1];
-  cell_points_.resize(q_.size());
+  cell_points_.resize(cell_start_.back());
   std::vector<std::uint32_t> fill(cell_start_.begin(), cell_start_.end() - 1);
-  for (std::size_t j = 0; j < q_.size(); ++j) cell_points_[fill[cell_of[j]]++] = std::uint32_t(j);
+  for (std::size_t j = 0; j < q_.size(); ++j)
+    if (cell_of[j] != kNoCell) cell_points_[fill[cell_of[j]]++] = std::uint32_t(j);
 }
 
 std::int32_t PosedSurface::nearest(int u, int v) const {

@@ -142,15 +142,22 @@ TEST(RivalTest, MeasuredPointsComeBackFromTheResiduals) {
                std::logic_error);
 }
 
-TEST(RivalTest, ResidualAlongTheRayFromThePosedSurfaceAtThePixel) {
-  // A square of model points 1 mm apart, normal +z, turned to face the camera: the plane
-  // z = 500.
-  std::vector<Eigen::Vector3f> points, normals;
+// A square of model points 1 mm apart, 40 mm a side, normal +z (turned half about x it faces
+// the camera).
+static void square_of_points(std::vector<Eigen::Vector3f>& points,
+                             std::vector<Eigen::Vector3f>& normals) {
   for (int i = -20; i <= 20; ++i)
     for (int j = -20; j <= 20; ++j) {
       points.emplace_back(float(i), float(j), 0.0f);
       normals.emplace_back(0.0f, 0.0f, 1.0f);
     }
+}
+
+TEST(RivalTest, ResidualAlongTheRayFromThePosedSurfaceAtThePixel) {
+  // A square of model points 1 mm apart, normal +z, turned to face the camera: the plane
+  // z = 500.
+  std::vector<Eigen::Vector3f> points, normals;
+  square_of_points(points, normals);
   const Eigen::Matrix3d facing = Eigen::AngleAxisd(M_PI, Eigen::Vector3d::UnitX()).toRotationMatrix();
   const PosedSurface straight(facing, {0, 0, 500}, points, normals, kCam, 1.0f);
   // A measured point 2 mm behind the plane on a ray through it: 2 mm along the ray (negative:
@@ -178,10 +185,10 @@ TEST(RivalTest, ResidualAlongTheRayFromThePosedSurfaceAtThePixel) {
 // the radius into a window, in index order, keeping per pixel the nearest in the image unless a
 // later point lies nearer the camera by more than the band. PosedSurface finds the same point
 // per pixel from a grid of cells without the window.
-double along_ray_by_splat(const Eigen::Matrix3d& R, const Eigen::Vector3d& t,
-                          const std::vector<Eigen::Vector3f>& points,
-                          const std::vector<Eigen::Vector3f>& normals, float spacing,
-                          const Eigen::Vector3f& m) {
+static double along_ray_by_splat(const Eigen::Matrix3d& R, const Eigen::Vector3d& t,
+                                 const std::vector<Eigen::Vector3f>& points,
+                                 const std::vector<Eigen::Vector3f>& normals, float spacing,
+                                 const Eigen::Vector3f& m) {
   const Eigen::Matrix3f Rf = R.cast<float>();
   const Eigen::Vector3f tf = t.cast<float>();
   std::vector<Eigen::Vector3f> q, nq;
@@ -196,7 +203,8 @@ double along_ray_by_splat(const Eigen::Matrix3d& R, const Eigen::Vector3d& t,
     depth += p.z();
   }
   if (q.empty()) return std::numeric_limits<double>::quiet_NaN();
-  const int radius = std::clamp(int(std::ceil(0.75 * spacing * kCam.fx / (depth / double(q.size())))), 1, 8);
+  const double mean_depth = depth / double(q.size());
+  const int radius = std::clamp(int(std::ceil(0.75 * spacing * kCam.fx / mean_depth)), 1, 8);
   const int u = int(std::floor(kCam.fx * m.x() / m.z() + kCam.cx + 0.5f));
   const int v = int(std::floor(kCam.fy * m.y() / m.z() + kCam.cy + 0.5f));
   int nearest = -1;
@@ -228,7 +236,8 @@ TEST(RivalTest, ThePointAtAPixelIsTheOneASplatOfDiscsLeaves) {
   std::vector<Eigen::Vector3f> points, normals;
   for (int i = 0; i < 600; ++i) {
     points.emplace_back(xy(rng), xy(rng), i % 2 == 0 ? 0.0f : -dz(rng));
-    normals.push_back(Eigen::Vector3f(tilt(rng), tilt(rng), i % 7 == 0 ? -1.0f : 1.0f).normalized());
+    const float z = i % 7 == 0 ? -1.0f : 1.0f;  // every seventh faces away
+    normals.push_back(Eigen::Vector3f(tilt(rng), tilt(rng), z).normalized());
   }
   for (int i = 0; i < 80; ++i) {
     points.emplace_back(5.0f + 0.01f * float(i), -3.0f, -0.05f * float(i));
@@ -244,7 +253,8 @@ TEST(RivalTest, ThePointAtAPixelIsTheOneASplatOfDiscsLeaves) {
     for (int v = 150; v < 330; ++v)
       for (int u = 230 + v % 2; u < 410; u += 2) {  // every other pixel: the test's time
         const float z = 495.0f + 0.05f * float((u * 7 + v * 3) % 200);
-        const Eigen::Vector3f m((float(u) - kCam.cx) / kCam.fx * z, (float(v) - kCam.cy) / kCam.fy * z, z);
+        const Eigen::Vector3f m((float(u) - kCam.cx) / kCam.fx * z,
+                                (float(v) - kCam.cy) / kCam.fy * z, z);
         const double want = along_ray_by_splat(R, t, points, normals, spacing, m);
         const double got = surface.along_ray(m);
         if (std::isnan(want)) {
@@ -256,6 +266,35 @@ TEST(RivalTest, ThePointAtAPixelIsTheOneASplatOfDiscsLeaves) {
       }
     EXPECT_GT(found, 700u) << spacing;  // 758 pixels with discs of one pixel, 4,580 to 8,168 else
   }
+}
+
+TEST(RivalTest, APointJustInFrontOfTheCameraDoesNotBlowUpTheSurface) {
+  // A square of points 1 mm apart facing the camera 500 mm ahead, and one more point posed a
+  // tenth of a micrometre in front of the camera, 100 mm aside and up: it projects 10^9 pixels
+  // out both ways. The surface is built (a window reaching it does not fit in memory: before,
+  // std::bad_alloc) and answers every pixel of the image as the square alone does (the extra
+  // point moves the mean depth too little to change the disc's radius).
+  std::vector<Eigen::Vector3f> points, normals;
+  square_of_points(points, normals);
+  const Eigen::Matrix3d facing = Eigen::AngleAxisd(M_PI, Eigen::Vector3d::UnitX()).toRotationMatrix();
+  const PosedSurface square(facing, {0, 0, 500}, points, normals, kCam, 1.0f);
+  points.emplace_back(100.0f, -100.0f, 499.9999f);  // posed: (100, 100, 0.0001)
+  normals.push_back(Eigen::Vector3f(-1.0f, 1.0f, 0.0f).normalized());  // posed: facing the camera
+  const PosedSurface with_far(facing, {0, 0, 500}, points, normals, kCam, 1.0f);
+  std::size_t found = 0;
+  for (int v = 0; v < int(kCam.height); v += 3)
+    for (int u = 0; u < int(kCam.width); u += 3) {
+      const Eigen::Vector3f m((float(u) - kCam.cx) / kCam.fx * 501.0f,
+                              (float(v) - kCam.cy) / kCam.fy * 501.0f, 501.0f);
+      const double want = square.along_ray(m), got = with_far.along_ray(m);
+      if (std::isnan(want)) {
+        ASSERT_TRUE(std::isnan(got)) << u << " " << v;
+        continue;
+      }
+      ASSERT_EQ(got, want) << u << " " << v;
+      ++found;
+    }
+  EXPECT_GT(found, 500u);  // the square covers about 80 x 80 pixels, every third of them asked
 }
 
 TEST(RivalTest, TheShaftTurnedEndForEndCannotOutrankTheRightPose) {
