@@ -117,8 +117,12 @@ std::int32_t PosedSurface::nearest(int u, int v) const {
   // Few points cover a pixel (about two on a surface sampled at the spacing); a pile of them
   // (a model sampled far finer than its spacing says) spills to the heap.
   constexpr std::size_t kOnStack = 32;
-  std::array<std::uint32_t, kOnStack> on_stack{};
-  std::vector<std::uint32_t> spilled;
+  struct Candidate {
+    std::uint32_t j;
+    float d2;  // squared image distance to the pixel
+  };
+  std::array<Candidate, kOnStack> on_stack{};
+  std::vector<Candidate> spilled;
   std::size_t n = 0;
   const float r2 = float(radius_ * radius_);
   const int gu = (u - u0_) / radius_, gv = (v - v0_) / radius_;
@@ -127,20 +131,20 @@ std::int32_t PosedSurface::nearest(int u, int v) const {
       const std::size_t c = std::size_t(cv) * std::size_t(cells_u_) + std::size_t(cu);
       for (std::uint32_t i = cell_start_[c]; i < cell_start_[c + 1]; ++i) {
         const std::uint32_t j = cell_points_[i];
-        if ((Eigen::Vector2f(float(u), float(v)) - pixel_[j]).squaredNorm() > r2) continue;
+        const float d2 = (Eigen::Vector2f(float(u), float(v)) - pixel_[j]).squaredNorm();
+        if (d2 > r2) continue;
         if (n == kOnStack) spilled.assign(on_stack.begin(), on_stack.end());
-        if (n >= kOnStack) spilled.push_back(j);
-        else on_stack[n] = j;
+        if (n >= kOnStack) spilled.push_back({j, d2});
+        else on_stack[n] = {j, d2};
         ++n;
       }
     }
-  std::uint32_t* const found = n > kOnStack ? spilled.data() : on_stack.data();
-  std::sort(found, found + n);
+  Candidate* const found = n > kOnStack ? spilled.data() : on_stack.data();
+  std::sort(found, found + n, [](const Candidate& a, const Candidate& b) { return a.j < b.j; });
   std::int32_t best_j = -1;
   float best = INFINITY;
   for (std::size_t i = 0; i < n; ++i) {
-    const std::uint32_t j = found[i];
-    const float d2 = (Eigen::Vector2f(float(u), float(v)) - pixel_[j]).squaredNorm();
+    const auto [j, d2] = found[i];
     const bool nearer = best_j < 0 || q_[j].z() < q_[std::size_t(best_j)].z() - band_ ||
                         (q_[j].z() <= q_[std::size_t(best_j)].z() + band_ && d2 < best);
     if (nearer) {
@@ -244,13 +248,14 @@ void rival_test(std::vector<RefinedPose>& poses, std::span<const Eigen::Vector3f
   std::vector<std::pair<std::size_t, std::size_t>> pairs;
   std::vector<std::size_t> needed;
   std::vector<bool> needs(n, false);
+  std::vector<Eigen::Vector3d> centre(n);  // posed centroids
+  for (std::size_t k = 0; k < n; ++k) centre[k] = poses[k].R * centroid + poses[k].t;
   for (std::size_t i = 0; i < n; ++i) {
     if (!(before[i] > 0) || poses[i].measured.empty()) continue;
-    const Eigen::Vector3d ci = poses[i].R * centroid + poses[i].t;
     for (std::size_t j = i + 1; j < n; ++j) {
       if (!(before[j] > 0) || poses[j].measured.empty()) continue;
-      const Eigen::Vector3d cj = poses[j].R * centroid + poses[j].t;
-      if (opt.max_centre_distance > 0 && (ci - cj).norm() > opt.max_centre_distance) continue;
+      if (opt.max_centre_distance > 0 && (centre[i] - centre[j]).norm() > opt.max_centre_distance)
+        continue;
       pairs.emplace_back(i, j);
       for (const std::size_t k : {i, j})
         if (!needs[k]) needs[k] = true, needed.push_back(k);
