@@ -13,6 +13,7 @@
 #include "host/detect/bin_floor.hpp"
 #include "host/detect/bin_planes.hpp"
 #include "host/detect/bin_rim.hpp"
+#include "host/detect/bin_side.hpp"
 #include "host/detect/bin_up.hpp"
 
 namespace binpick {
@@ -84,6 +85,29 @@ double farthest_below_rim(const PlaneSamples& s, const Eigen::Vector3d& up,
     past_low += heights[i] < low + 3 * tol;
   }
   return past >= 20 && double(past_low) >= 0.9 * double(past) ? last_high : farthest;
+}
+
+// How far a side of the frame lies beyond `from` (along dir * axis[k]) when the border band
+// holds no rim there and no wall plane was found: the rim's strip or the wall among all samples
+// (bin_side.hpp; with a level floor under the frame), else the farthest point seen below the
+// rim (out of view, or no depth there: a shiny wall, a projector shadow), so that all the
+// interior holds stays in and the rim sides seen stay out; unseen[dir > 0] says which it was.
+double side_beyond(const PlaneSamples& s, const Eigen::Vector3d& up, const Eigen::Vector3d axis[2],
+                   int k, double dir, double from, const RimFit& rim, bool on_floor, double tol,
+                   bool unseen[2]) {
+  std::vector<double> across;
+  for (std::size_t i : rim.samples) across.push_back(axis[1 - k].dot(s.points[i].cast<double>()));
+  unseen[dir > 0] = false;
+  if (on_floor && across.size() >= 10) {
+    SideSearch q;
+    q.up = up, q.axis = axis[k], q.across = axis[1 - k], q.dir = dir, q.from = from;
+    q.across_lo = quantile(across, 0.02), q.across_hi = quantile(across, 0.98);
+    q.rim_height = rim.height, q.tol = tol;
+    if (const std::optional<double> strip = rim_strip_beyond(s, q)) return *strip;
+    if (const std::optional<double> wall = wall_beyond(s, q)) return *wall;
+  }
+  unseen[dir > 0] = true;
+  return farthest_below_rim(s, up, axis[k], dir, from, rim.height, tol);
 }
 
 // The rim is the highest structure along the image's border: of the border band's samples, at
@@ -313,8 +337,11 @@ BinFit fit_bin(ocl::Device& dev, const PlaneSamples& s, const BinFitOptions& opt
       std::vector<double> along;
       for (std::size_t i : rim.samples) along.push_back(axis[k].dot(s.points[i].cast<double>()));
       const double middle = quantile(along, 0.5);
-      const double to_lo = farthest_below_rim(s, up, axis[k], -1.0, middle, rim.height, bin.tol),
-                   to_hi = farthest_below_rim(s, up, axis[k], 1.0, middle, rim.height, bin.tol);
+      bool unseen[2] = {false, false};
+      const auto beyond = [&](double dir) {
+        return side_beyond(s, up, axis, k, dir, middle, rim, best.on_floor, bin.tol, unseen);
+      };
+      const double to_lo = beyond(-1.0), to_hi = beyond(1.0);
       if (!(to_lo > 4 * bin.tol) || !(to_hi > 4 * bin.tol)) {
         bin.why = "only one side of the rim was found and no points below it on either hand";
         return bin;
@@ -322,7 +349,8 @@ BinFit fit_bin(ocl::Device& dev, const PlaneSamples& s, const BinFitOptions& opt
       edge[2 * k] = middle - to_lo;
       edge[2 * k + 1] = middle + to_hi;
       for (const char* sign : {"-", "+"})
-        bin.unseen_sides.push_back(fmt::format("{}{}", sign, k == 0 ? "a1" : "a2"));
+        if (unseen[sign[0] == '+'])
+          bin.unseen_sides.push_back(fmt::format("{}{}", sign, k == 0 ? "a1" : "a2"));
       continue;
     }
     const int known = lo ? 2 * k : 2 * k + 1, missing = lo ? 2 * k + 1 : 2 * k;
@@ -350,16 +378,16 @@ BinFit fit_bin(ocl::Device& dev, const PlaneSamples& s, const BinFitOptions& opt
       if (beyond > 4 * bin.tol && beyond < nearest) nearest = beyond;
     }
     if (!std::isfinite(nearest)) {
-      // Neither rim nor wall seen on this side (out of view, or no depth there: a shiny wall, a
-      // projector shadow): the interior runs to the farthest point seen below the rim beyond the
-      // known edge, so that all it holds stays in and the three rim sides seen stay out.
-      nearest = farthest_below_rim(s, up, axis[k], dir, edge[known], rim.height, bin.tol);
+      // Neither rim in the border band nor wall seen on this side (side_beyond).
+      bool missed[2] = {false, false};
+      nearest = side_beyond(s, up, axis, k, dir, edge[known], rim, best.on_floor, bin.tol, missed);
       if (!(nearest > 4 * bin.tol)) {
         bin.why = "a side of the rim is out of view and neither a wall plane nor points below "
                   "the rim were found in its place";
         return bin;
       }
-      bin.unseen_sides.push_back(fmt::format("{}{}", dir > 0 ? '+' : '-', k == 0 ? "a1" : "a2"));
+      if (missed[dir > 0])
+        bin.unseen_sides.push_back(fmt::format("{}{}", dir > 0 ? '+' : '-', k == 0 ? "a1" : "a2"));
     }
     edge[missing] = edge[known] + dir * nearest;
   }
