@@ -226,6 +226,9 @@ BinFit fit_bin(ocl::Device& dev, const PlaneSamples& s, const BinFitOptions& opt
     Eigen::Vector3d up, e1, e2;
     RimFit rim;
     bool on_floor = false;  // a level floor lies under the frame (floor_under)
+    // Found only with one image side's samples above not counted, which asks for a level floor
+    // under the frame too (below), though on_floor does not count it.
+    bool forgiven = false;
   } best;
   std::size_t filled_points = 0;  // the largest structure rejected as no rim, and why
   std::string filled_why;
@@ -308,7 +311,7 @@ BinFit fit_bin(ocl::Device& dev, const PlaneSamples& s, const BinFitOptions& opt
         !forgiven &&
         floor_under(s, planes, up, b1, b2, open, rim.height, bin.tol, opt.noise).plane.has_value();
     if (best.on_floor && !on_floor) continue;
-    best = {up, e1, e2, rim, on_floor};
+    best = {up, e1, e2, rim, on_floor, forgiven};
   }
   if (!best.rim.found) {
     if (bin.why.empty()) bin.why = filled_why;
@@ -320,6 +323,9 @@ BinFit fit_bin(ocl::Device& dev, const PlaneSamples& s, const BinFitOptions& opt
   const Eigen::Vector3d a2 = up.cross(a1);
   const Eigen::Vector3d axis[2] = {a1, a2};
   std::array<double, 4> edge = rim.edge;
+  // A level floor under the frame, for the side search (side_beyond): a forgiven frame was
+  // forgiven only over one.
+  const bool level_floor = best.on_floor || best.forgiven;
   // A side of the frame out of view (a tilted camera) or hidden: with a given size, the other
   // side's edge plus that size; else the nearest wall plane beyond the edge seen.
   const bool sized = opt.spec.mode == BinSpec::Mode::sized;
@@ -339,7 +345,7 @@ BinFit fit_bin(ocl::Device& dev, const PlaneSamples& s, const BinFitOptions& opt
       const double middle = quantile(along, 0.5);
       bool unseen[2] = {false, false};
       const auto beyond = [&](double dir) {
-        return side_beyond(s, up, axis, k, dir, middle, rim, best.on_floor, bin.tol, unseen);
+        return side_beyond(s, up, axis, k, dir, middle, rim, level_floor, bin.tol, unseen);
       };
       const double to_lo = beyond(-1.0), to_hi = beyond(1.0);
       if (!(to_lo > 4 * bin.tol) || !(to_hi > 4 * bin.tol)) {
@@ -380,7 +386,7 @@ BinFit fit_bin(ocl::Device& dev, const PlaneSamples& s, const BinFitOptions& opt
     if (!std::isfinite(nearest)) {
       // Neither rim in the border band nor wall seen on this side (side_beyond).
       bool missed[2] = {false, false};
-      nearest = side_beyond(s, up, axis, k, dir, edge[known], rim, best.on_floor, bin.tol, missed);
+      nearest = side_beyond(s, up, axis, k, dir, edge[known], rim, level_floor, bin.tol, missed);
       if (!(nearest > 4 * bin.tol)) {
         bin.why = "a side of the rim is out of view and neither a wall plane nor points below "
                   "the rim were found in its place";
