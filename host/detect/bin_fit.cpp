@@ -95,10 +95,10 @@ double farthest_below_rim(const PlaneSamples& s, const Eigen::Vector3d& up,
 double side_beyond(const PlaneSamples& s, const Eigen::Vector3d& up, const Eigen::Vector3d axis[2],
                    int k, double dir, double from, const RimFit& rim, bool on_floor, double tol,
                    bool unseen[2]) {
-  std::vector<double> across;
-  for (std::size_t i : rim.samples) across.push_back(axis[1 - k].dot(s.points[i].cast<double>()));
   unseen[dir > 0] = false;
-  if (on_floor && across.size() >= 10) {
+  if (on_floor && rim.samples.size() >= 10) {
+    std::vector<double> across;
+    for (std::size_t i : rim.samples) across.push_back(axis[1 - k].dot(s.points[i].cast<double>()));
     SideSearch q;
     q.up = up, q.axis = axis[k], q.across = axis[1 - k], q.dir = dir, q.from = from;
     q.across_lo = quantile(across, 0.02), q.across_hi = quantile(across, 0.98);

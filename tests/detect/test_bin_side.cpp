@@ -1,7 +1,9 @@
-// The rim's strip beyond a known edge (host/detect/bin_side.hpp) on hand-made samples: the
-// inner edge of a strip at the rim's height that runs across the frame, the nearer of two, and
-// nothing where the samples at that height are a level sheet (a bin filled to the brim), a side
-// of the rim running along the axis, a short piece, or too few.
+// The sides beyond a known edge (host/detect/bin_side.hpp) on hand-made samples. The rim's strip:
+// the inner edge of a strip at the rim's height that runs across the frame, the nearer of two,
+// and nothing where the samples at that height are a level sheet (a bin filled to the brim), a
+// side of the rim running along the axis, a short piece, or too few. The wall: the inner face of
+// a mesh wall's bars standing from the floor up, before the ground seen through it, and nothing
+// for the ground alone or a low kerb.
 #include <gtest/gtest.h>
 
 #include <random>
