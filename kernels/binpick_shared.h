@@ -5,7 +5,7 @@
 #define BINPICK_SHARED_H
 
 #ifdef __OPENCL_VERSION__
-#define BP_FN static inline
+#define BP_FN static inline __attribute__((always_inline))
 /* Fetch the cache line at p ahead of its use. OpenCL's prefetch() does nothing on PoCL; Clang's
  * builtin becomes the CPU's prefetch instruction. For reads scattered over an image larger than
  * the caches, where each would otherwise stall the work item on memory. */

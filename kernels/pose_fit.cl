@@ -36,7 +36,10 @@ __kernel void pose_fit(__global const float4* points, const bp_camera cam,
   for (uint j = lid; j < n_model; j += BP_FIT_GROUP) {
     const float4 m = model_points[j], n = model_normals[j];
     const int seen = bp_fit_project(&f, &c, m.x, m.y, m.z, n.x, n.y, n.z, q, nq, &pixel, &cell);
-    if (seen) atomic_min(&grid[cell], as_uint(q[2]));
+    /* Read first: most points lie behind their cell's nearest so far, and atomic_min is a
+     * locked compare-and-swap loop on the CPU (a tenth of the kernel's time). The minimum is
+     * the same: a value not below the cell's leaves it as atomic_min would. */
+    if (seen && as_uint(q[2]) < grid[cell]) atomic_min(&grid[cell], as_uint(q[2]));
     /* The classification below reads this point's measured point: a pose's pixels are scattered
      * over an image of tens of MB, and fetched now they are in the cache by then. */
     if (seen == 2) BP_PREFETCH(points + pixel);
