@@ -18,12 +18,9 @@ void lowpass_if_missing(PreparedScene& scene, int lowpass_radius, StageTimings* 
   if (!scene.device) throw InputError("apply_region needs a scene on the device");
   Stopwatch clock;
   ocl::Device& dev = *scene.device->dev;
-  {
-    ocl::Buffer<float> row_sums(dev, 2 * std::size_t(scene.width) * scene.height);
-    enqueue_lowpass_depth(dev, scene.device->points, scene.width, scene.height, lowpass_radius,
-                          row_sums, scene.device->filtered);
-    ocl::finish(dev);
-  }
+  enqueue_lowpass_depth(dev, scene.device->points, scene.width, scene.height, lowpass_radius,
+                        scene.device->filtered);
+  ocl::finish(dev);
   scene.has_lowpass = true;
   if (timings) timings->push_back({"lowpass", clock.lap()});
 }
@@ -78,12 +75,9 @@ SceneRegionMask apply_region(PreparedScene& scene, const RegionSetup& setup, int
   const std::vector<std::uint8_t> m = out.mask->read(dev);
   out.kept = std::size_t(std::count(m.begin(), m.end(), std::uint8_t(1)));
   if (timings) timings->push_back({"mask", clock.lap()});
-  {
-    ocl::Buffer<float> row_sums(dev, 2 * n);
-    enqueue_lowpass_depth(dev, scene.device->points, scene.width, scene.height, lowpass_radius,
-                          row_sums, scene.device->filtered, &*out.mask);
-    ocl::finish(dev);
-  }
+  enqueue_lowpass_depth(dev, scene.device->points, scene.width, scene.height, lowpass_radius,
+                        scene.device->filtered, &*out.mask);
+  ocl::finish(dev);
   scene.has_lowpass = true;
   if (timings) timings->push_back({"lowpass", clock.lap()});
   return out;

@@ -16,27 +16,25 @@ void check_lowpass_radius(int radius) {
 
 void enqueue_lowpass_depth(ocl::Device& dev, const ocl::Buffer<float>& points,
                            std::uint32_t width, std::uint32_t height, int radius,
-                           ocl::Buffer<float>& row_sums, ocl::Buffer<float>& filtered,
-                           const ocl::Buffer<std::uint8_t>* mask) {
+                           ocl::Buffer<float>& filtered, const ocl::Buffer<std::uint8_t>* mask) {
   const std::size_t n = std::size_t(width) * height;
-  if (points.size() < 4 * n || row_sums.size() < 2 * n || filtered.size() < n ||
-      (mask && mask->size() < n))
+  if (points.size() < 4 * n || filtered.size() < n || (mask && mask->size() < n))
     throw std::logic_error("enqueue_lowpass_depth: a buffer is smaller than the image");
   if (n == 0) return;
-  if (!mask) {
-    cl::Kernel rows = dev.kernel("scene_lowpass.cl", "lowpass_rows");
-    cl::Kernel cols = dev.kernel("scene_lowpass.cl", "lowpass_cols");
-    ocl::launch(dev, rows, n, points, cl_uint(width), cl_uint(height), cl_int(radius), row_sums);
-    ocl::launch(dev, cols, n, points, row_sums, cl_uint(width), cl_uint(height), cl_int(radius),
-                filtered);
-    return;
+  // Scratch of the passes; released here, kept by the queue until its kernels are done.
+  ocl::Buffer<float> pairs(dev, 2 * n), row_sums(dev, 2 * n);
+  if (mask) {
+    cl::Kernel k = dev.kernel("scene_lowpass.cl", "lowpass_pairs_masked");
+    ocl::launch(dev, k, n, points, *mask, cl_uint(n), pairs);
+  } else {
+    cl::Kernel k = dev.kernel("scene_lowpass.cl", "lowpass_pairs");
+    ocl::launch(dev, k, n, points, cl_uint(n), pairs);
   }
-  cl::Kernel rows = dev.kernel("scene_lowpass.cl", "lowpass_rows_masked");
-  cl::Kernel cols = dev.kernel("scene_lowpass.cl", "lowpass_cols_masked");
-  ocl::launch(dev, rows, n, points, *mask, cl_uint(width), cl_uint(height), cl_int(radius),
-              row_sums);
-  ocl::launch(dev, cols, n, points, *mask, row_sums, cl_uint(width), cl_uint(height),
-              cl_int(radius), filtered);
+  cl::Kernel rows = dev.kernel("scene_lowpass.cl", "lowpass_rows");
+  cl::Kernel cols = dev.kernel("scene_lowpass.cl", "lowpass_cols");
+  ocl::launch(dev, rows, n, pairs, cl_uint(width), cl_uint(height), cl_int(radius), row_sums);
+  ocl::launch(dev, cols, n, pairs, row_sums, cl_uint(width), cl_uint(height), cl_int(radius),
+              filtered);
 }
 
 namespace {
@@ -58,13 +56,13 @@ std::vector<float> lowpass_depth(ocl::Device& dev, const PointImage& points, int
   const std::size_t n = std::size_t(points.width) * points.height;
   if (n == 0) return {};
   ocl::Buffer<float> in(dev, std::span<const float>(points.xyzw), CL_MEM_READ_ONLY);
-  ocl::Buffer<float> row_sums(dev, 2 * n), out(dev, n, CL_MEM_WRITE_ONLY);
+  ocl::Buffer<float> out(dev, n, CL_MEM_WRITE_ONLY);
   if (!mask) {
-    enqueue_lowpass_depth(dev, in, points.width, points.height, radius, row_sums, out);
+    enqueue_lowpass_depth(dev, in, points.width, points.height, radius, out);
     return out.read(dev);
   }
   const ocl::Buffer<std::uint8_t> m(dev, std::span<const std::uint8_t>(*mask), CL_MEM_READ_ONLY);
-  enqueue_lowpass_depth(dev, in, points.width, points.height, radius, row_sums, out, &m);
+  enqueue_lowpass_depth(dev, in, points.width, points.height, radius, out, &m);
   return out.read(dev);
 }
 

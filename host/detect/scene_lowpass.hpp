@@ -19,12 +19,12 @@ std::vector<float> lowpass_depth(ocl::Device& dev, const PointImage& points, int
 std::vector<float> lowpass_depth_reference(const PointImage& points, int radius,
                                            const std::vector<std::uint8_t>* mask = nullptr);
 
-// The two passes on device buffers (points float4 a pixel, row_sums 2 floats a pixel as
-// scratch, filtered one float a pixel, mask one byte a pixel or null), enqueued without
-// waiting. The mask is read in place: the masked points are never written out.
+// The passes on device buffers (points float4 a pixel, filtered one float a pixel, mask one
+// byte a pixel or null), enqueued without waiting; their scratch is allocated here. The mask is
+// read in place: the masked points are never written out.
 void enqueue_lowpass_depth(ocl::Device& dev, const ocl::Buffer<float>& points,
                            std::uint32_t width, std::uint32_t height, int radius,
-                           ocl::Buffer<float>& row_sums, ocl::Buffer<float>& filtered,
+                           ocl::Buffer<float>& filtered,
                            const ocl::Buffer<std::uint8_t>* mask = nullptr);
 
 void check_lowpass_radius(int radius);

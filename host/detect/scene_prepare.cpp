@@ -54,12 +54,8 @@ PreparedScene prepare_scene(ocl::Device& dev, const DepthImage& depth, const bp_
 
   s.has_lowpass = opt.lowpass;
   if (s.has_lowpass) {
-    {
-      ocl::Buffer<float> row_sums(dev, 2 * n);
-      enqueue_lowpass_depth(dev, d.points, s.width, s.height, opt.lowpass_radius, row_sums,
-                            d.filtered);
-      ocl::finish(dev);
-    }
+    enqueue_lowpass_depth(dev, d.points, s.width, s.height, opt.lowpass_radius, d.filtered);
+    ocl::finish(dev);
     s.timings.push_back({"lowpass", clock.lap()});
   }
 

@@ -1,4 +1,4 @@
-// The two passes of the low-pass filter (kernels/scene_lowpass.cl) and the fixed-radius normal
+// The three passes of the low-pass filter (kernels/scene_lowpass.cl) and the fixed-radius normal
 // kernels (kernels/scene_normals.cl), each launched by itself on random point images and
 // compared with a plain C++ reference of that one step (tests/support/kernel_refs.hpp, and
 // host/detect/scene_normals.hpp's references).
@@ -86,17 +86,45 @@ std::string fixed_kernel(const char* base, int radius) { return base + std::to_s
 
 }  // namespace
 
+TEST(LowpassKernels, lowpass_pairs_matches_reference) {
+  auto& dev = ocl::Device::shared();
+  cl::Kernel plain = dev.kernel("scene_lowpass.cl", "lowpass_pairs");
+  cl::Kernel masked = dev.kernel("scene_lowpass.cl", "lowpass_pairs_masked");
+  std::mt19937 rng(700);
+  std::bernoulli_distribution keep(0.6);
+  for (const ImageCase& c : kImages) {
+    const PointImage pts = random_point_image(rng, c.w, c.h, c.holes, c.noise);
+    const std::size_t n = std::size_t(c.w) * c.h;
+    ocl::Buffer<float> points = upload(dev, pts.xyzw);
+    std::vector<std::uint8_t> mask(n);
+    for (auto& m : mask) m = keep(rng) ? 1 : 0;
+    ocl::Buffer<std::uint8_t> m = upload(dev, mask);
+    for (bool with_mask : {false, true}) {
+      ocl::Buffer<float> pairs =
+          guarded_buffer(dev, std::vector<float>(2 * n, kFloatCanary), kGuard, kFloatCanary);
+      if (with_mask)
+        ocl::launch_local(dev, masked, n, 64, points, m, cl_uint(n), pairs);
+      else
+        ocl::launch_local(dev, plain, n, 64, points, cl_uint(n), pairs);
+      std::vector<float> want = lowpass_pairs_reference(pts.xyzw, with_mask ? &mask : nullptr);
+      want.insert(want.end(), kGuard, kFloatCanary);
+      ASSERT_EQ(pairs.read(dev), want) << c.w << "x" << c.h << " mask " << with_mask;
+    }
+  }
+}
+
+// The rows of the pairs are the row sums of the valid points themselves.
 TEST(LowpassKernels, lowpass_rows_matches_reference) {
   auto& dev = ocl::Device::shared();
   cl::Kernel k = dev.kernel("scene_lowpass.cl", "lowpass_rows");
   std::mt19937 rng(701);
   for (const ImageCase& c : kImages) {
     const PointImage pts = random_point_image(rng, c.w, c.h, c.holes, c.noise);
-    ocl::Buffer<float> points = upload(dev, pts.xyzw);
+    ocl::Buffer<float> pairs = upload(dev, lowpass_pairs_reference(pts.xyzw));
     for (int radius : {0, 1, 5, 64}) {
       ocl::Buffer<float> row_sums =
           guarded_buffer(dev, std::vector<float>(2 * std::size_t(c.w) * c.h, kFloatCanary), kGuard, kFloatCanary);
-      ocl::launch(dev, k, std::size_t(c.w) * c.h, points, c.w, c.h, cl_int(radius), row_sums);
+      ocl::launch(dev, k, std::size_t(c.w) * c.h, pairs, c.w, c.h, cl_int(radius), row_sums);
       std::vector<float> want = lowpass_rows_reference(pts.xyzw, int(c.w), int(c.h), radius);
       want.insert(want.end(), kGuard, kFloatCanary);
       ASSERT_EQ(row_sums.read(dev), want) << c.w << "x" << c.h << " r " << radius;
@@ -112,7 +140,7 @@ TEST(LowpassKernels, lowpass_cols_matches_reference) {
   for (const ImageCase& c : kImages) {
     const PointImage pts = random_point_image(rng, c.w, c.h, c.holes, c.noise);
     const std::size_t n = std::size_t(c.w) * c.h;
-    ocl::Buffer<float> points = upload(dev, pts.xyzw);
+    ocl::Buffer<float> pairs = upload(dev, lowpass_pairs_reference(pts.xyzw));
     for (int radius : {0, 1, 5, 64}) {
       // Random row sums: any sum, an integer count of at least 1 (so every column count is).
       std::uniform_int_distribution<int> count(1, 2 * radius + 1);
@@ -120,7 +148,7 @@ TEST(LowpassKernels, lowpass_cols_matches_reference) {
       for (std::size_t i = 0; i < n; ++i) row_sums[2 * i] = sum(rng), row_sums[2 * i + 1] = float(count(rng));
       ocl::Buffer<float> rs = upload(dev, row_sums);
       ocl::Buffer<float> filtered = guarded_buffer(dev, std::vector<float>(n, kFloatCanary), kGuard, kFloatCanary);
-      ocl::launch(dev, k, n, points, rs, c.w, c.h, cl_int(radius), filtered);
+      ocl::launch(dev, k, n, pairs, rs, c.w, c.h, cl_int(radius), filtered);
       std::vector<float> want = lowpass_cols_reference(pts.xyzw, row_sums, int(c.w), int(c.h), radius);
       want.insert(want.end(), kGuard, kFloatCanary);
       ASSERT_EQ(filtered.read(dev), want) << c.w << "x" << c.h << " r " << radius;
@@ -128,11 +156,12 @@ TEST(LowpassKernels, lowpass_cols_matches_reference) {
   }
 }
 
-// The routine's two passes (enqueue_lowpass_depth) in sequence, each checked, on degenerate
+// The routine's three passes (enqueue_lowpass_depth) in sequence, each checked, on degenerate
 // images too (all pixels without data: all 0; one valid pixel: its own depth), launched in
 // padded work groups of 64 (the extra work items must write nothing).
 TEST(LowpassKernels, PassesInSequenceAndDegenerateImages) {
   auto& dev = ocl::Device::shared();
+  cl::Kernel to_pairs = dev.kernel("scene_lowpass.cl", "lowpass_pairs");
   cl::Kernel rows = dev.kernel("scene_lowpass.cl", "lowpass_rows");
   cl::Kernel cols = dev.kernel("scene_lowpass.cl", "lowpass_cols");
   std::mt19937 rng(703);
@@ -148,16 +177,23 @@ TEST(LowpassKernels, PassesInSequenceAndDegenerateImages) {
     for (int radius : {0, 3, 8}) {
       ocl::Buffer<float> row_sums = guarded_buffer(dev, std::vector<float>(2 * n, kFloatCanary), kGuard, kFloatCanary);
       ocl::Buffer<float> filtered = guarded_buffer(dev, std::vector<float>(n, kFloatCanary), kGuard, kFloatCanary);
-      ocl::launch_local(dev, rows, n, 64, points, pts.width, pts.height, cl_int(radius), row_sums);
+      ocl::Buffer<float> pairs = guarded_buffer(dev, std::vector<float>(2 * n, kFloatCanary), kGuard, kFloatCanary);
+      ocl::launch_local(dev, to_pairs, n, 64, points, cl_uint(n), pairs);
+      std::vector<float> want_pairs = lowpass_pairs_reference(pts.xyzw);
+      std::vector<float> got_pairs = pairs.read(dev);
+      ASSERT_EQ(std::vector<float>(got_pairs.begin(), got_pairs.begin() + 2 * n), want_pairs) << im;
+      ocl::launch_local(dev, rows, n, 64, pairs, pts.width, pts.height, cl_int(radius), row_sums);
       std::vector<float> want_rows = lowpass_rows_reference(pts.xyzw, int(pts.width), int(pts.height), radius);
       std::vector<float> got_rows = row_sums.read(dev);
       ASSERT_EQ(std::vector<float>(got_rows.begin(), got_rows.begin() + 2 * n), want_rows) << im << " " << radius;
-      ocl::launch_local(dev, cols, n, 64, points, row_sums, pts.width, pts.height, cl_int(radius), filtered);
+      ocl::launch_local(dev, cols, n, 64, pairs, row_sums, pts.width, pts.height, cl_int(radius), filtered);
       std::vector<float> want = lowpass_cols_reference(pts.xyzw, got_rows, int(pts.width), int(pts.height), radius);
       EXPECT_EQ(want, lowpass_depth_reference(pts, radius));
       want.insert(want.end(), kGuard, kFloatCanary);
       want_rows.insert(want_rows.end(), kGuard, kFloatCanary);
-      ASSERT_EQ(row_sums.read(dev), want_rows) << im << " " << radius;  // tail untouched
+      want_pairs.insert(want_pairs.end(), kGuard, kFloatCanary);
+      ASSERT_EQ(pairs.read(dev), want_pairs) << im;  // tails untouched
+      ASSERT_EQ(row_sums.read(dev), want_rows) << im << " " << radius;
       ASSERT_EQ(filtered.read(dev), want) << im << " " << radius;
       if (im == 0) {
         EXPECT_EQ(std::count(want.begin(), want.begin() + n, 0.0f), std::ptrdiff_t(n));

@@ -236,7 +236,7 @@ TEST(Lowpass, EqualsTheReferenceExactly) {
   }
 }
 
-// With a mask the kernels read it in place (lowpass_rows_masked, lowpass_cols_masked): bit for
+// With a mask the first pass reads it in place (lowpass_pairs_masked): bit for
 // bit the reference on the mask, and the unmasked low-pass of the masked points (the points the
 // mask drops set to no data), which is what the region's low-pass was before. Degenerate masks
 // too: none kept (all 0), all kept (the unmasked low-pass), one pixel kept (its own depth).

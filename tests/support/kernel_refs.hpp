@@ -396,7 +396,20 @@ inline void hyp_exclude_reference(const std::vector<float>& points, const bp_hyp
 
 // ---- scene_lowpass.cl -------------------------------------------------------------------------
 
-// lowpass_rows: per pixel (sum of z, count) of the valid pixels in its row window, 2 floats.
+// lowpass_pairs(_masked): per pixel (z, 1) where it has data (and the mask, if any, keeps it),
+// else (0, 0), 2 floats.
+inline std::vector<float> lowpass_pairs_reference(const std::vector<float>& points,
+                                                  const std::vector<std::uint8_t>* mask = nullptr) {
+  const std::size_t n = points.size() / 4;
+  std::vector<float> out(2 * n, 0.0f);
+  for (std::size_t i = 0; i < n; ++i)
+    if (points[4 * i + 3] != 0.0f && (!mask || (*mask)[i] != 0))
+      out[2 * i] = points[4 * i + 2], out[2 * i + 1] = 1.0f;
+  return out;
+}
+
+// lowpass_rows (on the pairs): per pixel (sum of z, count) of the valid pixels in its row
+// window, 2 floats.
 inline std::vector<float> lowpass_rows_reference(const std::vector<float>& points, int width,
                                                  int height, int radius) {
   std::vector<float> out(2 * std::size_t(width) * height);
