@@ -9,8 +9,10 @@
 
 #include "host/app/verbs.hpp"
 #include "host/core/error.hpp"
+#include "host/core/keep_freed_memory.hpp"
 
 int main(int argc, char** argv) {
+  binpick::keep_freed_memory();  // before any thread starts
   CLI::App app{"binpick: bin picking with point pair features on OpenCL and Vulkan devices"};
   app.require_subcommand(1, 1);
   app.fallthrough(false);
