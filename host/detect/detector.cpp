@@ -303,7 +303,7 @@ void take_pose(Detection& d, const RefinedPose& r, std::uint64_t votes, std::uin
 std::vector<Detection> Detector::refine_and_rank(
     std::vector<Detection> detections, const std::vector<std::vector<PoseCluster>>& candidates,
     const ocl::Buffer<float>& points, const bp_camera& cam, DetectTimes& t, bool sensor,
-    const BinFit* bin, PlaneSearchMemo* searched) {
+    const BinFit* bin, PlaneSearchMemo* searched, RefineMemo* refined_before) {
   Stopwatch clock;
   std::vector<PoseToRefine> poses;
   struct Owner {
@@ -368,7 +368,7 @@ std::vector<Detection> Detector::refine_and_rank(
     return pose_fit_sums(dev_, points, cam, fit_model_, fits);
   };
   std::vector<RefinedPose> refined =
-      refine_and_verify(sums, cam, fit_geometry_, fit_model_.size, poses, ro);
+      refine_and_verify(sums, cam, fit_geometry_, fit_model_.size, poses, ro, refined_before);
   if (sensor && !twin_probes_.probes.points.empty()) {
     TwinTestOptions to;
     to.band_ratio = float(params_.verify_twin);
@@ -563,10 +563,11 @@ std::vector<Detection> Detector::detect(const DepthImage& depth, const bp_camera
     }
     t.hypotheses += to - from;
   };
-  PlaneSearchMemo searched;  // the first round's searches, for the second
+  PlaneSearchMemo searched;  // the first round's searches and ICP, for the second
+  RefineMemo refined;
   const auto rank = [&] {
     return refine_and_rank(voted, candidates, scene.device->points, cam, t, true,
-                           masked.bin ? &*masked.bin : nullptr, &searched);
+                           masked.bin ? &*masked.bin : nullptr, &searched, &refined);
   };
   std::vector<Detection> detections = in_rounds(hyps.size(), vote, rank);
   if (times) *times += t;
@@ -623,8 +624,10 @@ std::vector<Detection> Detector::detect(const PointCloud& input, DetectTimes* ti
     }
     t.hypotheses += to - from;
   };
+  RefineMemo refined;  // the first round's ICP, for the second
   const auto rank = [&] {
-    return refine_and_rank(voted, candidates, points, image.camera, t, false);
+    return refine_and_rank(voted, candidates, points, image.camera, t, false, nullptr, nullptr,
+                           &refined);
   };
   std::vector<Detection> detections = in_rounds(hyps.size(), vote, rank);
   if (times) *times += t;

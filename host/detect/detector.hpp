@@ -20,6 +20,7 @@
 #include "host/detect/pose_cluster.hpp"
 #include "host/detect/plane_search.hpp"
 #include "host/detect/pose_fit.hpp"
+#include "host/detect/pose_refine.hpp"
 #include "host/detect/twin_test.hpp"
 #include "host/core/timing.hpp"
 #include "host/core/mesh.hpp"
@@ -253,7 +254,8 @@ class Detector {
                                          const std::vector<std::vector<PoseCluster>>& candidates,
                                          const ocl::Buffer<float>& points, const bp_camera& cam,
                                          DetectTimes& t, bool sensor, const BinFit* bin = nullptr,
-                                         PlaneSearchMemo* searched = nullptr);
+                                         PlaneSearchMemo* searched = nullptr,
+                                         RefineMemo* refined = nullptr);
 
   ocl::Device& dev_;
   double program_build_s_ = 0;

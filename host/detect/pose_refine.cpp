@@ -39,6 +39,15 @@ void apply_step(const Eigen::Matrix<double, 6, 1>& x, const Eigen::Vector3d& cen
   pose.R = Eigen::Quaterniond(pose.R).normalized().toRotationMatrix();
 }
 
+// How many of the poses, from the first, the memo holds (bit for bit the same inputs).
+std::size_t known_prefix(const RefineMemo& memo, const std::vector<PoseToRefine>& poses) {
+  std::size_t k = 0;
+  while (k < memo.inputs.size() && k < poses.size() && memo.inputs[k].R == poses[k].R &&
+         memo.inputs[k].t == poses[k].t)
+    ++k;
+  return k;
+}
+
 }  // namespace
 
 void check(const RefineOptions& o) {
@@ -76,11 +85,18 @@ Eigen::Matrix<double, 6, 1> gauss_newton_step(const FitSums& s) {
 std::vector<RefinedPose> refine_and_verify(const FitSumsFn& sums_of, const bp_camera& cam,
                                            const FitGeometry& g, std::uint32_t model_points,
                                            const std::vector<PoseToRefine>& input,
-                                           const RefineOptions& opt) {
+                                           const RefineOptions& opt, RefineMemo* memo) {
   check(opt);
   std::vector<PoseToRefine> poses = input;
   std::vector<RefinedPose> out(poses.size());
   std::vector<bool> active(poses.size(), true);
+  const std::size_t known = memo ? known_prefix(*memo, input) : 0;
+  for (std::size_t k = 0; k < known; ++k) {
+    poses[k] = memo->refined[k];
+    out[k].iterations = memo->iterations[k];
+    out[k].reason = memo->reasons[k];
+    active[k] = false;
+  }
   float tolerance = opt.tolerance_ratio * g.diameter;
   const float gate_start = opt.gate_start_ratio * g.diameter;
   const float gate_end = std::min(gate_start, 2.0f * tolerance);
@@ -114,6 +130,14 @@ std::vector<RefinedPose> refine_and_verify(const FitSumsFn& sums_of, const bp_ca
     }
   }
 
+  if (memo) {
+    memo->inputs = input;
+    memo->refined = poses;
+    memo->iterations.resize(poses.size());
+    memo->reasons.resize(poses.size());
+    for (std::size_t k = known; k < poses.size(); ++k)
+      memo->iterations[k] = out[k].iterations, memo->reasons[k] = out[k].reason;
+  }
   const auto final_sums = [&](float tol, float gate, float outline, bool residuals) {
     FitThresholds th = thresholds(g, tol, gate);
     th.outline = outline;

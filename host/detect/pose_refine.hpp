@@ -113,13 +113,28 @@ struct PoseToRefine {
   Eigen::Vector3d t = Eigen::Vector3d::Zero();
 };
 
+// The ICP of poses refined before against the same image with the same options: an image's
+// second round of hypotheses refines the first round's candidates again together with its own
+// (detector.cpp, in_rounds). A pose's ICP depends only on the pose, the image and the options
+// (each pose is its own work group; the tolerance that follows the noise is worked out after
+// the iterations), so what the memo holds stands: the longest prefix of the poses equal bit for
+// bit to the inputs it holds keeps their refined poses, and only the rest are iterated.
+struct RefineMemo {
+  std::vector<PoseToRefine> inputs, refined;
+  std::vector<std::uint32_t> iterations;
+  std::vector<std::string> reasons;  // why refinement stopped early; empty if it did not
+};
+
 // Refines all poses together (one kernel launch per iteration for all of them) and scores them.
 // geometry.diameter, voxel_size > 0; model_points = the model's point count (for min_support).
+// With a memo (one image, the same options every call), the poses it holds are not iterated
+// again, and it then holds all of these: the same results as without it.
 std::vector<RefinedPose> refine_and_verify(const FitSumsFn& sums, const bp_camera& cam,
                                            const FitGeometry& geometry,
                                            std::uint32_t model_points,
                                            const std::vector<PoseToRefine>& poses,
-                                           const RefineOptions& opt = {});
+                                           const RefineOptions& opt = {},
+                                           RefineMemo* memo = nullptr);
 
 // One damped Gauss-Newton step from the sums: (rotation vector about the pose's centre,
 // translation), zero when the system is empty.

@@ -243,3 +243,70 @@ TEST(PoseRefine, ToleranceFollowsTheSensorNoise) {
   adaptive.noise_factor = -1;
   EXPECT_THROW(check(adaptive), InputError);
 }
+
+// An image's second round of hypotheses refines the first round's poses again with its own
+// (RefineMemo): the poses the memo holds are not iterated again, and every field of every pose
+// is what refining all of them afresh gives, with the tolerance that follows the noise (set
+// from all poses after the iterations) and a pose whose refinement stops early among them. The
+// second call asks the kernel for fewer fits (only the new poses are iterated); a first pose
+// that differs keeps nothing of the memo.
+TEST(PoseRefine, MemoOfAFirstRoundGivesTheSameResultsAsRefiningAllAgain) {
+  FitScene s = binpick::test::make_fit_scene(0.8);
+  for (std::size_t i = 0; i < s.image.xyzw.size() / 4; ++i)  // a band without depth
+    if ((i % s.cam.width) % 40 < 6) s.image.xyzw[i * 4 + 3] = 0.0f;
+  auto& dev = binpick::test::test_device();
+  const DeviceFitModel model = upload_fit_model(dev, s.model);
+  const ocl::Buffer<float> points(dev, std::span<const float>(s.image.xyzw));
+  std::size_t fits_asked = 0;
+  const FitSumsFn counted = [&](const std::vector<bp_pose_fit>& fits) {
+    fits_asked += fits.size();
+    return pose_fit_sums(dev, points, s.cam, model, fits);
+  };
+  RefineOptions ro;
+  ro.noise_factor = 3.5f;
+  ro.ray_band_ratio = 0.01f;
+  const std::vector<PoseToRefine> first = {off_pose(s, 12, {1, 0, 0}, {2, -1, 1}),
+                                           {s.R, s.t + Eigen::Vector3d(5000, 0, 0)},
+                                           off_pose(s, 40, {0, 1, 1}, {-6, 0, 2})};
+  std::vector<PoseToRefine> both = first;
+  both.push_back(off_pose(s, 8, {1, -1, 2}, {0, 2, -2}));
+  both.push_back(off_pose(s, 180, s.R * Eigen::Vector3d::UnitZ(), Eigen::Vector3d::Zero()));
+
+  RefineMemo memo;
+  const auto round1 = refine_and_verify(counted, s.cam, s.geometry, model.size, first, ro, &memo);
+  ASSERT_EQ(memo.inputs.size(), first.size());
+  const std::size_t asked_first = fits_asked;
+  fits_asked = 0;
+  const auto round2 = refine_and_verify(counted, s.cam, s.geometry, model.size, both, ro, &memo);
+  const std::size_t asked_second = fits_asked;
+  fits_asked = 0;
+  const auto fresh = refine_and_verify(counted, s.cam, s.geometry, model.size, both, ro);
+  EXPECT_LT(asked_second, fits_asked);
+  EXPECT_GT(asked_first, 0u);
+  ASSERT_EQ(round2.size(), fresh.size());
+  EXPECT_NE(fresh[1].reason, "");  // outside the image: stopped early, with a reason
+  for (std::size_t k = 0; k < fresh.size(); ++k) {
+    SCOPED_TRACE(testing::Message() << "pose " << k);
+    EXPECT_EQ(round2[k].R, fresh[k].R);
+    EXPECT_EQ(round2[k].t, fresh[k].t);
+    EXPECT_EQ(round2[k].score, fresh[k].score);
+    EXPECT_EQ(round2[k].iterations, fresh[k].iterations);
+    EXPECT_EQ(round2[k].reason, fresh[k].reason);
+    EXPECT_EQ(round2[k].tolerance, fresh[k].tolerance);
+    EXPECT_EQ(round2[k].inliers, fresh[k].inliers);
+    EXPECT_EQ(round2[k].ray_excess, fresh[k].ray_excess);
+  }
+  for (std::size_t k = 0; k < first.size(); ++k) EXPECT_EQ(round1[k].R, fresh[k].R) << k;
+  // Another first pose: nothing is taken from the memo, and it then holds the new poses.
+  std::vector<PoseToRefine> other = both;
+  std::swap(other[0], other[3]);
+  fits_asked = 0;
+  const auto swapped = refine_and_verify(counted, s.cam, s.geometry, model.size, other, ro, &memo);
+  const std::size_t asked_swapped = fits_asked;
+  fits_asked = 0;
+  const auto swapped_fresh = refine_and_verify(counted, s.cam, s.geometry, model.size, other, ro);
+  EXPECT_EQ(asked_swapped, fits_asked);
+  for (std::size_t k = 0; k < other.size(); ++k) EXPECT_EQ(swapped[k].R, swapped_fresh[k].R) << k;
+  EXPECT_EQ(memo.inputs.size(), other.size());
+  EXPECT_EQ(memo.inputs[0].R, other[0].R);
+}
