@@ -120,6 +120,27 @@ TEST(BinFit, FindsTheBinWithATiltedCameraAndATurnedBin) {
   }
 }
 
+// The frame's angle about up is searched coarse to fine (every fourth half-degree step, then
+// the steps about the best three): bins turned to every part of the quarter turn, next to the
+// coarse steps, between them and on both sides of the wrap at 90 degrees, come out within the
+// fine step (a search that kept a coarse step would be up to a degree off). Not within a
+// degree or two of the camera's axes: there the samples' pixel grid lines up with the frame's
+// axes and sharpens their histograms, and a bin turned 0.75 degrees is found at 0 (so it was
+// with every step scored).
+TEST(BinFit, TheFrameAngleIsFoundToTheHalfDegreeAtAnyTurn) {
+  for (double yaw : {2.5, 7.0, 9.75, 22.25, 44.0, 46.75, 67.75, 86.5, -3.25, -31.5}) {
+    SCOPED_TRACE(testing::Message() << "yaw " << yaw);
+    BinSceneSpec s;
+    s.yaw_deg = yaw;
+    s.distance = 1150;
+    const BinScene scene = make_bin_scene(s);
+    const BinFit b = fit(scene, {BinSpec::Mode::find, {}});
+    expect_matches(b, scene, s, true);
+    const Eigen::Vector3d x_true = scene.bin_to_cam.col(0);
+    EXPECT_LT(std::min(angle_deg(b.axes.col(0), x_true), angle_deg(b.axes.col(0), -x_true)), 0.5);
+  }
+}
+
 // Tilted so far and so near that the far side of the rim is out of view: the far wall's plane
 // ends the interior there.
 TEST(BinFit, FarRimOutOfViewEndsAtTheWall) {
