@@ -36,12 +36,18 @@ PoseToRefine off_pose(const FitScene& s, double deg, const Eigen::Vector3d& axis
   return {d * s.R, d * (s.t - c) + c + shift};
 }
 
+// The fit scene at this noise with bands of pixels without depth (6 columns in every 40).
+FitScene banded_fit_scene(double noise) {
+  FitScene s = binpick::test::make_fit_scene(noise);
+  for (std::size_t i = 0; i < s.image.xyzw.size() / 4; ++i)
+    if ((i % s.cam.width) % 40 < 6) s.image.xyzw[i * 4 + 3] = 0.0f;
+  return s;
+}
+
 }  // namespace
 
 TEST(PoseFit, KernelMatchesReferenceOnRandomPoses) {
-  FitScene s = binpick::test::make_fit_scene(0.3);
-  for (std::size_t i = 0; i < s.image.xyzw.size() / 4; ++i)  // a band without depth
-    if ((i % s.cam.width) % 40 < 6) s.image.xyzw[i * 4 + 3] = 0.0f;
+  const FitScene s = banded_fit_scene(0.3);
   auto& dev = binpick::test::test_device();
   const DeviceFitModel model = upload_fit_model(dev, s.model);
   const ocl::Buffer<float> points(dev, std::span<const float>(s.image.xyzw));
@@ -251,9 +257,7 @@ TEST(PoseRefine, ToleranceFollowsTheSensorNoise) {
 // second call asks the kernel for fewer fits (only the new poses are iterated); a first pose
 // that differs keeps nothing of the memo.
 TEST(PoseRefine, MemoOfAFirstRoundGivesTheSameResultsAsRefiningAllAgain) {
-  FitScene s = binpick::test::make_fit_scene(0.8);
-  for (std::size_t i = 0; i < s.image.xyzw.size() / 4; ++i)  // a band without depth
-    if ((i % s.cam.width) % 40 < 6) s.image.xyzw[i * 4 + 3] = 0.0f;
+  const FitScene s = banded_fit_scene(0.8);
   auto& dev = binpick::test::test_device();
   const DeviceFitModel model = upload_fit_model(dev, s.model);
   const ocl::Buffer<float> points(dev, std::span<const float>(s.image.xyzw));
