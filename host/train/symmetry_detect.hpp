@@ -18,7 +18,9 @@
 //     three equal moments (a cube, a regular polyhedron, a sphere) also the 12 largest
 //     face-normal directions and the directions to the 12 farthest vertices;
 //   - each candidate: continuous if rotations by 0.37, 1.1, 2.3 and 3.9 rad all pass, else the
-//     largest n <= kSymmetryMaxFold whose rotation by 2 pi / n passes;
+//     largest n <= kSymmetryMaxFold all of whose n - 1 rotations by multiples of 2 pi / n pass
+//     (not only the first, nor only those up to a half turn: on a nearly round part a turn can
+//     pass and its inverse fail, which is no group);
 //   - half turns about the axes perpendicular to a candidate found n-fold with n >= 3, or to
 //     one whose perpendicular moments are equal: a scan of the directions over [0, pi / n) in
 //     0.5 degree steps on 128 test points, each run of passing steps refined in 0.05 degree

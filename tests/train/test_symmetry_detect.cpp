@@ -6,6 +6,8 @@
 // Also the one-line description `binpick train` prints.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <numbers>
@@ -220,6 +222,104 @@ TEST(SymmetryDetect, BoxesAndPrisms) {
   tetra.positions = {{15, 15, 15}, {15, -15, -15}, {-15, 15, -15}, {-15, -15, 15}};
   tetra.triangles = {{0, 1, 2}, {0, 3, 1}, {0, 2, 3}, {1, 3, 2}};
   EXPECT_EQ(found_on(tetra).discrete.size(), 11u);
+}
+
+// Whether the discrete symmetries found are a group: the product of any two, and the inverse
+// of each, is the identity or one of them (rotations within 1 degree, the centroid's image
+// within 1 % of the diameter). Empty if so, else the first product missing.
+std::string not_a_group(const PartSymmetries& s, const Mesh& mesh) {
+  const double tol = 0.01 * exact_diameter(mesh.positions);
+  const Eigen::Vector3d c = centre_of(mesh);
+  std::vector<Eigen::Matrix4d> all = s.discrete;
+  all.push_back(Eigen::Matrix4d::Identity());
+  const auto member = [&](const Eigen::Matrix4d& m) {
+    return std::any_of(all.begin(), all.end(), [&](const Eigen::Matrix4d& e) {
+      const Eigen::Vector3d cm = m.topLeftCorner<3, 3>() * c + m.topRightCorner<3, 1>();
+      const Eigen::Vector3d ce = e.topLeftCorner<3, 3>() * c + e.topRightCorner<3, 1>();
+      return rotation_deg(m.topLeftCorner<3, 3>(), e.topLeftCorner<3, 3>()) < 1.0 &&
+             (cm - ce).norm() < tol;
+    });
+  };
+  for (std::size_t i = 0; i < s.discrete.size(); ++i) {
+    if (!member(s.discrete[i].inverse())) return "the inverse of " + std::to_string(i);
+    for (std::size_t j = 0; j < s.discrete.size(); ++j)
+      if (!member(s.discrete[i] * s.discrete[j]))
+        return std::to_string(i) + " x " + std::to_string(j);
+  }
+  return "";
+}
+
+// A cap screw along z: a round shank (radius 4, 0 to 40 mm) and head (radius 6.5, 40 to 48)
+// with a hexagonal socket `flats` across and 4 deep in the head's top: the socket's outline
+// runs through the top face, its walls face in, and its floor faces up. 48 points a loop (the
+// hexagon's sides 8 points each), so the top is a strip between two loops.
+Mesh cap_screw(float flats) {
+  Mesh m;
+  const int n = 48;
+  const auto loop = [&](float z, bool hex, float radius) {
+    const auto first = std::uint32_t(m.positions.size());
+    for (int i = 0; i < n; ++i) {
+      if (!hex) {
+        const double a = 2 * kPi * i / n;
+        m.positions.emplace_back(radius * std::cos(a), radius * std::sin(a), z);
+        continue;
+      }
+      const double r = flats / std::sqrt(3.0);
+      const int side = i / 8, step = i % 8;
+      const double a0 = kPi / 3 * side, a1 = kPi / 3 * (side + 1), t = step / 8.0;
+      m.positions.emplace_back(r * ((1 - t) * std::cos(a0) + t * std::cos(a1)),
+                               r * ((1 - t) * std::sin(a0) + t * std::sin(a1)), z);
+    }
+    return first;
+  };
+  // A strip between loops a and b (same count), wound so that its normal is the right-hand
+  // one of (a[i] -> a[i+1], a[i] -> b[i]).
+  const auto strip = [&](std::uint32_t a, std::uint32_t b) {
+    for (std::uint32_t i = 0; i < std::uint32_t(n); ++i) {
+      const std::uint32_t j = (i + 1) % n;
+      m.triangles.push_back({a + i, a + j, b + j});
+      m.triangles.push_back({a + i, b + j, b + i});
+    }
+  };
+  const auto fan = [&](std::uint32_t a, float z, bool up) {
+    const auto c = std::uint32_t(m.positions.size());
+    m.positions.emplace_back(0, 0, z);
+    for (std::uint32_t i = 0; i < std::uint32_t(n); ++i) {
+      const std::uint32_t j = (i + 1) % n;
+      m.triangles.push_back(up ? std::array<std::uint32_t, 3>{c, a + i, a + j}
+                               : std::array<std::uint32_t, 3>{c, a + j, a + i});
+    }
+  };
+  const std::uint32_t shank0 = loop(0, false, 4), shank1 = loop(40, false, 4);
+  const std::uint32_t head0 = loop(40, false, 6.5f), head1 = loop(48, false, 6.5f);
+  const std::uint32_t top = loop(48, true, 0), bottom = loop(44, true, 0);
+  fan(shank0, 0, false);
+  strip(shank0, shank1);  // the shank's side, facing out
+  strip(shank1, head0);   // the head's underside, facing down
+  strip(head0, head1);    // the head's side
+  strip(head1, top);      // the head's top, a ring around the socket, facing up
+  strip(top, bottom);     // the socket's walls, facing in
+  fan(bottom, 44, true);  // the socket's floor
+  return m;
+}
+
+// The cap screw is round about its axis but for its socket: within the test's tolerance (1 %
+// of the diameter) many turns nearly pass, and which orders pass depends on the socket's size
+// (round, 6, 8, 12 or 24-fold between 5 and 7 mm). What is found must still be a group: with
+// only the turns up to a half turn tested, the 6.1 mm socket came out "13-fold" with 9 of its
+// 12 turns (and an 8 mm screw of another mesh eightfold with +45 degrees but not -45).
+TEST(SymmetryDetect, ANearlyRoundPartHasAGroup) {
+  for (float flats : {5.0f, 5.75f, 6.0f, 6.1f, 6.2f, 6.6f, 6.75f, 7.0f}) {
+    SCOPED_TRACE(testing::Message() << "socket " << flats);
+    const Mesh screw = cap_screw(flats);
+    const PartSymmetries found = found_on(screw);  // round (continuous) or n-fold
+    EXPECT_EQ(not_a_group(found, screw), "") << describe_symmetries(found);
+  }
+  // The stated groups of the built-in parts are groups (the check itself).
+  for (const char* part : {"bolt", "tee"}) {
+    const Mesh m = make_builtin_part(part);
+    EXPECT_EQ(not_a_group(builtin_part_symmetries(part), m), "") << part;
+  }
 }
 
 TEST(SymmetryDetect, FollowsTheMeshFrame) {
