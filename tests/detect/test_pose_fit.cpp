@@ -261,14 +261,21 @@ TEST(PoseRefine, MemoOfAFirstRoundGivesTheSameResultsAsRefiningAllAgain) {
   auto& dev = binpick::test::test_device();
   const DeviceFitModel model = upload_fit_model(dev, s.model);
   const ocl::Buffer<float> points(dev, std::span<const float>(s.image.xyzw));
+  RefineOptions ro;
+  ro.noise_factor = 3.5f;
+  ro.ray_band_ratio = 0.01f;
+  // Refines the poses (with the memo, if one is given) and counts the fits the kernel is asked
+  // for.
   std::size_t fits_asked = 0;
   const FitSumsFn counted = [&](const std::vector<bp_pose_fit>& fits) {
     fits_asked += fits.size();
     return pose_fit_sums(dev, points, s.cam, model, fits);
   };
-  RefineOptions ro;
-  ro.noise_factor = 3.5f;
-  ro.ray_band_ratio = 0.01f;
+  const auto refine = [&](const std::vector<PoseToRefine>& poses, RefineMemo* memo) {
+    fits_asked = 0;
+    auto refined = refine_and_verify(counted, s.cam, s.geometry, model.size, poses, ro, memo);
+    return std::pair{std::move(refined), fits_asked};
+  };
   const std::vector<PoseToRefine> first = {off_pose(s, 12, {1, 0, 0}, {2, -1, 1}),
                                            {s.R, s.t + Eigen::Vector3d(5000, 0, 0)},
                                            off_pose(s, 40, {0, 1, 1}, {-6, 0, 2})};
@@ -277,15 +284,11 @@ TEST(PoseRefine, MemoOfAFirstRoundGivesTheSameResultsAsRefiningAllAgain) {
   both.push_back(off_pose(s, 180, s.R * Eigen::Vector3d::UnitZ(), Eigen::Vector3d::Zero()));
 
   RefineMemo memo;
-  const auto round1 = refine_and_verify(counted, s.cam, s.geometry, model.size, first, ro, &memo);
+  const auto [round1, asked_first] = refine(first, &memo);
   ASSERT_EQ(memo.inputs.size(), first.size());
-  const std::size_t asked_first = fits_asked;
-  fits_asked = 0;
-  const auto round2 = refine_and_verify(counted, s.cam, s.geometry, model.size, both, ro, &memo);
-  const std::size_t asked_second = fits_asked;
-  fits_asked = 0;
-  const auto fresh = refine_and_verify(counted, s.cam, s.geometry, model.size, both, ro);
-  EXPECT_LT(asked_second, fits_asked);
+  const auto [round2, asked_second] = refine(both, &memo);
+  const auto [fresh, asked_fresh] = refine(both, nullptr);
+  EXPECT_LT(asked_second, asked_fresh);
   EXPECT_GT(asked_first, 0u);
   ASSERT_EQ(round2.size(), fresh.size());
   EXPECT_NE(fresh[1].reason, "");  // outside the image: stopped early, with a reason
@@ -304,12 +307,9 @@ TEST(PoseRefine, MemoOfAFirstRoundGivesTheSameResultsAsRefiningAllAgain) {
   // Another first pose: nothing is taken from the memo, and it then holds the new poses.
   std::vector<PoseToRefine> other = both;
   std::swap(other[0], other[3]);
-  fits_asked = 0;
-  const auto swapped = refine_and_verify(counted, s.cam, s.geometry, model.size, other, ro, &memo);
-  const std::size_t asked_swapped = fits_asked;
-  fits_asked = 0;
-  const auto swapped_fresh = refine_and_verify(counted, s.cam, s.geometry, model.size, other, ro);
-  EXPECT_EQ(asked_swapped, fits_asked);
+  const auto [swapped, asked_swapped] = refine(other, &memo);
+  const auto [swapped_fresh, asked_swapped_fresh] = refine(other, nullptr);
+  EXPECT_EQ(asked_swapped, asked_swapped_fresh);
   for (std::size_t k = 0; k < other.size(); ++k) EXPECT_EQ(swapped[k].R, swapped_fresh[k].R) << k;
   EXPECT_EQ(memo.inputs.size(), other.size());
   EXPECT_EQ(memo.inputs[0].R, other[0].R);
