@@ -31,31 +31,67 @@ __kernel void lowpass_pairs_masked(__global const float4* points, __global const
   lowpass_pair(points, mask, n, pairs);
 }
 
+/* The row and column passes take a block of LP_BLOCK pixels of one row a work item (the host's
+ * lowpass_work_items). Where the block's windows all lie inside the image, one vector add a tap
+ * adds that tap to all LP_BLOCK sums: LP_BLOCK independent sums instead of one chain of 2r + 1
+ * dependent adds a pixel (PoCL does not vectorise the per-pixel loop, whose bounds differ between
+ * work items), and each pixel's sum is the same sum of the same terms in the same order as the
+ * per-pixel loop that the blocks at the image's sides run. */
+#define LP_BLOCK 8
+
 /* Pass 1: per pixel, (sum of z, count) of the valid pixels in its row window. */
 __kernel void lowpass_rows(__global const float2* pairs, const uint width, const uint height,
                            const int radius, __global float2* row_sums) {
-  const uint i = get_global_id(0);
-  if (i >= width * height) return;
-  const int u = (int)(i % width), row = (int)(i - (uint)u);
-  const int u0 = max(u - radius, 0), u1 = min(u + radius, (int)width - 1);
-  float2 sum = (float2)(0.0f, 0.0f);
-  for (int x = u0; x <= u1; ++x) sum += pairs[row + x];
-  row_sums[i] = sum;
+  const uint blocks_per_row = (width + LP_BLOCK - 1) / LP_BLOCK;
+  const uint b = get_global_id(0);
+  if (b >= blocks_per_row * height) return;
+  const uint v = b / blocks_per_row;
+  const int first = (int)((b - v * blocks_per_row) * LP_BLOCK), row = (int)(v * width);
+  if (first >= radius && first + LP_BLOCK - 1 + radius < (int)width) {
+    __global const float* from = (__global const float*)(pairs + row + first);
+    float16 sum = (float16)(0.0f);
+    for (int k = -radius; k <= radius; ++k) sum += vload16(0, from + 2 * k);
+    vstore16(sum, 0, (__global float*)(row_sums + row + first));
+    return;
+  }
+  const int last = min(first + LP_BLOCK, (int)width);
+  for (int u = first; u < last; ++u) {
+    const int u0 = max(u - radius, 0), u1 = min(u + radius, (int)width - 1);
+    float2 sum = (float2)(0.0f, 0.0f);
+    for (int x = u0; x <= u1; ++x) sum += pairs[row + x];
+    row_sums[row + u] = sum;
+  }
 }
 
 /* Pass 2: per valid pixel, the column sum of the row sums divided by the column count. */
 __kernel void lowpass_cols(__global const float2* pairs, __global const float2* row_sums,
                            const uint width, const uint height, const int radius,
                            __global float* filtered) {
-  const uint i = get_global_id(0);
-  if (i >= width * height) return;
-  if (pairs[i].y == 0.0f) {
-    filtered[i] = 0.0f;
+  const uint blocks_per_row = (width + LP_BLOCK - 1) / LP_BLOCK;
+  const uint b = get_global_id(0);
+  if (b >= blocks_per_row * height) return;
+  const int v = (int)(b / blocks_per_row);
+  const int first = (int)((b - (uint)v * blocks_per_row) * LP_BLOCK), row = v * (int)width;
+  if (v >= radius && v + radius < (int)height && first + LP_BLOCK <= (int)width) {
+    float16 sum = (float16)(0.0f);
+    for (int k = -radius; k <= radius; ++k)
+      sum += vload16(0, (__global const float*)(row_sums + row + k * (int)width + first));
+    const float8 counts = vload16(0, (__global const float*)(pairs + row + first)).odd;
+    /* An invalid pixel's 0 / 0 is replaced by its 0. */
+    const float8 mean = sum.even / sum.odd;
+    vstore8(select(mean, (float8)(0.0f), counts == (float8)(0.0f)), 0, filtered + row + first);
     return;
   }
-  const int u = (int)(i % width), v = (int)(i / width);
-  const int v0 = max(v - radius, 0), v1 = min(v + radius, (int)height - 1);
-  float2 sum = (float2)(0.0f, 0.0f);
-  for (int y = v0; y <= v1; ++y) sum += row_sums[y * (int)width + u];
-  filtered[i] = sum.x / sum.y; /* count >= 1: the centre itself is valid */
+  const int last = min(first + LP_BLOCK, (int)width);
+  for (int u = first; u < last; ++u) {
+    const int i = row + u;
+    if (pairs[i].y == 0.0f) {
+      filtered[i] = 0.0f;
+      continue;
+    }
+    const int v0 = max(v - radius, 0), v1 = min(v + radius, (int)height - 1);
+    float2 sum = (float2)(0.0f, 0.0f);
+    for (int y = v0; y <= v1; ++y) sum += row_sums[y * (int)width + u];
+    filtered[i] = sum.x / sum.y; /* count >= 1: the centre itself is valid */
+  }
 }

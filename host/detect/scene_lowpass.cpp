@@ -14,6 +14,10 @@ void check_lowpass_radius(int radius) {
     throw InputError("low-pass radius must be in [0, 64] pixels, not " + std::to_string(radius));
 }
 
+std::size_t lowpass_work_items(std::uint32_t width, std::uint32_t height) {
+  return std::size_t((width + kLowpassBlock - 1) / kLowpassBlock) * height;
+}
+
 void enqueue_lowpass_depth(ocl::Device& dev, const ocl::Buffer<float>& points,
                            std::uint32_t width, std::uint32_t height, int radius,
                            ocl::Buffer<float>& filtered, const ocl::Buffer<std::uint8_t>* mask) {
@@ -32,8 +36,9 @@ void enqueue_lowpass_depth(ocl::Device& dev, const ocl::Buffer<float>& points,
   }
   cl::Kernel rows = dev.kernel("scene_lowpass.cl", "lowpass_rows");
   cl::Kernel cols = dev.kernel("scene_lowpass.cl", "lowpass_cols");
-  ocl::launch(dev, rows, n, pairs, cl_uint(width), cl_uint(height), cl_int(radius), row_sums);
-  ocl::launch(dev, cols, n, pairs, row_sums, cl_uint(width), cl_uint(height), cl_int(radius),
+  const std::size_t blocks = lowpass_work_items(width, height);
+  ocl::launch(dev, rows, blocks, pairs, cl_uint(width), cl_uint(height), cl_int(radius), row_sums);
+  ocl::launch(dev, cols, blocks, pairs, row_sums, cl_uint(width), cl_uint(height), cl_int(radius),
               filtered);
 }
 

@@ -2,6 +2,7 @@
 // a box mean of the valid depths around each valid pixel (kernels/scene_lowpass.cl).
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
 #include <vector>
 
@@ -28,5 +29,10 @@ void enqueue_lowpass_depth(ocl::Device& dev, const ocl::Buffer<float>& points,
                            const ocl::Buffer<std::uint8_t>* mask = nullptr);
 
 void check_lowpass_radius(int radius);
+
+// The row and column passes (lowpass_rows, lowpass_cols) take a block of this many pixels of
+// one row a work item (LP_BLOCK in kernels/scene_lowpass.cl): their global size.
+inline constexpr std::uint32_t kLowpassBlock = 8;
+std::size_t lowpass_work_items(std::uint32_t width, std::uint32_t height);
 
 }  // namespace binpick

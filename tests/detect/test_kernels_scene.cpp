@@ -124,7 +124,7 @@ TEST(LowpassKernels, lowpass_rows_matches_reference) {
     for (int radius : {0, 1, 5, 64}) {
       ocl::Buffer<float> row_sums =
           guarded_buffer(dev, std::vector<float>(2 * std::size_t(c.w) * c.h, kFloatCanary), kGuard, kFloatCanary);
-      ocl::launch(dev, k, std::size_t(c.w) * c.h, pairs, c.w, c.h, cl_int(radius), row_sums);
+      ocl::launch(dev, k, lowpass_work_items(c.w, c.h), pairs, c.w, c.h, cl_int(radius), row_sums);
       std::vector<float> want = lowpass_rows_reference(pts.xyzw, int(c.w), int(c.h), radius);
       want.insert(want.end(), kGuard, kFloatCanary);
       ASSERT_EQ(row_sums.read(dev), want) << c.w << "x" << c.h << " r " << radius;
@@ -148,7 +148,7 @@ TEST(LowpassKernels, lowpass_cols_matches_reference) {
       for (std::size_t i = 0; i < n; ++i) row_sums[2 * i] = sum(rng), row_sums[2 * i + 1] = float(count(rng));
       ocl::Buffer<float> rs = upload(dev, row_sums);
       ocl::Buffer<float> filtered = guarded_buffer(dev, std::vector<float>(n, kFloatCanary), kGuard, kFloatCanary);
-      ocl::launch(dev, k, n, pairs, rs, c.w, c.h, cl_int(radius), filtered);
+      ocl::launch(dev, k, lowpass_work_items(c.w, c.h), pairs, rs, c.w, c.h, cl_int(radius), filtered);
       std::vector<float> want = lowpass_cols_reference(pts.xyzw, row_sums, int(c.w), int(c.h), radius);
       want.insert(want.end(), kGuard, kFloatCanary);
       ASSERT_EQ(filtered.read(dev), want) << c.w << "x" << c.h << " r " << radius;
@@ -182,11 +182,11 @@ TEST(LowpassKernels, PassesInSequenceAndDegenerateImages) {
       std::vector<float> want_pairs = lowpass_pairs_reference(pts.xyzw);
       std::vector<float> got_pairs = pairs.read(dev);
       ASSERT_EQ(std::vector<float>(got_pairs.begin(), got_pairs.begin() + 2 * n), want_pairs) << im;
-      ocl::launch_local(dev, rows, n, 64, pairs, pts.width, pts.height, cl_int(radius), row_sums);
+      ocl::launch_local(dev, rows, lowpass_work_items(pts.width, pts.height), 64, pairs, pts.width, pts.height, cl_int(radius), row_sums);
       std::vector<float> want_rows = lowpass_rows_reference(pts.xyzw, int(pts.width), int(pts.height), radius);
       std::vector<float> got_rows = row_sums.read(dev);
       ASSERT_EQ(std::vector<float>(got_rows.begin(), got_rows.begin() + 2 * n), want_rows) << im << " " << radius;
-      ocl::launch_local(dev, cols, n, 64, pairs, row_sums, pts.width, pts.height, cl_int(radius), filtered);
+      ocl::launch_local(dev, cols, lowpass_work_items(pts.width, pts.height), 64, pairs, row_sums, pts.width, pts.height, cl_int(radius), filtered);
       std::vector<float> want = lowpass_cols_reference(pts.xyzw, got_rows, int(pts.width), int(pts.height), radius);
       EXPECT_EQ(want, lowpass_depth_reference(pts, radius));
       want.insert(want.end(), kGuard, kFloatCanary);
