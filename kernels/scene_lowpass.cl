@@ -95,3 +95,20 @@ __kernel void lowpass_cols(__global const float2* pairs, __global const float2* 
     filtered[i] = sum.x / sum.y; /* count >= 1: the centre itself is valid */
   }
 }
+
+/* The points moved along their rays to the low-passed depth where it has a value (elsewhere
+ * the point as it is): the depth image with the sensor's noise averaged over the box, which the
+ * in-plane search of thin parts reads on noisy images (host/detect/scene_lowpass.hpp). */
+__kernel void lowpass_points(__global const float4* points, __global const float* filtered,
+                             const uint n, __global float4* out) {
+  const uint i = get_global_id(0);
+  if (i >= n) return;
+  const float4 p = points[i];
+  const float f = filtered[i];
+  if (!(p.w != 0.0f && f > 0.0f)) {
+    out[i] = p;
+    return;
+  }
+  const float s = f / p.z;
+  out[i] = (float4)(p.x * s, p.y * s, p.z * s, 1.0f);
+}

@@ -4,8 +4,12 @@
 #include "host/detect/bin_fit.hpp"
 #include "host/detect/instance_select.hpp"
 #include "host/detect/outline_test.hpp"
+#include "host/detect/scene_lowpass.hpp"
+#include "host/train/edge_probes.hpp"
+#include "host/train/probe_surface.hpp"
 
 #include <algorithm>
+#include <optional>
 #include <cmath>
 #include <stdexcept>
 #include <iostream>
@@ -303,7 +307,8 @@ void take_pose(Detection& d, const RefinedPose& r, std::uint64_t votes, std::uin
 std::vector<Detection> Detector::refine_and_rank(
     std::vector<Detection> detections, const std::vector<std::vector<PoseCluster>>& candidates,
     const ocl::Buffer<float>& points, const bp_camera& cam, DetectTimes& t, bool sensor,
-    const BinFit* bin, PlaneSearchMemo* searched, RefineMemo* refined_before) {
+    const BinFit* bin, PlaneSearchMemo* searched, RefineMemo* refined_before,
+    const ocl::Buffer<float>* search_points) {
   Stopwatch clock;
   std::vector<PoseToRefine> poses;
   struct Owner {
@@ -339,7 +344,8 @@ std::vector<Detection> Detector::refine_and_rank(
   if (search && !starts.empty()) {
     const double span = params_.plane_search * model_.diameter;
     PlaneSearchMemo none;
-    found = plane_search(searched ? *searched : none, dev_, point_depths(dev_, points, cam), cam,
+    found = plane_search(searched ? *searched : none, dev_,
+                         point_depths(dev_, search_points ? *search_points : points, cam), cam,
                          plane_search_model_, starts, span, float(tolerance));
   }
   std::size_t next = 0;
@@ -563,11 +569,35 @@ std::vector<Detection> Detector::detect(const DepthImage& depth, const bp_camera
     }
     t.hypotheses += to - from;
   };
+  // Noisy depth: the in-plane search reads the low-passed depth (plane_search.hpp).
+  std::optional<ocl::Buffer<float>> search_points;
+  if (plane_search_model_.probes > 0 && params_.plane_search > 0 &&
+      search_reads_lowpass(noise, thinnest_extent_) && !hyps.empty()) {
+    float farthest = 0;
+    for (const Hypothesis& h : hyps) farthest = std::max(farthest, h.depth);
+    const int radius =
+        search_lowpass_radius(kEdgeMarginVoxels * model_.voxel_size / kProbeVoxelDivisor,
+                              farthest / std::max(cam.fx, cam.fy));
+    if (radius >= 1) {
+      const std::size_t n = std::size_t(scene.width) * scene.height;
+      ocl::Buffer<float> filtered(dev_, n);
+      enqueue_lowpass_depth(dev_, scene.device->points, scene.width, scene.height, radius,
+                            filtered);
+      search_points.emplace(dev_, 4 * n);
+      enqueue_lowpass_points(dev_, scene.device->points, filtered, n, *search_points);
+      region_report_ += fmt::format(
+          "{}depth noise {:.2f} mm, deeper than half the sheet ({:.2f} mm): the in-plane search "
+          "reads the depth low-passed over {} x {} pixels",
+          region_report_.empty() ? "" : "; ", noise, thinnest_extent_, 2 * radius + 1,
+          2 * radius + 1);
+    }
+  }
   PlaneSearchMemo searched;  // the first round's searches and ICP, for the second
   RefineMemo refined;
   const auto rank = [&] {
     return refine_and_rank(voted, candidates, scene.device->points, cam, t, true,
-                           masked.bin ? &*masked.bin : nullptr, &searched, &refined);
+                           masked.bin ? &*masked.bin : nullptr, &searched, &refined,
+                           search_points ? &*search_points : nullptr);
   };
   std::vector<Detection> detections = in_rounds(hyps.size(), vote, rank);
   if (times) *times += t;

@@ -255,7 +255,8 @@ class Detector {
                                          const ocl::Buffer<float>& points, const bp_camera& cam,
                                          DetectTimes& t, bool sensor, const BinFit* bin = nullptr,
                                          PlaneSearchMemo* searched = nullptr,
-                                         RefineMemo* refined = nullptr);
+                                         RefineMemo* refined = nullptr,
+                                         const ocl::Buffer<float>* search_points = nullptr);
 
   ocl::Device& dev_;
   double program_build_s_ = 0;

@@ -149,6 +149,13 @@ std::vector<float> edge_step_scores_reference(const std::vector<float>& points,
   return out;
 }
 
+bool search_reads_lowpass(double noise, double thickness) { return noise > 0.5 * thickness; }
+
+int search_lowpass_radius(double margin, double pixel) {
+  if (!(margin > 0) || !(pixel > 0)) return 0;
+  return int(std::clamp(std::ceil(margin / pixel) - 1.0, 0.0, 64.0));
+}
+
 Eigen::Isometry3d in_plane_pose(const Eigen::Isometry3d& pose, const Eigen::Vector3d& axis,
                                 const Eigen::Vector3d& centre, double angle, double a, double b) {
   const Eigen::Vector3d n = pose.linear() * axis;

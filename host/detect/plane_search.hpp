@@ -52,6 +52,18 @@ ocl::Buffer<float> point_depths(ocl::Device& dev, const ocl::Buffer<float>& poin
 // Reference: the same from a host point image.
 std::vector<float> point_depths_reference(const std::vector<float>& points);
 
+// Noisy depth. A sheet on a sheet steps down by one thickness at its edges, and a depth image
+// whose noise is deeper than half that drowns the step: the search then reads the points moved
+// to their low-passed depth (scene_lowpass.hpp: lowpass_points), the noise averaged over the
+// widest box whose half-width is less than the edge probes' margin beyond the edges (at the
+// pixel size of the farthest part searched), so that no probe's box reaches the sheet's own
+// depth. noise: the image's depth noise (sigma, mm; depth_noise.hpp); thickness: the sheet's
+// (the model's thinnest extent). Measured: docs/pipeline.md, step 9.
+bool search_reads_lowpass(double noise, double thickness);
+// The box's radius in pixels for an edge-probe margin and a pixel width (mm); 0: no box (a
+// pixel as wide as the margin), at most 64.
+int search_lowpass_radius(double margin, double pixel);
+
 // Routine: the edge step score of each pose (model to camera, mm) over every stride-th probe
 // on a depth image on the device (point_depths): kernels/plane_search.cl says what it is.
 std::vector<float> edge_step_scores(ocl::Device& dev, const ocl::Buffer<float>& depth,

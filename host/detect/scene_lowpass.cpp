@@ -42,6 +42,31 @@ void enqueue_lowpass_depth(ocl::Device& dev, const ocl::Buffer<float>& points,
               filtered);
 }
 
+void enqueue_lowpass_points(ocl::Device& dev, const ocl::Buffer<float>& points,
+                            const ocl::Buffer<float>& filtered, std::size_t n,
+                            ocl::Buffer<float>& out) {
+  if (points.size() < 4 * n || filtered.size() < n || out.size() < 4 * n)
+    throw std::logic_error("enqueue_lowpass_points: a buffer is smaller than the image");
+  if (n == 0) return;
+  cl::Kernel k = dev.kernel("scene_lowpass.cl", "lowpass_points");
+  ocl::launch(dev, k, n, points, filtered, cl_uint(n), out);
+}
+
+std::vector<float> lowpass_points_reference(const std::vector<float>& xyzw,
+                                            const std::vector<float>& filtered) {
+  if (xyzw.size() != 4 * filtered.size())
+    throw InputError("lowpass_points: one low-passed depth a point expected");
+  std::vector<float> out = xyzw;
+  for (std::size_t i = 0; i < filtered.size(); ++i) {
+    const float* p = &xyzw[4 * i];
+    if (!(p[3] != 0.0f && filtered[i] > 0.0f)) continue;
+    const float s = filtered[i] / p[2];
+    out[4 * i] = p[0] * s, out[4 * i + 1] = p[1] * s, out[4 * i + 2] = p[2] * s;
+    out[4 * i + 3] = 1.0f;
+  }
+  return out;
+}
+
 namespace {
 
 void check_mask(const PointImage& points, const std::vector<std::uint8_t>* mask) {

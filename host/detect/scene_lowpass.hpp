@@ -30,6 +30,17 @@ void enqueue_lowpass_depth(ocl::Device& dev, const ocl::Buffer<float>& points,
 
 void check_lowpass_radius(int radius);
 
+// Routine: the points (float4 a pixel, n pixels) moved along their rays to the low-passed depth
+// where it has a value (filtered > 0; elsewhere the point as it is): the depth image with the
+// sensor's noise averaged over the low-pass box, which the in-plane search of thin parts reads
+// when the noise is deeper than the sheet is thick (plane_search.hpp). Enqueued without waiting.
+void enqueue_lowpass_points(ocl::Device& dev, const ocl::Buffer<float>& points,
+                            const ocl::Buffer<float>& filtered, std::size_t n,
+                            ocl::Buffer<float>& out);
+// Reference: the same float operations in plain C++ (xyzw: 4 floats a pixel).
+std::vector<float> lowpass_points_reference(const std::vector<float>& xyzw,
+                                            const std::vector<float>& filtered);
+
 // The row and column passes (lowpass_rows, lowpass_cols) take a block of this many pixels of
 // one row a work item (LP_BLOCK in kernels/scene_lowpass.cl): their global size.
 inline constexpr std::uint32_t kLowpassBlock = 8;

@@ -1,5 +1,6 @@
-// The three passes of the low-pass filter (kernels/scene_lowpass.cl) and the fixed-radius normal
-// kernels (kernels/scene_normals.cl), each launched by itself on random point images and
+// The three passes of the low-pass filter and the points moved to its depth
+// (kernels/scene_lowpass.cl), and the fixed-radius normal kernels (kernels/scene_normals.cl),
+// each launched by itself on random point images and
 // compared with a plain C++ reference of that one step (tests/support/kernel_refs.hpp, and
 // host/detect/scene_normals.hpp's references).
 //
@@ -15,9 +16,11 @@
 // of a one-row image, whose points all lie in a plane through the camera centre.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <random>
 #include <tuple>
 
+#include "host/core/error.hpp"
 #include "host/detect/scene_lowpass.hpp"
 #include "host/detect/scene_normals.hpp"
 #include "tests/support/kernel_refs.hpp"
@@ -154,6 +157,36 @@ TEST(LowpassKernels, lowpass_cols_matches_reference) {
       ASSERT_EQ(filtered.read(dev), want) << c.w << "x" << c.h << " r " << radius;
     }
   }
+}
+
+// The points moved to the low-passed depth: exactly the reference's floats, on images with
+// holes, pixels without a low-passed depth (0: masked out) and an image without any data (the
+// points as they are); the tail of the output untouched.
+TEST(LowpassKernels, lowpass_points_matches_reference) {
+  auto& dev = ocl::Device::shared();
+  std::mt19937 rng(704);
+  std::bernoulli_distribution masked(0.3);
+  std::normal_distribution<float> smooth(0.0f, 2.0f);
+  std::vector<PointImage> images;
+  for (const ImageCase& c : kImages) images.push_back(random_point_image(rng, c.w, c.h, c.holes, c.noise));
+  images.push_back(PointImage{9, 7, std::vector<float>(4 * 9 * 7, 0.0f)});
+  for (std::size_t im = 0; im < images.size(); ++im) {
+    const PointImage& pts = images[im];
+    const std::size_t n = std::size_t(pts.width) * pts.height;
+    std::vector<float> filtered(n, 0.0f);
+    for (std::size_t i = 0; i < n; ++i)
+      if (pts.xyzw[4 * i + 3] != 0.0f && !masked(rng))
+        filtered[i] = std::max(1.0f, pts.xyzw[4 * i + 2] + smooth(rng));
+    ocl::Buffer<float> points = upload(dev, pts.xyzw), f = upload(dev, filtered);
+    ocl::Buffer<float> out =
+        guarded_buffer(dev, std::vector<float>(4 * n, kFloatCanary), kGuard, kFloatCanary);
+    enqueue_lowpass_points(dev, points, f, n, out);
+    std::vector<float> want = lowpass_points_reference(pts.xyzw, filtered);
+    if (im + 1 == images.size()) EXPECT_EQ(want, pts.xyzw);  // no data: as it is
+    want.insert(want.end(), kGuard, kFloatCanary);
+    ASSERT_EQ(out.read(dev), want) << pts.width << "x" << pts.height;
+  }
+  EXPECT_THROW(lowpass_points_reference(std::vector<float>(8, 1.0f), {1.0f}), InputError);
 }
 
 // The routine's three passes (enqueue_lowpass_depth) in sequence, each checked, on degenerate
