@@ -164,6 +164,7 @@ TEST(LowpassKernels, lowpass_cols_matches_reference) {
 // points as they are); the tail of the output untouched.
 TEST(LowpassKernels, lowpass_points_matches_reference) {
   auto& dev = ocl::Device::shared();
+  cl::Kernel kernel = dev.kernel("scene_lowpass.cl", "lowpass_points");
   std::mt19937 rng(704);
   std::bernoulli_distribution masked(0.3);
   std::normal_distribution<float> smooth(0.0f, 2.0f);
@@ -178,13 +179,18 @@ TEST(LowpassKernels, lowpass_points_matches_reference) {
       if (pts.xyzw[4 * i + 3] != 0.0f && !masked(rng))
         filtered[i] = std::max(1.0f, pts.xyzw[4 * i + 2] + smooth(rng));
     ocl::Buffer<float> points = upload(dev, pts.xyzw), f = upload(dev, filtered);
-    ocl::Buffer<float> out =
-        guarded_buffer(dev, std::vector<float>(4 * n, kFloatCanary), kGuard, kFloatCanary);
-    enqueue_lowpass_points(dev, points, f, n, out);
     std::vector<float> want = lowpass_points_reference(pts.xyzw, filtered);
     if (im + 1 == images.size()) EXPECT_EQ(want, pts.xyzw);  // no data: as it is
     want.insert(want.end(), kGuard, kFloatCanary);
+    // The kernel by itself, in padded work groups of 64, and through the routine.
+    ocl::Buffer<float> out =
+        guarded_buffer(dev, std::vector<float>(4 * n, kFloatCanary), kGuard, kFloatCanary);
+    ocl::launch_local(dev, kernel, n, 64, points, f, cl_uint(n), out);
     ASSERT_EQ(out.read(dev), want) << pts.width << "x" << pts.height;
+    ocl::Buffer<float> routine =
+        guarded_buffer(dev, std::vector<float>(4 * n, kFloatCanary), kGuard, kFloatCanary);
+    enqueue_lowpass_points(dev, points, f, n, routine);
+    ASSERT_EQ(routine.read(dev), want) << pts.width << "x" << pts.height;
   }
   EXPECT_THROW(lowpass_points_reference(std::vector<float>(8, 1.0f), {1.0f}), InputError);
 }
