@@ -237,7 +237,7 @@ BinFit fit_bin(ocl::Device& dev, const PlaneSamples& s, const BinFitOptions& opt
       // 65 images of baskets, bins and heaps (tilts 0-30 degrees, arms, paper heaps; it won on
       // none of them), and the search is a third of the fit's time. Nor when a plane's up gave
       // a frame seen on all four sides (a full bin straight down: the floor hidden, the rim whole):
-      // on 95 images of 26 sets (docs/pipeline.md) the search ran after such a frame on 7 and
+      // on 95 images of 25 datasets (docs/pipeline.md) the search ran after such a frame on 7 and
       // replaced it on none; the frames it did replace were slices through heaps (below).
       if (best.rim.found &&
           (best.on_floor || std::count(best.rim.seen.begin(), best.rim.seen.end(), true) == 4))
@@ -330,7 +330,7 @@ BinFit fit_bin(ocl::Device& dev, const PlaneSamples& s, const BinFitOptions& opt
     // of the heap one "height" along the border, a "frame" seen on one or two sides, in 3 of 23
     // images of heaps (tilted 11-22 degrees; the parts outside it were masked out) and 6 of the
     // 120 heaps of BinFit.ASliceThroughAHeapIsNoRim; of the 72 frames found in bins (95 images
-    // of 26 sets, docs/pipeline.md) those seen on two sides had a floor, and those without one
+    // of 25 datasets, docs/pipeline.md) those seen on two sides had a floor, and those without one
     // were seen on three (BinFit.UpFromTheRimWhenNoPlaneIsLevel) or four.
     // (A frame found with one image side not counted has a level floor under it, though
     // on_floor leaves it out.)

@@ -33,7 +33,8 @@ void check_lowpass_radius(int radius);
 // Routine: the points (float4 a pixel, n pixels) moved along their rays to the low-passed depth
 // where it has a value (filtered > 0; elsewhere the point as it is): the depth image with the
 // sensor's noise averaged over the low-pass box, which the in-plane search of thin parts reads
-// when the noise is deeper than the sheet is thick (plane_search.hpp). Enqueued without waiting.
+// when the noise is deeper than half the sheet's thickness (plane_search.hpp). Enqueued without
+// waiting.
 void enqueue_lowpass_points(ocl::Device& dev, const ocl::Buffer<float>& points,
                             const ocl::Buffer<float>& filtered, std::size_t n,
                             ocl::Buffer<float>& out);
