@@ -27,7 +27,6 @@ BinWorld::BinWorld(const DropOptions& options, std::vector<const PartShape*> kin
   if (options.skip_apart_hulls)
     skip_apart_ = std::make_unique<SeparatedPairSkip>(collision_configuration_, dispatcher_);
   world_.setGravity(btVector3(0, 0, btScalar(-kGravityUnits)));
-  world_.getSolverInfo().m_numIterations = options.solver_iterations;
   contact_erp_ = world_.getSolverInfo().m_erp2;
   // Bullet puts an island to sleep once all its bodies have been below their sleeping
   // thresholds this long; the same duration as our own rest test. (A process-wide global.)
@@ -35,6 +34,10 @@ BinWorld::BinWorld(const DropOptions& options, std::vector<const PartShape*> kin
 
   thinnest_mm_ = INFINITY;
   for (const PartShape* k : kinds_) thinnest_mm_ = std::min(thinnest_mm_, k->thinnest_mm());
+  // A stack of sheets has little to sink before one passes through another (drop.hpp).
+  world_.getSolverInfo().m_numIterations =
+      sheet_pile() ? std::max(options.solver_iterations, options.sheet_solver_iterations)
+                   : options.solver_iterations;
 
   const auto bin = bin_of(options);
   if (bin->boxes.empty()) {

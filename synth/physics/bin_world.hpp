@@ -60,6 +60,8 @@ class BinWorld {
   // Null when DropOptions::skip_apart_hulls is off.
   const SeparatedPairSkip* apart_pair_skip() const { return skip_apart_.get(); }
   const PartShape& shape(int kind) const { return *kinds_[std::size_t(kind)]; }
+  // Some kind has a hull thinner than DropOptions::sheet_hull_mm: the pile is of sheet parts.
+  bool sheet_pile() const { return thinnest_mm_ < options_.sheet_hull_mm; }
   // A part whose centre of mass is below this (units) fell through the ground.
   btScalar lost_below() const { return lost_below_; }
 

@@ -204,8 +204,10 @@ DropResult drop_parts(const std::vector<DropKind>& kinds, const std::vector<int>
     }
     drop.settle(wave, options.freeze_resting, "wave " + std::to_string(wave + 1));
   }
+  // Sheet parts are not released all at once (DropOptions::sheet_hull_mm says why).
   const double all_dynamic_seconds =
-      options.final_settle_all_dynamic ? 0.0 : options.final_all_dynamic_seconds;
+      options.final_settle_all_dynamic || world.sheet_pile() ? 0.0
+                                                              : options.final_all_dynamic_seconds;
   if (options.freeze_resting && !drop.out_of_wall_time() &&
       (options.final_settle_all_dynamic || all_dynamic_seconds > 0.0)) {
     for (btRigidBody* body : world.parts())

@@ -75,6 +75,17 @@ struct DropOptions {
   // a whole, so it comes to rest late). Off by default: the second above removes the large
   // shifts at a fraction of the cost, and what it leaves is under the rest speed.
   bool final_settle_all_dynamic = false;
+  // Sheet parts (some hull of some kind thinner than sheet_hull_mm): no release at the end
+  // (final_all_dynamic_seconds; final_settle_all_dynamic still applies) and
+  // sheet_solver_iterations contact iterations throughout. Released all at once, a pile of
+  // eight layers of 1.5 mm plates sagged until plates passed through each other: in a
+  // 350-plate bin 292 plates crossed another (mid-planes under 1 mm apart over a fifth of a
+  // plate or more) with the release, 61 without it at 10 iterations, none without it at 50
+  // (in about the same time: 35 s instead of 38); with the release, 50 iterations left 136.
+  // Thicker hulls (the cap screw's 2.9 mm, the bracket's 3.1) keep the release: their
+  // 350-part bins overlap under 1 mm (docs/synthesis.md).
+  double sheet_hull_mm = 2.5;
+  int sheet_solver_iterations = 50;
   // Pairs of hulls that are clearly apart skip Bullet's contact test (separated_pair_skip.hpp):
   // the same bin, bit for bit, in 6 to 27 % less time (the built-in parts). Off only to check
   // that.

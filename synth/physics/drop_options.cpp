@@ -48,6 +48,8 @@ void validate_drop_options(const DropOptions& o) {
                      std::to_string(o.time_step_s));
   require_positive(o.step_travel, "step travel");
   require_positive(o.solver_iterations, "solver iterations");
+  require_non_negative(o.sheet_hull_mm, "sheet hull width");
+  require_positive(o.sheet_solver_iterations, "sheet solver iterations");
   require_non_negative(o.friction, "friction");
   require_non_negative(o.restitution, "restitution");
   require_non_negative(o.rolling_friction_mm, "rolling friction");

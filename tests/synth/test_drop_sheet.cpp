@@ -34,8 +34,10 @@ TEST(DropSheet, PlatePileComesToRestWithinItsLimits) {
   EXPECT_EQ(result.stats.parts_left_bin, 0) << result.stats.message;
   ASSERT_EQ(result.poses.size(), 40u);
   EXPECT_LT(result.stats.simulated_seconds, 40.0);  // 16 (84 before, one wave cut at 30)
-  // Plates crossing each other by more than their thickness would show in the depth images.
-  EXPECT_LT(deepest_penetration_mm(hulls, result.poses), 2.5);
+  // Plates passing through each other would show in the depth images. Released all at once
+  // after the last wave, as thicker parts are, two of these plates overlapped by 1.8 mm, more
+  // than the sheet is thick; now the deepest overlap is 0.7 mm (drop.hpp, sheet_hull_mm).
+  EXPECT_LT(deepest_penetration_mm(hulls, result.poses), 1.0);
   for (const auto& pose : result.poses) {
     EXPECT_NEAR(pose.linear().determinant(), 1.0, 1e-9);
     EXPECT_LE(std::abs(pose.translation().x()), 0.5 * o.bin_size_mm.x());
