@@ -107,6 +107,11 @@ void add_detect_cli_options(CLI::App* verb, DetectCliOptions& a, const std::stri
           "sensor sees the part's edges step down by (mean over points just beyond them, plus "
           "two standard errors) over this many verification tolerances, at most 1, in [0, 10]; "
           "0: off");
+  add("verify-lookalike", p.verify_lookalike,
+      "look-alike share: a pose's score s is multiplied by s / (s + w a), a the best score among "
+          "the poses refined from the same candidate that lie at its place turned another way "
+          "round (a plate turned over): a pose its look-alike ties with keeps half, in [0, 1]; "
+          "0: off");
   add("verify-area", p.verify_area,
       "seen-area test: the score is multiplied by the area the pose shows the sensor (its "
           "visible model points weighted by how squarely they face the camera, missing depth "

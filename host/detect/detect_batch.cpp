@@ -141,6 +141,8 @@ std::string detection_line(std::size_t rank, const Detection& d) {
   if (d.rival_out_fitted)
     line += fmt::format("; out-fitted by a rival pose on {} shared points ({:.2f} against {:.2f} mm^2)",
                         d.rival_shared, d.own_ms, d.rival_ms);
+  if (d.lookalike_score > 0)
+    line += fmt::format("; a look-alike scores {:.3f}", d.lookalike_score);
   if (d.see_through > 0) line += fmt::format("; {} seen through", d.see_through);
   if (!d.reason.empty()) line += "; " + d.reason;
   return line;

@@ -74,6 +74,7 @@ const std::map<std::string, Field>& fields() {
       {"verify-ray", real(&DetectParams::verify_ray)},
       {"verify-twin", real(&DetectParams::verify_twin)},
       {"verify-edge", real(&DetectParams::verify_edge)},
+      {"verify-lookalike", real(&DetectParams::verify_lookalike)},
       {"verify-area", real(&DetectParams::verify_area)},
       {"verify-rival", real(&DetectParams::verify_rival)},
       {"verify-through", real(&DetectParams::verify_through)},

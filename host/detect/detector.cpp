@@ -3,6 +3,7 @@
 #include "host/detect/area_test.hpp"
 #include "host/detect/bin_fit.hpp"
 #include "host/detect/instance_select.hpp"
+#include "host/detect/lookalike_share.hpp"
 #include "host/detect/outline_test.hpp"
 #include "host/detect/scene_lowpass.hpp"
 #include "host/train/edge_probes.hpp"
@@ -122,6 +123,7 @@ std::optional<ParamProblem> find_param_problem(const DetectParams& p) {
       {in(p.verify_through, 0, 100), {"verify-through", p.verify_through, "[0, 100]"}},
       {in(p.verify_twin, 0, 1), {"verify-twin", p.verify_twin, "[0, 1]"}},
       {in(p.verify_edge, 0, 10), {"verify-edge", p.verify_edge, "[0, 10]"}},
+      {in(p.verify_lookalike, 0, 1), {"verify-lookalike", p.verify_lookalike, "[0, 1]"}},
       {in(p.verify_area, 0, 10), {"verify-area", p.verify_area, "[0, 10]"}},
       {in(p.verify_rival, 0, 100), {"verify-rival", p.verify_rival, "[0, 100]"}},
       {in(p.bin_margin, 0, 10), {"bin-margin", p.bin_margin, "[0, 10]"}},
@@ -298,6 +300,7 @@ void take_pose(Detection& d, const RefinedPose& r, std::uint64_t votes, std::uin
   d.rival_shared = r.rival_shared;
   d.own_ms = r.own_ms;
   d.rival_ms = r.rival_ms;
+  d.lookalike_score = r.lookalike_score;
   d.see_through = r.see_through;
   d.reason = r.reason;
 }
@@ -412,6 +415,18 @@ std::vector<Detection> Detector::refine_and_rank(
     rt.count_unexplained = outline_ratio_ > 0;
     rival_test(refined, fit_geometry_.points, fit_geometry_.normals,
                model_.voxel_size / kFitVoxelDivisor, cam, fit_geometry_.centroid, rt);
+  }
+  {
+    // One group a candidate: its voted pose, its in-plane search's, and their look-alikes.
+    std::vector<std::size_t> group(owner.size());
+    std::vector<std::size_t> first(candidates.size() + 1, 0);
+    for (std::size_t k = 0; k < candidates.size(); ++k) first[k + 1] = first[k] + candidates[k].size();
+    for (std::size_t i = 0; i < owner.size(); ++i)
+      group[i] = first[owner[i].detection] + owner[i].candidate;
+    LookalikeOptions lo;
+    lo.weight = params_.verify_lookalike;
+    lo.max_distance = kLookalikeRatio * model_.diameter;
+    lookalike_share(refined, group, fit_geometry_.centroid, lo);
   }
   if (params_.instances > 0) {
     // Every refined pose competes (instance_select.hpp), not only each hypothesis' best.

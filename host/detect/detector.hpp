@@ -96,6 +96,10 @@ struct DetectParams {
   // measured points it shares with another pose worse by more than this cannot outrank it.
   // Measured in docs/pipeline.md, step 9.
   double verify_rival = 2.0;
+  // Look-alike share's weight (0: off; lookalike_share.hpp): a pose's score is multiplied by
+  // s / (s + w a), a the best score of the same candidate's poses turned another way round at
+  // its place. Measured in docs/pipeline.md, step 9.
+  double verify_lookalike = 1.0;
   // Where hypotheses and crops may be (bin_spec.hpp, docs/cli.md): "" (anywhere),
   // "camera:x0,y0,z0,x1,y1,z1" or "bin:..." (mm).
   std::string roi;
@@ -162,6 +166,7 @@ struct Detection {
   bool rival_out_fitted = false;
   std::uint32_t rival_shared = 0;
   double own_ms = 0, rival_ms = 0;
+  double lookalike_score = 0;  // its best look-alike's score (lookalike_share.hpp); 0 if none
   std::uint32_t see_through = 0;    // visible model points the sensor sees past
   std::string reason;               // why the score is 0 or refinement stopped early, or why the
                                     // hypothesis was skipped (Detector::skipped)

@@ -199,6 +199,8 @@ TEST_F(DetectCli, ParamsFileAppliesAndCommandLineWins) {
   refused_as_option("--verify-twin -0.1", "verify-twin -0.1 must be in [0, 1]");
   refused_in_file(R"({"verify_edge": 11})", "verify-edge 11 must be in [0, 10]");
   refused_as_option("--verify-edge nan", "verify-edge");
+  refused_in_file(R"({"verify_lookalike": 1.5})", "verify-lookalike 1.5 must be in [0, 1]");
+  refused_as_option("--verify-lookalike -1", "verify-lookalike");
   refused_in_file(R"({"verify_area": 10.5})", "verify-area 10.5 must be in [0, 10]");
   refused_as_option("--verify-area -1", "verify-area -1 must be in [0, 10]");
   refused_in_file(R"({"verify_rival": 101})", "verify-rival 101 must be in [0, 100]");
