@@ -241,13 +241,18 @@ SynthSummary synthesize(const Model& model, const std::string& model_description
     for (auto px : rendered.px_visible) visible += px > 0;
     progress.finish(fmt::format(
         "{}: {} parts ({} visible), {}{:.1f} s simulated; physics {}, render {:.2f} s, "
-        "write {:.2f} s{}",
+        "write {:.2f} s{}{}",
         scene.filename().string(), dropped.poses.size(), visible,
         dropped.stats.settled ? "at rest after " : "NOT at rest (time limit) after ",
         dropped.stats.simulated_seconds,
         cached ? std::string("reused (the pile of an earlier noise level)")
                : fmt::format("{:.1f} s", physics),
         render, write,
+        dropped.stats.sheet_pile
+            ? fmt::format("; sheet parts (a hull under {} mm): not released at the end, {} solver "
+                          "iterations",
+                          o.drop.sheet_hull_mm, o.drop.sheet_solver_iterations)
+            : "",
         dropped.stats.message.empty() ? "" : "; " + dropped.stats.message));
     summary.seconds_physics += physics;
     summary.seconds_render += render;

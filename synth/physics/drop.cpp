@@ -205,6 +205,7 @@ DropResult drop_parts(const std::vector<DropKind>& kinds, const std::vector<int>
     drop.settle(wave, options.freeze_resting, "wave " + std::to_string(wave + 1));
   }
   // Sheet parts are not released all at once (DropOptions::sheet_hull_mm says why).
+  stats.sheet_pile = world.sheet_pile();
   const double all_dynamic_seconds =
       options.final_settle_all_dynamic || world.sheet_pile() ? 0.0
                                                               : options.final_all_dynamic_seconds;

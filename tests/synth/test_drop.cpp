@@ -180,6 +180,7 @@ TEST(DropLayout, PartWiderThanBinIsInputError) {
 TEST_P(DropBin, AllPartsSettleInsideTheBin) {
   const auto& b = bin();
   EXPECT_TRUE(b.result.stats.settled) << b.result.stats.message;
+  EXPECT_FALSE(b.result.stats.sheet_pile);  // bracket and torus: released at the end
   EXPECT_EQ(b.result.stats.parts_left_bin, 0);
   ASSERT_EQ(b.result.poses.size(), 60u);
   EXPECT_EQ(b.result.stats.waves, 5);

@@ -31,6 +31,7 @@ TEST(DropSheet, PlatePileComesToRestWithinItsLimits) {
   o.max_wave_seconds = 20;  // a wave takes 1 to 3 simulated seconds; one took over 30
   const DropResult result = drop_parts(hulls, plate, o);
   EXPECT_TRUE(result.stats.settled) << result.stats.message;
+  EXPECT_TRUE(result.stats.sheet_pile);  // the plate's hulls are 1.5 mm thick: not released
   EXPECT_EQ(result.stats.parts_left_bin, 0) << result.stats.message;
   ASSERT_EQ(result.poses.size(), 40u);
   EXPECT_LT(result.stats.simulated_seconds, 40.0);  // 16 (84 before, one wave cut at 30)
