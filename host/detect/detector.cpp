@@ -87,7 +87,13 @@ std::vector<Detection> Detector::in_rounds(std::size_t found,
       params_.instances > 0 ? found : std::min<std::size_t>(found, params_.hypotheses);
   vote(0, first);
   std::vector<Detection> out = rank();
-  if (first == found || (!out.empty() && out.front().score >= params_.confident)) return out;
+  // Confident when some pose fits that well, whether or not its look-alike fits as well
+  // (lookalike_share.hpp): a part with a close look-alike would otherwise take the second round
+  // on every image.
+  const bool confident = std::any_of(out.begin(), out.end(), [&](const Detection& d) {
+    return d.fit_score >= params_.confident;
+  });
+  if (first == found || confident) return out;
   // The second round's candidates are refined and ranked with the first's, as if all had been
   // tried at once: the rival test compares poses of neighbouring hypotheses (measured: ranking
   // the rounds apart lost the right plate of one image that one batch kept).
@@ -301,6 +307,7 @@ void take_pose(Detection& d, const RefinedPose& r, std::uint64_t votes, std::uin
   d.own_ms = r.own_ms;
   d.rival_ms = r.rival_ms;
   d.lookalike_score = r.lookalike_score;
+  d.fit_score = r.fit_score;
   d.see_through = r.see_through;
   d.reason = r.reason;
 }

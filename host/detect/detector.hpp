@@ -167,6 +167,7 @@ struct Detection {
   std::uint32_t rival_shared = 0;
   double own_ms = 0, rival_ms = 0;
   double lookalike_score = 0;  // its best look-alike's score (lookalike_share.hpp); 0 if none
+  double fit_score = 0;  // its score before the look-alike share
   std::uint32_t see_through = 0;    // visible model points the sensor sees past
   std::string reason;               // why the score is 0 or refinement stopped early, or why the
                                     // hypothesis was skipped (Detector::skipped)

@@ -99,6 +99,7 @@ struct RefinedPose {
   double own_ms = 0, rival_ms = 0;
   // The best score of its look-alikes (lookalike_share.hpp), before their shares; 0 if none.
   double lookalike_score = 0;
+  double fit_score = 0;  // the score before the look-alike share (the same without one)
   // The measured points of its ICP terms at the final pose (RefineOptions::keep_measured).
   std::vector<Eigen::Vector3f> measured;
   std::uint32_t iterations = 0;  // ICP steps taken

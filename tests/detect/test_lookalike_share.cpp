@@ -44,6 +44,7 @@ TEST(LookalikeShare, ATieHalvesBothScores) {
   EXPECT_NEAR(poses[0].score, 0.4, 1e-12);
   EXPECT_NEAR(poses[1].score, 0.4, 1e-12);
   EXPECT_DOUBLE_EQ(poses[0].lookalike_score, 0.8);
+  EXPECT_DOUBLE_EQ(poses[0].fit_score, 0.8);  // the score before the share
 }
 
 TEST(LookalikeShare, EachShareIsTakenAgainstTheScoresBefore) {
@@ -98,6 +99,7 @@ TEST(LookalikeShare, WeightZeroIsOffAndMismatchedGroupsAreRefused) {
   lookalike_share(poses, {0, 0}, kCentroid, o);
   EXPECT_DOUBLE_EQ(poses[0].score, 0.8);
   EXPECT_DOUBLE_EQ(poses[1].score, 0.8);
+  EXPECT_DOUBLE_EQ(poses[1].fit_score, 0.8);
   EXPECT_THROW(lookalike_share(poses, {0}, kCentroid, options()), std::logic_error);
   std::vector<RefinedPose> none;
   EXPECT_NO_THROW(lookalike_share(none, {}, kCentroid, options()));
