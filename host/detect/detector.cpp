@@ -427,7 +427,8 @@ std::vector<Detection> Detector::refine_and_rank(
     // One group a candidate: its voted pose, its in-plane search's, and their look-alikes.
     std::vector<std::size_t> group(owner.size());
     std::vector<std::size_t> first(candidates.size() + 1, 0);
-    for (std::size_t k = 0; k < candidates.size(); ++k) first[k + 1] = first[k] + candidates[k].size();
+    for (std::size_t k = 0; k < candidates.size(); ++k)
+      first[k + 1] = first[k] + candidates[k].size();
     for (std::size_t i = 0; i < owner.size(); ++i)
       group[i] = first[owner[i].detection] + owner[i].candidate;
     LookalikeOptions lo;

@@ -14,7 +14,7 @@ void lookalike_share(std::vector<RefinedPose>& poses, const std::vector<std::siz
                      const Eigen::Vector3d& centroid, const LookalikeOptions& opt) {
   if (group.size() != poses.size())
     throw std::logic_error("look-alike share: one group per pose expected");
-  for (RefinedPose& r : poses) r.fit_score = r.score;
+  for (RefinedPose& r : poses) r.fit_score = r.score;  // also with the share off
   if (!(opt.weight > 0)) return;
   // The turn's cosine bound: trace(R_i^T R_j) = 1 + 2 cos(angle).
   const double min_trace = 1.0 + 2.0 * std::cos(opt.min_turn_deg * kDeg);
@@ -32,7 +32,6 @@ void lookalike_share(std::vector<RefinedPose>& poses, const std::vector<std::siz
   for (std::size_t i = 0; i < poses.size(); ++i) {
     RefinedPose& r = poses[i];
     r.lookalike_score = best[i];
-    r.fit_score = r.score;
     if (r.score > 0 && best[i] > 0) r.score *= r.score / (r.score + opt.weight * best[i]);
   }
 }

@@ -111,7 +111,7 @@ struct DropStats {
   int parts_frozen = 0;    // times a part was made static (see DropOptions::freeze_resting)
   int parts_thawed = 0;    // times a frozen part was hit and made dynamic again
   bool full = false;       // the pile reached over the walls: the waves after it were not released
-  bool sheet_pile = false;  // some hull under DropOptions::sheet_hull_mm: no release, more iterations
+  bool sheet_pile = false;  // a hull under DropOptions::sheet_hull_mm: no release, more iterations
   std::vector<int> unsettled;  // indices into DropResult::poses of parts moving when a limit stopped it
   std::string message;     // what went wrong when !settled, full or parts_left_bin > 0
 };

@@ -74,8 +74,9 @@ TEST(LookalikeShare, OtherPlacesTurnsCandidatesAndZeroScoresDoNotCount) {
   const Eigen::Matrix3d I = Eigen::Matrix3d::Identity();
   std::vector<RefinedPose> poses{posed(0.7, I, {0, 0, 900})};
   // Turned by 20 degrees only: the same pose refined a little differently, not a look-alike.
-  poses.push_back(turned_at_same_place(
-      0.7, poses[0], Eigen::AngleAxisd(20 * M_PI / 180, Eigen::Vector3d::UnitY()).toRotationMatrix()));
+  const Eigen::Matrix3d small_turn =
+      Eigen::AngleAxisd(20 * M_PI / 180, Eigen::Vector3d::UnitY()).toRotationMatrix();
+  poses.push_back(turned_at_same_place(0.7, poses[0], small_turn));
   // Turned over, but 13 mm away: beyond max_distance.
   RefinedPose away = turned_at_same_place(0.7, poses[0], kTurnedOver);
   away.t += Eigen::Vector3d(13, 0, 0);
