@@ -207,8 +207,8 @@ DropResult drop_parts(const std::vector<DropKind>& kinds, const std::vector<int>
   // Sheet parts are not released all at once (DropOptions::sheet_hull_mm says why).
   stats.sheet_pile = world.sheet_pile();
   const double all_dynamic_seconds =
-      options.final_settle_all_dynamic || world.sheet_pile() ? 0.0
-                                                              : options.final_all_dynamic_seconds;
+      options.final_settle_all_dynamic || stats.sheet_pile ? 0.0
+                                                           : options.final_all_dynamic_seconds;
   if (options.freeze_resting && !drop.out_of_wall_time() &&
       (options.final_settle_all_dynamic || all_dynamic_seconds > 0.0)) {
     for (btRigidBody* body : world.parts())

@@ -82,8 +82,8 @@ struct DropOptions {
   // 350-plate bin 292 plates crossed another (mid-planes under 1 mm apart over a fifth of a
   // plate or more) with the release, 61 without it at 10 iterations, none without it at 50
   // (in about the same time: 35 s instead of 38); with the release, 50 iterations left 136.
-  // Thicker hulls (the cap screw's 2.9 mm, the bracket's 3.1) keep the release: their
-  // 350-part bins overlap under 1 mm (docs/synthesis.md).
+  // Thicker hulls (the cap screw's 2.9 mm, the bracket's 3.1, the tee's 3.6) keep the release:
+  // the bracket's and the tee's 350-part bins overlap under 1 mm (docs/synthesis.md).
   double sheet_hull_mm = 2.5;
   int sheet_solver_iterations = 50;
   // Pairs of hulls that are clearly apart skip Bullet's contact test (separated_pair_skip.hpp):
