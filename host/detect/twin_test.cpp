@@ -64,7 +64,12 @@ TwinEvidence twin_evidence(std::span<const float> residuals, std::span<const std
 
 double twin_excess(const TwinEvidence& e, std::size_t min_probes, double missing_rate, double gate) {
   if (e.n < std::max<std::size_t>(min_probes, 1)) return 0;
-  return std::max(0.0, e.mean - missing_rate * gate - 2.0 * e.standard_error);
+  // The probes' share without depth is one draw of the pose's own share m, not e.n independent
+  // ones (twin_test.hpp): its spread, sqrt(m (1 - m)) gates, joins the standard error.
+  const double m = std::clamp(missing_rate, 0.0, 1.0);
+  const double spread = m * (1.0 - m) * gate * gate;
+  const double error = std::sqrt(e.standard_error * e.standard_error + spread);
+  return std::max(0.0, e.mean - m * gate - 2.0 * error);
 }
 
 void twin_test(const FitSumsFn& sums_of, const bp_camera& cam, const FitGeometry& g,

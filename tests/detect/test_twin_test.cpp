@@ -46,10 +46,29 @@ TEST(TwinTest, EvidenceIsTheMeanDepthExcessAlongTheRays) {
   EXPECT_NEAR(e.mean, 2.0, 1e-5);
   EXPECT_NEAR(e.standard_error, 1.0 / std::sqrt(3.0), 1e-5);  // sample sd 1
   EXPECT_NEAR(twin_excess(e, 3, 0.0, 10.0), 2.0 - 2.0 / std::sqrt(3.0), 1e-5);
-  // The pose's own share of points without depth comes off in the gate's units.
-  EXPECT_NEAR(twin_excess(e, 3, 0.05, 10.0), 2.0 - 0.5 - 2.0 / std::sqrt(3.0), 1e-5);
+  // The pose's own share m of points without depth comes off in the gate's units, and the
+  // spread of one draw of it, sqrt(m (1 - m)) gates, joins the standard error.
+  EXPECT_NEAR(twin_excess(e, 3, 0.001, 10.0),
+              2.0 - 0.01 - 2.0 * std::sqrt(1.0 / 3.0 + 0.001 * 0.999 * 100.0), 1e-5);
+  EXPECT_EQ(twin_excess(e, 3, 0.05, 10.0), 0.0);
   EXPECT_EQ(twin_excess(e, 3, 0.5, 10.0), 0.0);
   EXPECT_EQ(twin_excess(e, 4, 0.0, 10.0), 0.0);  // too few probes: untested
+}
+
+// The case that made the spread term (twin_test.hpp): a look-alike's probes all in one patch of
+// lost depth, 26 of 28 without depth, at a pose that misses 44 % of its own points.
+TEST(TwinTest, OnePatchWithoutDepthIsOneDrawOfThePosesOwnMissingShare) {
+  TwinEvidence e;
+  e.n = 28;
+  e.missing = 26;
+  const double gate = 6.0;
+  e.mean = 26.0 * gate / 28.0;  // the two probes with depth on the surface (excess 0)
+  e.standard_error = gate * std::sqrt(26.0 * 2.0 / (28.0 * 27.0)) / std::sqrt(28.0);
+  EXPECT_EQ(twin_excess(e, 10, 0.44, gate), 0.0);
+  // The same probes at a pose that has depth nearly everywhere else: a look-alike's holes
+  // whose bottoms the projector cannot light, still evidence.
+  EXPECT_GT(twin_excess(e, 10, 0.02, gate), 0.5 * gate);
+  EXPECT_NEAR(twin_excess(e, 10, 0.0, gate), e.mean - 2.0 * e.standard_error, 1e-9);
 }
 
 TEST(TwinTest, SeenThroughAndNoDepthCountAsTheGateInFrontAndHiddenSayNothing) {
