@@ -70,7 +70,8 @@ void run_train(const TrainVerbArgs& args) {
       "  distinct keys    {:>12}   of {} ({} distance x {}^3 angle bins; alpha in {} bins)\n"
       "  symmetry: {}\n"
       "  look-alikes: {}\n"
-      "  edge probes: {} (points just beyond the part's edges, for the edge test of thin parts)\n"
+      "  edge probes: {}, {} of them continuing its faces (points just beyond the part's edges, "
+      "for the edge test of thin parts)\n"
       "  time (ms): load {:.1f}, diameter {:.1f}, sampling {:.1f}, subsampling {:.1f}, "
       "table count {:.1f}, offsets {:.1f}, scatter {:.1f}, read back {:.1f}, symmetry {:.1f}, "
       "write {:.1f}; total {:.1f}\n"
@@ -78,7 +79,9 @@ void run_train(const TrainVerbArgs& args) {
       args.model.model, model.diameter, model.voxel_size, params.voxel_ratio, st.surface_samples,
       st.points, st.pairs, st.entries, st.distinct_keys, model.table.offsets.size() - 1,
       model.quant.n_dist, model.quant.n_angle, model.quant.n_alpha,
-      describe_symmetries(model.symmetries), describe_look_alikes(model), model.edge_probes.points.size(), ms(load_s), ms(st.diameter_s), ms(st.sample_s),
+      describe_symmetries(model.symmetries), describe_look_alikes(model),
+      model.edge_probes.points.size(), model.edge_face_probes(), ms(load_s), ms(st.diameter_s),
+      ms(st.sample_s),
       ms(st.subsample_s), ms(t.count_s), ms(t.scan_s), ms(t.scatter_s), ms(t.read_s),
       ms(st.symmetry_s), ms(write_s), ms(total_s), args.out,
       double(std::filesystem::file_size(args.out)) / 1e6);

@@ -208,7 +208,8 @@ Detector::Detector(const PpfModel& model, const DetectParams& params, ocl::Devic
   outline_ratio_ = outline_ratio_for(model_.cloud, model_.diameter, params_.verify_tolerance);
   thinnest_extent_ = thinnest_extent(model_.cloud);
   // The probes of one extra pass: the look-alikes' (twin test), then, for a thin part (no
-  // outline test), the edge probes (edge test).
+  // outline test), the edge probes that continue its faces (edge test; edge_probes.hpp says
+  // why not its rims').
   twin_probes_.twins = static_cast<std::uint32_t>(model_.near_symmetries.size());
   if (params_.verify_twin > 0) {
     twin_probes_.probes = model_.twin_probes;
@@ -216,8 +217,14 @@ Detector::Detector(const PpfModel& model, const DetectParams& params, ocl::Devic
   }
   if (params_.verify_edge > 0 && outline_ratio_ == 0) {
     const PointCloud& edges = model_.edge_probes;
-    twin_probes_.edge_probes = static_cast<std::uint32_t>(edges.points.size());
-    append_cloud(twin_probes_.probes, edges);
+    PointCloud face_probes;
+    for (std::size_t i = 0; i < edges.points.size(); ++i) {
+      if (i < model_.edge_probe_rim.size() && model_.edge_probe_rim[i] != 0) continue;
+      face_probes.points.push_back(edges.points[i]);
+      face_probes.normals.push_back(edges.normals[i]);
+    }
+    twin_probes_.edge_probes = static_cast<std::uint32_t>(face_probes.points.size());
+    append_cloud(twin_probes_.probes, face_probes);
     twin_probes_.probe_twin.resize(twin_probes_.probes.points.size(), twin_probes_.twins);
   }
   if (params_.plane_search > 0 && outline_ratio_ == 0 && !model_.edge_probes.points.empty()) {

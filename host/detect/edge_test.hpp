@@ -7,11 +7,12 @@
 // everywhere but at its edges, where the sensor sees the sheet run on. Beyond a right pose's
 // edges the sensor sees a step down: at least the part's thickness, often much more (a part
 // it lies across, the floor), or no depth (the projector's shadow at an edge). So at every
-// edge probe with depth the depth excess along the ray is taken as the twin test takes it
-// (clamped to the tolerance; something in front says nothing), and the mean plus two standard
-// errors is how far the pose's edges are seen to step down at most. The score is multiplied
-// by that step over `scale` tolerances, at most 1: a pose whose edges show no step keeps
-// little, one whose edges drop by a tolerance keeps all.
+// face probe with depth (edge_probes.hpp: not the rim probes, which see a step on any face seen
+// obliquely) the depth excess along the ray is taken as the twin test takes it (clamped to the
+// tolerance; something in front says nothing), and the mean plus two standard errors is how
+// far the pose's edges are seen to step down at most. The score is multiplied by that step
+// over `scale` tolerances, at most 1: a pose whose edges show no step keeps little, one whose
+// edges drop by a tolerance keeps all.
 //
 // No depth beyond an edge says nothing (NoDepth::neutral). It once counted as a step of the
 // whole tolerance, with the pose's own share of missing depth taken off the mean; but a sensor

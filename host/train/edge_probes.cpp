@@ -21,13 +21,15 @@ constexpr float kAnyFacing = -2.0f;     // a cosine every normal passes
 
 }  // namespace
 
-PointCloud find_edge_probes(const Mesh& mesh, float voxel_size, ocl::Device& dev) {
-  PointCloud found;
-  if (!(voxel_size > 0)) return found;
+EdgeProbes find_edge_probes(const Mesh& mesh, float voxel_size, ocl::Device& dev) {
+  EdgeProbes out;
+  if (!(voxel_size > 0)) return out;
   const ProbeSurface dense = probe_surface(mesh, voxel_size, dev);
   const float margin = kEdgeMarginVoxels * dense.probe_voxel;
   const OrientedPointGrid any(dense.surface, kFreeRatio * margin, kAnyFacing);
   const OrientedPointGrid face(dense.surface, 0.5f * dense.probe_voxel, kSameFacingCos);
+  PointCloud found;
+  std::vector<std::uint8_t> found_rim;
   // Every dense sample is a candidate p (not only one a probe voxel): a probe needs p within a
   // quarter margin of the edge, a band narrower than the probe voxel.
   for (std::size_t i = 0; i < dense.surface.points.size(); ++i) {
@@ -41,21 +43,23 @@ PointCloud find_edge_probes(const Mesh& mesh, float voxel_size, ocl::Device& dev
       if (any.matches(q, n) || !face.matches(p - kInwardRatio * margin * e, n)) continue;
       found.points.push_back(q);
       found.normals.push_back(n);
+      // A face runs on for a whole margin behind p; a rim wall is narrower.
+      found_rim.push_back(face.matches(p - margin * e, n) ? 0 : 1);
     }
   }
-  if (found.points.empty()) return found;
-  // One probe per probe voxel and facing (several candidates and directions reach the same place).
-  PointCloud probes =
-      with_unit_normals(voxel_subsample(dev, found, dense.probe_voxel, VoxelFaces::both).cloud);
-  if (probes.points.size() <= kMaxEdgeProbes) return probes;
-  // Evenly thinned: every k-th in the subsample's order, which is the same on every run.
-  PointCloud thinned;
+  if (found.points.empty()) return out;
+  // One probe per probe voxel and facing (several candidates and directions reach the same
+  // place); the one kept gives its kind.
+  const VoxelSubsample sub = voxel_subsample(dev, found, dense.probe_voxel, VoxelFaces::both);
+  const PointCloud probes = with_unit_normals(sub.cloud);
+  // Evenly thinned to kMaxEdgeProbes: every k-th in the subsample's order, the same every run.
   const std::size_t step = (probes.points.size() + kMaxEdgeProbes - 1) / kMaxEdgeProbes;
-  for (std::size_t k = 0; k < probes.points.size(); k += step) {
-    thinned.points.push_back(probes.points[k]);
-    thinned.normals.push_back(probes.normals[k]);
+  for (std::size_t k = 0; k < probes.points.size(); k += std::max<std::size_t>(step, 1)) {
+    out.cloud.points.push_back(probes.points[k]);
+    out.cloud.normals.push_back(probes.normals[k]);
+    out.rim.push_back(found_rim[sub.kept[k]]);
   }
-  return thinned;
+  return out;
 }
 
 }  // namespace binpick

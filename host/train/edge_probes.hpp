@@ -16,9 +16,22 @@
 // probes in the planes of its faces, around the outline and inside the holes, and probes that
 // continue its rim walls above and below the faces (seen when the sheet is seen obliquely;
 // measured: without them, top-ranked right fell from 37 to 34 of 40 plate images).
+//
+// Each probe has its kind: a *face probe* continues a surface that runs on for a whole margin
+// behind p, a *rim probe* one narrower than that (a sheet's rim wall; the probe voxel a probe
+// is kept from gives its kind). Only face probes go into the edge test. A rim probe hangs in
+// the air a margin above the face, so where the face simply ran on it would still see the face
+// behind it, h / cos farther along the ray (h >= 0.75 margin, cos between the face's normal and
+// the ray): it reports a step wherever a face is seen obliquely, part edge or not. On the
+// refined poses of a basket with a robot arm (plate_mesh_armhi), plate poses laid on the arm's
+// face (seen at 72 degrees from its normal) had rim probes stepping down by the whole
+// tolerance and face probes by 0.1-2 mm, right poses' face probes by 4-5 mm (docs/pipeline.md,
+// step 9). The in-plane search still uses both kinds, as before.
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
+#include <vector>
 
 #include "host/core/mesh.hpp"
 #include "host/runtime/cl/cl_device.hpp"
@@ -28,9 +41,14 @@ namespace binpick {
 inline constexpr float kEdgeMarginVoxels = 2.0f;  // in probe voxels (probe_surface.hpp)
 inline constexpr std::size_t kMaxEdgeProbes = 2048;
 
-// The edge probes of the mesh (model frame, unit normals); deterministic. voxel_size > 0: the
-// model's voxel (mm).
-PointCloud find_edge_probes(const Mesh& mesh, float voxel_size,
+struct EdgeProbes {
+  PointCloud cloud;               // model frame, unit normals
+  std::vector<std::uint8_t> rim;  // per probe: 1 a rim probe, 0 a face probe
+};
+
+// The edge probes of the mesh (at most kMaxEdgeProbes); deterministic. voxel_size > 0: the
+// model's voxel (mm); else none.
+EdgeProbes find_edge_probes(const Mesh& mesh, float voxel_size,
                             ocl::Device& dev = ocl::Device::shared());
 
 }  // namespace binpick

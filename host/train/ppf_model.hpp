@@ -36,9 +36,19 @@ struct PpfModel {
   // near_symmetries. Empty in files before version 4: detection then has no twin test.
   PointCloud twin_probes;
   std::vector<std::uint32_t> probe_twin;
-  // Points just beyond the part's edges, in the planes of its faces (edge_probes.hpp), for the
-  // edge test of thin parts. Empty in files before version 5: detection then has no edge test.
+  // Points just beyond the part's edges (edge_probes.hpp), for the edge test of thin parts (its
+  // face probes) and the in-plane search (all). edge_probe_rim[i] is 1 for a rim probe, 0 for a
+  // face probe. Empty in files before version 5: detection then has no edge test; the kinds are
+  // empty in version 5 files, where every probe counts as a face probe.
   PointCloud edge_probes;
+  std::vector<std::uint8_t> edge_probe_rim;
+
+  // How many edge probes are face probes (all, without kinds).
+  std::size_t edge_face_probes() const {
+    std::size_t n = edge_probes.points.size();
+    for (const std::uint8_t r : edge_probe_rim) n -= r != 0;
+    return n;
+  }
 };
 
 struct PpfTrainParams {

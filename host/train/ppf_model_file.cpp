@@ -182,6 +182,14 @@ std::string serialize_ppf_model(const PpfModel& m, std::uint32_t version) {
     for (const auto& p : m.edge_probes.points) append(payload, p.data(), 3);
     for (const auto& v : m.edge_probes.normals) append(payload, v.data(), 3);
   }
+  if (version >= 6) {
+    // Without kinds (a model read from a version 5 file), every probe a face probe.
+    std::vector<std::uint8_t> rim = m.edge_probe_rim;
+    if (rim.empty()) rim.assign(m.edge_probes.points.size(), 0);
+    if (rim.size() != m.edge_probes.points.size())
+      throw std::logic_error("serialize_ppf_model: one kind per edge probe");
+    append(payload, rim.data(), rim.size());
+  }
 
   Header h{};
   std::memcpy(h.magic, kMagic, 8);
@@ -242,25 +250,23 @@ PpfModel parse_ppf_model(std::string_view bytes, const std::string& name) {
       throw corrupt("symmetry count");
     expected = table_end + symmetry_size(symmetry_counts[0], symmetry_counts[1]);
   }
+  // The uint32 count at byte `at`, once the file is known to reach past it.
+  const auto count_at = [&](std::uint64_t at) {
+    if (bytes.size() < at + 4)
+      throw InputError(file + " is truncated (" + std::to_string(bytes.size()) + " of at least " +
+                       std::to_string(at + 4) + " bytes)");
+    std::uint32_t n = 0;
+    std::memcpy(&n, bytes.data() + at, 4);
+    return n;
+  };
   std::uint32_t fit_count = 0;
   if (h.version >= 3) {
-    if (bytes.size() < expected + 4)
-      throw InputError(file + " is truncated (" + std::to_string(bytes.size()) + " of at least " +
-                       std::to_string(expected + 4) + " bytes)");
-    std::memcpy(&fit_count, bytes.data() + expected, 4);
+    fit_count = count_at(expected);
     if (fit_count > kMaxFitPoints) throw corrupt("fit point count");
     expected += 4 + std::uint64_t(fit_count) * 24;
   }
   std::uint32_t near_count = 0, probe_count = 0;
   if (h.version >= 4) {
-    const auto count_at = [&](std::uint64_t at) {
-      if (bytes.size() < at + 4)
-        throw InputError(file + " is truncated (" + std::to_string(bytes.size()) + " of at least " +
-                         std::to_string(at + 4) + " bytes)");
-      std::uint32_t n = 0;
-      std::memcpy(&n, bytes.data() + at, 4);
-      return n;
-    };
     near_count = count_at(expected);
     if (near_count > kMaxNearSymmetries) throw corrupt("look-alike count");
     expected += 4 + near_count * kNearSymmetryBytes;
@@ -270,13 +276,11 @@ PpfModel parse_ppf_model(std::string_view bytes, const std::string& name) {
   }
   std::uint32_t edge_count = 0;
   if (h.version >= 5) {
-    if (bytes.size() < expected + 4)
-      throw InputError(file + " is truncated (" + std::to_string(bytes.size()) + " of at least " +
-                       std::to_string(expected + 4) + " bytes)");
-    std::memcpy(&edge_count, bytes.data() + expected, 4);
+    edge_count = count_at(expected);
     if (edge_count > kMaxEdgeProbes) throw corrupt("edge probe count");
     expected += 4 + std::uint64_t(edge_count) * 24;
   }
+  if (h.version >= 6) expected += edge_count;  // one kind (a byte) per edge probe
   if (bytes.size() < expected)
     throw InputError(file + " is truncated (" + std::to_string(bytes.size()) + " of " +
                      std::to_string(expected) + " bytes)");
@@ -339,6 +343,12 @@ PpfModel parse_ppf_model(std::string_view bytes, const std::string& name) {
     for (std::size_t i = 0; i < edge_count; ++i)
       if (!m.edge_probes.points[i].allFinite() || !m.edge_probes.normals[i].allFinite())
         throw corrupt("edge probe " + std::to_string(i));
+    if (h.version >= 6) {
+      m.edge_probe_rim.resize(edge_count);
+      take(payload, m.edge_probe_rim.data(), edge_count);
+      for (std::size_t i = 0; i < edge_count; ++i)
+        if (m.edge_probe_rim[i] > 1) throw corrupt("edge probe kind " + std::to_string(i));
+    }
   }
 
   // A consistent table, so that detection can index it without checks.

@@ -14,9 +14,11 @@
 //   count (uint32), each as the top three rows of its 4x4 transform (12 doubles, row-major), and
 //   their probes (twin_probes.hpp): count (uint32), points (3 floats each), normals (3 floats
 //   each), the look-alike of each (uint32 each); from version 5 on, the edge probes
-//   (edge_probes.hpp): count (uint32), points (3 floats each), normals (3 floats each).
-// Version 1 to 4 files (before symmetries, refinement points, probes, edge probes) are still
-// read, without them (the look-alikes found again from the points): the table is the same.
+//   (edge_probes.hpp): count (uint32), points (3 floats each), normals (3 floats each); from
+//   version 6 on, each edge probe's kind (1 byte each: 0 a face probe, 1 a rim probe).
+// Version 1 to 5 files (before symmetries, refinement points, probes, edge probes, their kinds)
+// are still read, without them (the look-alikes found again from the points; a version 5 file's
+// edge probes all face probes): the table is the same.
 // Readers refuse other versions: a changed format or feature
 // convention needs a retrain.
 #pragma once
@@ -30,7 +32,7 @@
 
 namespace binpick {
 
-inline constexpr std::uint32_t kPpfModelFormatVersion = 5;
+inline constexpr std::uint32_t kPpfModelFormatVersion = 6;
 inline constexpr std::uint32_t kPpfModelOldestReadVersion = 1;
 
 // The file's bytes; identical for identical models. Older versions (tests of old files) leave

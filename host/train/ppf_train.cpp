@@ -64,7 +64,9 @@ PpfModel train_ppf_model(const Mesh& mesh, const PpfTrainParams& params, PpfTrai
   const TwinProbes probes = find_twin_probes(mesh, model.voxel_size, model.near_symmetries, dev);
   model.twin_probes = probes.cloud;
   model.probe_twin = probes.twin;
-  model.edge_probes = find_edge_probes(mesh, model.voxel_size, dev);
+  const EdgeProbes edges = find_edge_probes(mesh, model.voxel_size, dev);
+  model.edge_probes = edges.cloud;
+  model.edge_probe_rim = edges.rim;
   st.symmetry_s = clock.lap_seconds();
   st.points = model.cloud.points.size();
   st.pairs = st.points * (st.points > 0 ? st.points - 1 : 0);

@@ -3,7 +3,9 @@
 // right pose against the same plate shifted 20 mm across, in its plane: both lie on surface nearly
 // everywhere and score alike; beyond the right pose's edges the sensor sees the step down to
 // the plane, beyond the shifted pose's edges on one side it sees the plate run on, and the edge
-// test keeps the right pose's lead.
+// test keeps the right pose's lead. And a plate pose laid on a larger flat face seen obliquely
+// (a robot arm's): the probes continuing its faces see the face run on, those continuing its rims
+// see it a margin behind them, which is why only the face probes are tested.
 #include <gtest/gtest.h>
 
 #include <span>
@@ -35,10 +37,54 @@ TEST(EdgeTest, StepIsTheMeanPlusTwoStandardErrors) {
 
 namespace {
 
+// The model's face probes, as detection takes them (with_rims: all its edge probes).
+PointCloud face_probes(const PpfModel& model, bool with_rims = false) {
+  PointCloud out;
+  for (std::size_t i = 0; i < model.edge_probes.points.size(); ++i) {
+    if (!with_rims && model.edge_probe_rim.at(i) != 0) continue;
+    out.points.push_back(model.edge_probes.points[i]);
+    out.normals.push_back(model.edge_probes.normals[i]);
+  }
+  return out;
+}
+
+// The pose at `pose` on `image`, verified (no refinement steps), then edge-tested with the face
+// probes (with_rims: all edge probes).
+RefinedPose edge_tested(const PpfModel& model, const PointImage& image,
+                        const Eigen::Isometry3d& pose, bool with_rims) {
+  auto& dev = test::test_device();
+  const bp_camera cam = test::plate_camera();
+  const FitGeometry g = test::plate_fit_geometry(model);
+  const ocl::Buffer<float> points(dev, std::span<const float>(image.xyzw));
+  TwinProbeModel tm;
+  tm.fit_points = static_cast<std::uint32_t>(model.fit_cloud.points.size());
+  tm.probes = face_probes(model, with_rims);
+  tm.twins = 0;
+  tm.probe_twin.assign(tm.probes.points.size(), 0);
+  tm.edge_probes = static_cast<std::uint32_t>(tm.probes.points.size());
+  PointCloud all = model.fit_cloud;
+  append_cloud(all, tm.probes);
+  const DeviceFitModel fit = upload_fit_model(dev, model.fit_cloud);
+  const DeviceFitModel with_probes = upload_fit_model(dev, all);
+  RefineOptions ro;
+  ro.iterations = 0;
+  ro.noise_factor = 3.5f;
+  std::vector<RefinedPose> refined = refine_and_verify(
+      [&](const std::vector<bp_pose_fit>& f) { return pose_fit_sums(dev, points, cam, fit, f); },
+      cam, g, fit.size, {{pose.linear(), pose.translation()}}, ro);
+  TwinTestOptions to;
+  to.edge_scale = 1.0f;
+  twin_test([&](const std::vector<bp_pose_fit>& f) {
+              return pose_fit_sums(dev, points, cam, with_probes, f);
+            },
+            cam, g, tm, refined, to);
+  return refined[0];
+}
+
 void plate_shifted_on_a_plate(bool holes_without_depth) {
   auto& dev = test::test_device();
   const PpfModel model = train_ppf_model(make_builtin_part("plate"), PpfTrainParams{}, nullptr, dev);
-  ASSERT_GT(model.edge_probes.points.size(), 300u);
+  ASSERT_GT(model.edge_face_probes(), 300u);
   const bp_camera cam = test::plate_camera();
   const Eigen::Isometry3d pose = test::plate_pose();
   const PointImage image = test::plate_over_plane(cam, pose, holes_without_depth);
@@ -64,7 +110,7 @@ void plate_shifted_on_a_plate(bool holes_without_depth) {
 
   TwinProbeModel tm;
   tm.fit_points = fit.size;
-  tm.probes = model.edge_probes;
+  tm.probes = face_probes(model);
   tm.twins = 0;  // edge probes only: their group is the look-alike count
   tm.probe_twin.assign(tm.probes.points.size(), 0);
   tm.edge_probes = static_cast<std::uint32_t>(tm.probes.points.size());
@@ -127,4 +173,30 @@ TEST(EdgeTest, ThePlateShiftedOnAPlateLosesToTheRightPose) { plate_shifted_on_a_
 
 TEST(EdgeTest, ThePlateShiftedLosesAlsoWhereNothingBeyondItHasDepth) {
   plate_shifted_on_a_plate(true);
+}
+
+// The plate turned 70 degrees from the camera (a robot arm's face in a basket was seen at 72).
+TEST(EdgeTest, APoseLaidOnALargerFaceSeenObliquelyShowsNoStepAtItsFaceProbes) {
+  const PpfModel model =
+      train_ppf_model(make_builtin_part("plate"), PpfTrainParams{}, nullptr, test::test_device());
+  ASSERT_GT(model.edge_face_probes(), 300u);
+  ASSERT_GT(model.edge_probes.points.size(), model.edge_face_probes());  // the rim probes
+  Eigen::Isometry3d pose = test::plate_pose();
+  pose.linear() = Eigen::AngleAxisd(70.0 * 3.14159265358979 / 180, Eigen::Vector3d::UnitX()) *
+                  pose.linear();
+  const bp_camera cam = test::plate_camera();
+  const RefinedPose on_face = edge_tested(model, test::plane_of_plate_face(cam, pose), pose, false);
+  const RefinedPose with_rims =
+      edge_tested(model, test::plane_of_plate_face(cam, pose), pose, true);
+  const RefinedPose right =
+      edge_tested(model, test::plate_over_plane(cam, pose, false), pose, false);
+  ASSERT_TRUE(on_face.edge_tested && with_rims.edge_tested && right.edge_tested);
+  const double gate = on_face.tolerance;
+  // The face runs on beyond the pose's edges: no step at the face probes, a false one at the rims.
+  EXPECT_LT(on_face.edge_step, 0.25 * gate);
+  EXPECT_GT(with_rims.edge_step, 2.0 * on_face.edge_step + 0.1 * gate);
+  // The right plate over the plane beneath steps down by a thickness (1.5 mm along its normal,
+  // more along the rays).
+  EXPECT_GT(right.edge_step, 1.2);
+  EXPECT_GT(right.edge_step, 3.0 * on_face.edge_step);
 }

@@ -85,6 +85,21 @@ PointImage plate_over_floor(const bp_camera& cam, const Eigen::Isometry3d& pose,
       [](std::size_t) { return true; });
 }
 
+PointImage plane_of_plate_face(const bp_camera& cam, const Eigen::Isometry3d& pose) {
+  const Eigen::Vector3d up = pose.linear() * Eigen::Vector3d::UnitZ();  // towards the camera
+  const Eigen::Vector3d face = pose.translation() + 0.75 * up;
+  std::vector<float> depth(std::size_t(cam.width) * cam.height, 0.0f);
+  for (std::uint32_t v = 0; v < cam.height; ++v)
+    for (std::uint32_t u = 0; u < cam.width; ++u) {
+      const Eigen::Vector3d ray((u - cam.cx) / cam.fx, (v - cam.cy) / cam.fy, 1.0);
+      const double z = up.dot(face) / up.dot(ray);
+      depth[std::size_t(v) * cam.width + u] = z > 0 && z < 3000 ? float(z) : 0.0f;
+    }
+  return noisy_image(
+      cam, 0.5f, 7, [&](std::size_t i, const Eigen::Vector3d&) { return depth[i]; },
+      [&](std::size_t i) { return depth[i] > 0; });
+}
+
 FitGeometry plate_fit_geometry(const PpfModel& model) {
   FitGeometry g;
   g.diameter = model.diameter;

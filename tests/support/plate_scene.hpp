@@ -28,6 +28,11 @@ PointImage plate_over_plane(const bp_camera& cam, const Eigen::Isometry3d& pose,
 // noise (seeded): for a plate seen steeply, where the plane beneath it would run past the camera.
 PointImage plate_over_floor(const bp_camera& cam, const Eigen::Isometry3d& pose, float floor_z);
 
+// The plane of the plate's face towards the camera at `pose`, without the plate: a plate pose
+// laid on a larger flat face (another part's, a robot arm's). 0.5 mm Gaussian noise (seeded); no
+// depth where the plane lies behind the camera or beyond 3 m.
+PointImage plane_of_plate_face(const bp_camera& cam, const Eigen::Isometry3d& pose);
+
 // The fit geometry the probe tests verify with: the model's diameter, voxel and centroid.
 FitGeometry plate_fit_geometry(const PpfModel& model);
 

@@ -354,7 +354,7 @@ TEST(PpfModelFile, RoundTripAndRefusals) {
   wrong = bytes;
   wrong[8] = 7;  // version 7
   EXPECT_NE(parse_message(wrong).find(
-                "was written by format version 7, this binpick reads versions 1 to 5: retrain"),
+                "was written by format version 7, this binpick reads versions 1 to 6: retrain"),
             std::string::npos)
       << parse_message(wrong);
   wrong = bytes;
@@ -415,13 +415,14 @@ TEST(PpfModelFile, SymmetriesRoundTripAndVersionOneIsStillRead) {
   without.twin_probes = {};
   without.probe_twin = {};
   without.edge_probes = {};
+  without.edge_probe_rim = {};
   EXPECT_TRUE(serialize_ppf_model(old) == serialize_ppf_model(without));  // (no byte dump)
-  EXPECT_THROW(serialize_ppf_model(m, 6), std::logic_error);
+  EXPECT_THROW(serialize_ppf_model(m, 7), std::logic_error);
   EXPECT_THROW(serialize_ppf_model(m, 0), std::logic_error);
 
   // Cut inside the symmetries, or right after the table (no counts): truncated.
   EXPECT_NE(parse_message(bytes.substr(0, bytes.size() - 50)).find("is truncated"), std::string::npos);
-  std::string relabelled = bytes;  // version 5 bytes called version 1: the symmetries are extra
+  std::string relabelled = bytes;  // version 6 bytes called version 1: the symmetries are extra
   relabelled[8] = 1;
   EXPECT_NE(parse_message(relabelled).find("bytes after the end"), std::string::npos);
   // Not a rotation, a zero axis, an absurd count: corrupt.
