@@ -216,15 +216,9 @@ Detector::Detector(const PpfModel& model, const DetectParams& params, ocl::Devic
     twin_probes_.probe_twin = model_.probe_twin;
   }
   if (params_.verify_edge > 0 && outline_ratio_ == 0) {
-    const PointCloud& edges = model_.edge_probes;
-    PointCloud face_probes;
-    for (std::size_t i = 0; i < edges.points.size(); ++i) {
-      if (i < model_.edge_probe_rim.size() && model_.edge_probe_rim[i] != 0) continue;
-      face_probes.points.push_back(edges.points[i]);
-      face_probes.normals.push_back(edges.normals[i]);
-    }
-    twin_probes_.edge_probes = static_cast<std::uint32_t>(face_probes.points.size());
-    append_cloud(twin_probes_.probes, face_probes);
+    const PointCloud faces = face_probes(model_.edge_probes, model_.edge_probe_rim);
+    twin_probes_.edge_probes = static_cast<std::uint32_t>(faces.points.size());
+    append_cloud(twin_probes_.probes, faces);
     twin_probes_.probe_twin.resize(twin_probes_.probes.points.size(), twin_probes_.twins);
   }
   if (params_.plane_search > 0 && outline_ratio_ == 0 && !model_.edge_probes.points.empty()) {

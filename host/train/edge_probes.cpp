@@ -62,4 +62,14 @@ EdgeProbes find_edge_probes(const Mesh& mesh, float voxel_size, ocl::Device& dev
   return out;
 }
 
+PointCloud face_probes(const PointCloud& probes, const std::vector<std::uint8_t>& rim) {
+  PointCloud out;
+  for (std::size_t i = 0; i < probes.points.size(); ++i) {
+    if (i < rim.size() && rim[i] != 0) continue;
+    out.points.push_back(probes.points[i]);
+    out.normals.push_back(probes.normals[i]);
+  }
+  return out;
+}
+
 }  // namespace binpick

@@ -51,4 +51,7 @@ struct EdgeProbes {
 EdgeProbes find_edge_probes(const Mesh& mesh, float voxel_size,
                             ocl::Device& dev = ocl::Device::shared());
 
+// The face probes among `probes` (rim: one kind per probe, or empty: all face probes), in order.
+PointCloud face_probes(const PointCloud& probes, const std::vector<std::uint8_t>& rim);
+
 }  // namespace binpick

@@ -11,6 +11,7 @@
 #include <span>
 
 #include "host/detect/edge_test.hpp"
+#include "host/train/edge_probes.hpp"
 #include "host/train/ppf_model.hpp"
 #include "synth/parts/builtin_parts.hpp"
 #include "tests/support/plate_scene.hpp"
@@ -38,14 +39,8 @@ TEST(EdgeTest, StepIsTheMeanPlusTwoStandardErrors) {
 namespace {
 
 // The model's face probes, as detection takes them (with_rims: all its edge probes).
-PointCloud face_probes(const PpfModel& model, bool with_rims = false) {
-  PointCloud out;
-  for (std::size_t i = 0; i < model.edge_probes.points.size(); ++i) {
-    if (!with_rims && model.edge_probe_rim.at(i) != 0) continue;
-    out.points.push_back(model.edge_probes.points[i]);
-    out.normals.push_back(model.edge_probes.normals[i]);
-  }
-  return out;
+PointCloud tested_probes(const PpfModel& model, bool with_rims = false) {
+  return with_rims ? model.edge_probes : face_probes(model.edge_probes, model.edge_probe_rim);
 }
 
 // The pose at `pose` on `image`, verified (no refinement steps), then edge-tested with the face
@@ -58,7 +53,7 @@ RefinedPose edge_tested(const PpfModel& model, const PointImage& image,
   const ocl::Buffer<float> points(dev, std::span<const float>(image.xyzw));
   TwinProbeModel tm;
   tm.fit_points = static_cast<std::uint32_t>(model.fit_cloud.points.size());
-  tm.probes = face_probes(model, with_rims);
+  tm.probes = tested_probes(model, with_rims);
   tm.twins = 0;
   tm.probe_twin.assign(tm.probes.points.size(), 0);
   tm.edge_probes = static_cast<std::uint32_t>(tm.probes.points.size());
@@ -110,7 +105,7 @@ void plate_shifted_on_a_plate(bool holes_without_depth) {
 
   TwinProbeModel tm;
   tm.fit_points = fit.size;
-  tm.probes = face_probes(model);
+  tm.probes = tested_probes(model);
   tm.twins = 0;  // edge probes only: their group is the look-alike count
   tm.probe_twin.assign(tm.probes.points.size(), 0);
   tm.edge_probes = static_cast<std::uint32_t>(tm.probes.points.size());
