@@ -62,6 +62,11 @@ TwinEvidence twin_evidence(std::span<const float> residuals, std::span<const std
   return e;
 }
 
+double seen_excess(const TwinEvidence& with_depth, std::size_t min_probes) {
+  if (with_depth.n < std::max<std::size_t>(min_probes, 1)) return 0;
+  return std::max(0.0, with_depth.mean - 2.0 * with_depth.standard_error);
+}
+
 double twin_excess(const TwinEvidence& e, std::size_t min_probes, double missing_rate, double gate) {
   if (e.n < std::max<std::size_t>(min_probes, 1)) return 0;
   // The probes' share without depth is one draw of the pose's own share m, not e.n independent
@@ -108,8 +113,13 @@ void twin_test(const FitSumsFn& sums_of, const bp_camera& cam, const FitGeometry
                                            model.probe_twin, s, r.tolerance);
       if (e.n < opt.min_probes) continue;
       r.twin_tested = true;
-      r.twin_excess =
-          std::max(r.twin_excess, twin_excess(e, opt.min_probes, missing_rate, r.tolerance));
+      // The probes with depth alone, too: under patchy dropout the share without depth says
+      // little, and those seen through are evidence however many others have none.
+      const TwinEvidence seen = twin_evidence(probe_residuals, probe_classes, r.R, r.t,
+                                              model.probes, model.probe_twin, s, r.tolerance,
+                                              NoDepth::neutral);
+      r.twin_excess = std::max({r.twin_excess, twin_excess(e, opt.min_probes, missing_rate, r.tolerance),
+                                seen_excess(seen, opt.min_probes)});
     }
     r.score *= excess_factor(r.twin_excess, band);
     if (!edges_on) continue;

@@ -25,7 +25,13 @@
 // gates, joins the standard error. A right pose in a basket whose sensor lost 44 % of its
 // points, with one look-alike's 28 visible probes in one 20 mm patch of lost depth (26 of them
 // without depth), was blamed 1.8-2.4 mm of excess before, more than its flips; now nothing. In
-// a paper bin (m near 0) the test is as it was.
+// a paper bin (m near 0) the test is as it was. But where the sensor lost half the pose's own
+// points, the spread alone (a gate) outweighs any mean, and the test never fires: on such a
+// plate the probes of a flip that did get depth saw through the holes by the whole gate, and
+// were not counted. So the probes with depth are also taken alone (no depth saying nothing, as
+// in the edge test): their mean less two standard errors, with at least min_probes of them, is
+// evidence too, and the pose's excess against the look-alike is the larger of the two. With no
+// probe missing the two are the same; a right pose's probes with depth lie on its surface.
 // Probes where something lies in front (nearer than the gate), facing away or hidden say
 // nothing. The excess of a probe is clamped to the gate (the verification tolerance), and one
 // beyond it on the far side counts as the gate: one probe over an empty bin does not outweigh a
@@ -75,6 +81,11 @@ TwinEvidence twin_evidence(std::span<const float> residuals, std::span<const std
 // share of the pose's visible points without depth. 0 with fewer than min_probes probes
 // (untested).
 double twin_excess(const TwinEvidence& e, std::size_t min_probes, double missing_rate, double gate);
+
+// max(0, mean - 2 standard errors) of a look-alike's probes with depth (twin_evidence with
+// NoDepth::neutral); 0 with fewer than min_probes of them (untested). A pose's excess against a
+// look-alike is the larger of this and twin_excess.
+double seen_excess(const TwinEvidence& with_depth, std::size_t min_probes);
 
 // The probes on the device side: the fit points followed by the probes, so that the probe pass's
 // z-buffer holds the whole model (a probe behind the part's own near side is hidden). The

@@ -71,6 +71,31 @@ TEST(TwinTest, OnePatchWithoutDepthIsOneDrawOfThePosesOwnMissingShare) {
   EXPECT_NEAR(twin_excess(e, 10, 0.0, gate), e.mean - 2.0 * e.standard_error, 1e-9);
 }
 
+// The probes with depth alone (twin_test.hpp): where the pose's own share without depth is
+// half, the spread of that share outweighs every mean, and only they still tell.
+TEST(TwinTest, ProbesWithDepthTellAlsoWhereHalfThePosesPointsHaveNone) {
+  const double gate = 6.0;
+  TwinEvidence all;  // 30 probes: 15 without depth (as the gate), 15 seen through to the gate
+  all.n = 30;
+  all.missing = 15;
+  all.mean = gate;
+  TwinEvidence seen;  // the 15 with depth
+  seen.n = 15;
+  seen.mean = gate;
+  EXPECT_EQ(twin_excess(all, 10, 0.5, gate), 0.0);
+  EXPECT_DOUBLE_EQ(seen_excess(seen, 10), gate);
+  seen.mean = 1.5;  // the sheet beneath, 1.5 mm deeper, less two standard errors
+  seen.standard_error = 0.2;
+  EXPECT_NEAR(seen_excess(seen, 10), 1.1, 1e-12);
+  // The right pose's probes with depth lie on its own surface; fewer than min_probes say nothing.
+  seen.mean = -0.3;
+  EXPECT_EQ(seen_excess(seen, 10), 0.0);
+  seen.mean = gate;
+  seen.n = 9;
+  EXPECT_EQ(seen_excess(seen, 10), 0.0);
+  EXPECT_EQ(seen_excess(TwinEvidence{}, 0), 0.0);
+}
+
 TEST(TwinTest, SeenThroughAndNoDepthCountAsTheGateInFrontAndHiddenSayNothing) {
   const PointCloud probes = facing_probes(7);
   const std::vector<std::uint32_t> twin(7, 0);
@@ -121,11 +146,16 @@ TEST(TwinTest, SeenThroughAndNoDepthCountAsTheGateInFrontAndHiddenSayNothing) {
 
 namespace {
 
+enum class Dropout {
+  none,     // the plate beneath seen through every hole
+  holes,    // no depth wherever the plate is not: a projector that cannot light a hole's bottom
+  patches,  // no depth in every other 12 x 12 pixel square, on the plate and beneath alike
+};
+
 // The plate's right pose and its three look-alikes (turned over) against an image of the plate
 // over its own plane one thickness (1.5 mm) farther along its normal, where the plate beneath
-// lies, or (holes_without_depth) with no depth wherever the plate is not: what a structured-light
-// sensor gives when its projector cannot light the bottom of a hole.
-void plate_and_its_look_alikes(bool holes_without_depth) {
+// lies, with depth missing as `dropout` says.
+void plate_and_its_look_alikes(Dropout dropout) {
   auto& dev = test::test_device();
   const PpfModel model = train_ppf_model(make_builtin_part("plate"), PpfTrainParams{}, nullptr, dev);
   ASSERT_EQ(model.near_symmetries.size(), 3u);
@@ -133,7 +163,8 @@ void plate_and_its_look_alikes(bool holes_without_depth) {
   const Eigen::Isometry3d pose = test::plate_pose();
   const Eigen::Matrix3d R = pose.linear();
   const Eigen::Vector3d t = pose.translation();
-  const PointImage image = test::plate_over_plane(cam, pose, holes_without_depth);
+  PointImage image = test::plate_over_plane(cam, pose, dropout == Dropout::holes);
+  if (dropout == Dropout::patches) image = test::without_depth_in_patches(std::move(image), 12);
 
   const FitGeometry g = test::plate_fit_geometry(model);
   const DeviceFitModel fit = upload_fit_model(dev, model.fit_cloud);
@@ -168,6 +199,11 @@ void plate_and_its_look_alikes(bool holes_without_depth) {
       },
       cam, g, tm, refined, to);
   const double band = 0.005 * model.diameter;
+  if (dropout == Dropout::patches) {
+    // Half of every pose's points without depth: the share's spread alone is a gate.
+    for (const RefinedPose& r : refined)
+      EXPECT_GT(double(r.missing) / double(r.visible), 0.3) << r.missing << " of " << r.visible;
+  }
   ASSERT_TRUE(refined[0].twin_tested);
   EXPECT_LT(refined[0].twin_excess, band);
   EXPECT_DOUBLE_EQ(refined[0].score, before[0].score);
@@ -176,7 +212,7 @@ void plate_and_its_look_alikes(bool holes_without_depth) {
     // The sheet beneath: about its thickness deeper, less the standard errors; no depth: as
     // far as the gate, less the look-alike's own share of points without depth.
     EXPECT_GT(refined[k].twin_excess, 1.0) << k;
-    if (!holes_without_depth) {
+    if (dropout != Dropout::holes) {
       EXPECT_LT(refined[k].twin_excess, 1.6) << k;
     }
     EXPECT_NEAR(refined[k].score, before[k].score * band / refined[k].twin_excess, 1e-6) << k;
@@ -202,9 +238,14 @@ void plate_and_its_look_alikes(bool holes_without_depth) {
 }  // namespace
 
 TEST(TwinTest, ThePlateTurnedOverLosesToTheRightPoseOnAPlateBeneath) {
-  plate_and_its_look_alikes(false);
+  plate_and_its_look_alikes(Dropout::none);
 }
 
 TEST(TwinTest, ThePlateTurnedOverLosesToTheRightPoseOverHolesWithoutDepth) {
-  plate_and_its_look_alikes(true);
+  plate_and_its_look_alikes(Dropout::holes);
+}
+
+// Fails with the share without depth alone: every look-alike's excess is 0 there.
+TEST(TwinTest, ThePlateTurnedOverLosesToTheRightPoseWhereDepthIsLostInPatches) {
+  plate_and_its_look_alikes(Dropout::patches);
 }

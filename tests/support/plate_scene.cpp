@@ -78,6 +78,13 @@ PointImage plate_over_plane(const bp_camera& cam, const Eigen::Isometry3d& pose,
       [&](std::size_t i) { return !(holes_without_depth && !std::isfinite(zbuf[i])); });
 }
 
+PointImage without_depth_in_patches(PointImage image, std::uint32_t patch) {
+  for (std::uint32_t v = 0; v < image.height; ++v)
+    for (std::uint32_t u = 0; u < image.width; ++u)
+      if ((u / patch + v / patch) % 2 == 0) image.xyzw[(std::size_t(v) * image.width + u) * 4 + 3] = 0;
+  return image;
+}
+
 PointImage plate_over_floor(const bp_camera& cam, const Eigen::Isometry3d& pose, float floor_z) {
   const std::vector<float> zbuf = plate_depths(cam, pose);
   return noisy_image(

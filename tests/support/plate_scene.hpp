@@ -24,6 +24,10 @@ Eigen::Isometry3d plate_pose();
 PointImage plate_over_plane(const bp_camera& cam, const Eigen::Isometry3d& pose,
                             bool holes_without_depth);
 
+// The image with no depth in every other square of patch x patch pixels (a checkerboard): a
+// sensor that loses depth in patches, on the part and around it alike (shiny sheet metal).
+PointImage without_depth_in_patches(PointImage image, std::uint32_t patch);
+
 // The plate at `pose` over a floor floor_z from the camera (a plane facing it), 0.3 mm Gaussian
 // noise (seeded): for a plate seen steeply, where the plane beneath it would run past the camera.
 PointImage plate_over_floor(const bp_camera& cam, const Eigen::Isometry3d& pose, float floor_z);
