@@ -20,6 +20,10 @@
 # by name; `--list-held-out` lists them): five more parts of tools/unseen_parts.py (a gear shaft,
 # a cap screw, a flange, an angle bar, a stepped block). Run it after tuning on the main list, to
 # see whether a gain carries over; never tune on it.
+# BINS=N (default 4) makes and runs N images a set instead: 4-image sets move by an image or two
+# under small perturbations, so a change whose gain is that size wants more. The sets are the
+# same bins, extended (each bin has its own seed): WORK/data/SET-bN holds them, so WORK/data/SET
+# stays the 4-image set; use another TAG for each BINS.
 # Needs python3 with numpy for the baskets (tools/wire_basket.py). -h, --help: this text.
 set -euo pipefail
 here=$(cd "$(dirname "$0")" && pwd)
@@ -126,6 +130,8 @@ options_of() {
   exit 2
 }
 
+BINS=${BINS:-4}
+[[ $BINS =~ ^[1-9][0-9]*$ ]] || { echo "realistic_sets: BINS must be a positive whole number, not '$BINS'" >&2; exit 2; }
 mkdir -p "$WORK/assets" "$WORK/data" "$WORK/models" "$WORK/$TAG"
 stamp=$(md5sum "$BINPICK" | cut -c1-12)  # a model per binary: a new build retrains
 summary=$WORK/$TAG/summary.tsv
@@ -134,6 +140,12 @@ for set in "${wanted[@]}"; do
   opts=$(options_of "$set") || exit 1
   read -r -a synth_opts <<<"$opts"
   data=$WORK/data/$set
+  if [ "$BINS" != 4 ]; then
+    data=$WORK/data/$set-b$BINS
+    for i in "${!synth_opts[@]}"; do
+      [ "${synth_opts[$i]}" = --bins ] && synth_opts[$((i + 1))]=$BINS
+    done
+  fi
   # synth resumes: a finished dataset costs nothing; an interrupted one is completed.
   "$BINPICK" synth "${synth_opts[@]}" --no-cloud --out "$data" --cache-dir "$WORK/cache" >/dev/null
   # The part's model options among the synth options (every option of a set takes one value).
