@@ -37,6 +37,10 @@ void add_detect_cli_options(CLI::App* verb, DetectCliOptions& a, const std::stri
       "when no pose of the first --hypotheses scores --confident or more, this many more "
           "highest points are tried and all ranked together (a bin with other parts mixed in "
           "puts highest points on them), in [0, 1000]; 0: never");
+  add("flat-region", p.flat_region,
+      "flat-region test: a highest point on a flat patch this many times larger than the "
+          "part's widest flat region (a plate lying on the parts sought) is skipped and the "
+          "next highest point taken, in [1, 100]; 0: off");
   add("confident", p.confident,
       "a verified score at which the first hypotheses suffice, in [0, 1]");
   add("exclusion-ratio", p.exclusion_ratio,

@@ -52,6 +52,7 @@ const std::map<std::string, Field>& fields() {
       {"ref-ratio", real(&DetectParams::ref_ratio)},
       {"hypotheses", count(&DetectParams::hypotheses)},
       {"more-hypotheses", count(&DetectParams::more_hypotheses)},
+      {"flat-region", real(&DetectParams::flat_region)},
       {"confident", real(&DetectParams::confident)},
       {"exclusion-ratio", real(&DetectParams::exclusion_ratio)},
       {"crop-ratio", real(&DetectParams::crop_ratio)},

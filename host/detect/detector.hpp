@@ -7,6 +7,7 @@
 
 #include <cstdint>
 #include <functional>
+#include <map>
 #include <optional>
 #include <string>
 #include <utility>
@@ -42,6 +43,10 @@ struct DetectParams {
   // mixed in puts the highest points of the low-passed image on the larger parts; a pose
   // scoring 0.7 or more is seldom wrong (docs/pipeline.md, "More hypotheses").
   std::uint32_t more_hypotheses = 5;
+  // Flat-region test (0: off; flat_region.hpp): a highest point on a flat patch this many times
+  // larger than the part's widest flat region is skipped and the next one taken (an image's
+  // hypotheses on other, flatter parts). Measured in docs/pipeline.md, step 3.
+  double flat_region = 2.0;
   double confident = 0.7;
   double exclusion_ratio = 1.2;    // radius excluded around a highest point
   double crop_ratio = 1.0;         // radius of the neighbourhood voted on
@@ -283,6 +288,13 @@ class Detector {
   FitGeometry fit_geometry_;
   float outline_ratio_ = 0;  // the verification's outline test, 0 for thin parts (outline_test.hpp)
   double thinnest_extent_ = 0;  // mm, the model's extent along its least-variance axis
+  // The flat-region test (flat_region.hpp) on a crop's subsample about hypothesis h: the reason
+  // to skip it, or empty. noise: the image's depth noise (mm), voxel_factor: the scene voxels'
+  // stretch along the camera's axis.
+  std::string flat_skip_reason(const PointCloud& sample, const Hypothesis& h, double noise,
+                               double voxel_factor) const;
+  // The model's widest flat region at a plane tolerance, by tolerance step (computed once each).
+  mutable std::map<int, std::size_t> flat_model_regions_;
 };
 
 }  // namespace binpick
