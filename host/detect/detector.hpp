@@ -46,7 +46,7 @@ struct DetectParams {
   // Flat-region test (0: off; flat_region.hpp): a highest point on a flat patch this many times
   // larger than the part's widest flat region is skipped and the next one taken (an image's
   // hypotheses on other, flatter parts). Measured in docs/pipeline.md, step 3.
-  double flat_region = 2.0;
+  double flat_region = 1.25;
   double confident = 0.7;
   double exclusion_ratio = 1.2;    // radius excluded around a highest point
   double crop_ratio = 1.0;         // radius of the neighbourhood voted on
