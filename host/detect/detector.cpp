@@ -607,7 +607,7 @@ std::vector<Detection> Detector::detect(const DepthImage& depth, const bp_camera
   t.stages.push_back({"hypotheses", hyp_clock.lap()});
   // Highest points to stand in for those the flat-region test skips, found when needed: the
   // rounds again with as many more as were skipped (the same rounds give the same first ones),
-  // at most twice those sought (issue 14's shafts under plates had 8 of their 10 highest points
+  // at most twice those sought (shafts under 120 mm plates had 8 of their 10 highest points
   // on plates).
   std::size_t flat_skipped = 0;
   const auto find_more = [&] {
