@@ -3,47 +3,28 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <numeric>
+
+#include "host/core/point_grid.hpp"
 
 namespace binpick {
 namespace {
 
 constexpr double kPi = 3.14159265358979323846;
 
-// Cells of 2^20 a side: clouds here span far fewer cells than that.
-long long cell_key(const Eigen::Vector3f& p, float cell) {
-  const auto c = [&](float v) { return (long long)std::floor(v / cell) & 0xFFFFF; };
-  return (c(p.x()) << 40) | (c(p.y()) << 20) | c(p.z());
-}
-
 }  // namespace
 
 FlatRegions::FlatRegions(const PointCloud& cloud, const FlatRegionOptions& opt)
     : cloud_(cloud), opt_(opt), cos_angle_(float(std::cos(opt.max_angle * kPi / 180))) {
   const std::size_t n = cloud.points.size();
-  std::vector<long long> key(n);
-  for (std::size_t i = 0; i < n; ++i) key[i] = cell_key(cloud.points[i], opt_.link);
-  std::vector<std::uint32_t> order(n);
-  std::iota(order.begin(), order.end(), 0u);
-  std::stable_sort(order.begin(), order.end(),
-                   [&](std::uint32_t a, std::uint32_t b) { return key[a] < key[b]; });
-  std::vector<long long> sorted(n);
-  for (std::size_t i = 0; i < n; ++i) sorted[i] = key[order[i]];
-  const float link2 = opt_.link * opt_.link;
   first_.assign(n + 1, 0);
-  for (std::size_t i = 0; i < n; ++i) {
-    const Eigen::Vector3f& p = cloud.points[i];
-    for (int dx = -1; dx <= 1; ++dx)
-      for (int dy = -1; dy <= 1; ++dy)
-        for (int dz = -1; dz <= 1; ++dz) {
-          const Eigen::Vector3f q = p + opt_.link * Eigen::Vector3f(float(dx), float(dy), float(dz));
-          const auto [lo, hi] = std::equal_range(sorted.begin(), sorted.end(), cell_key(q, opt_.link));
-          for (auto it = lo; it != hi; ++it) {
-            const std::uint32_t j = order[std::size_t(it - sorted.begin())];
-            if (j != i && (cloud.points[j] - p).squaredNorm() <= link2) neighbours_.push_back(j);
-          }
-        }
-    first_[i + 1] = std::uint32_t(neighbours_.size());
+  if (n > 0) {
+    const PointGrid grid(cloud, opt_.link, 3);
+    for (std::size_t i = 0; i < n; ++i) {
+      grid.near(cloud.points[i], opt_.link, [&](std::uint32_t j) {
+        if (j != i) neighbours_.push_back(j);
+      });
+      first_[i + 1] = std::uint32_t(neighbours_.size());
+    }
   }
   stamp_.assign(n, 0);
 }

@@ -28,7 +28,7 @@ struct FlatRegionOptions {
   float max_angle = 20;   // degrees between a point's normal and the seed's
 };
 
-// The cloud's neighbourhoods found once; regions grown from any seed.
+// The cloud's neighbourhoods found once (point_grid.hpp); regions grown from any seed.
 class FlatRegions {
  public:
   FlatRegions(const PointCloud& cloud, const FlatRegionOptions& opt);

@@ -4,60 +4,15 @@
 #include <cstdint>
 #include <limits>
 #include <string>
-#include <unordered_map>
 
 #include <Eigen/Eigenvalues>
 
 #include "host/core/error.hpp"
+#include "host/core/point_grid.hpp"
 #include "kernels/scene_shared.h"
 
 namespace binpick {
 namespace {
-
-// A uniform grid of cell `cell` over 2 (x, y) or 3 dimensions: the neighbours of a point within
-// `cell` lie in the 3^D cells around its own.
-class Grid {
- public:
-  Grid(const PointCloud& cloud, float cell, int dims) : cloud_(cloud), cell_(cell), dims_(dims) {
-    for (std::uint32_t i = 0; i < cloud.points.size(); ++i)
-      cells_[key(coords(cloud.points[i]))].push_back(i);
-  }
-
-  // Calls f(j) for every point j within radius (<= cell) of p, in the grid's (deterministic) order.
-  template <class F>
-  void near(const Eigen::Vector3f& p, float radius, F&& f) const {
-    const Eigen::Vector3i c = coords(p);
-    const float r2 = radius * radius;
-    for (int dz = (dims_ == 3 ? -1 : 0); dz <= (dims_ == 3 ? 1 : 0); ++dz)
-      for (int dy = -1; dy <= 1; ++dy)
-        for (int dx = -1; dx <= 1; ++dx) {
-          auto it = cells_.find(key(c + Eigen::Vector3i(dx, dy, dz)));
-          if (it == cells_.end()) continue;
-          for (std::uint32_t j : it->second) {
-            const Eigen::Vector3f& q = cloud_.points[j];
-            const float d2 = dims_ == 3 ? bp_dist2(p.x(), p.y(), p.z(), q.x(), q.y(), q.z())
-                                        : bp_dist2(p.x(), p.y(), 0.0f, q.x(), q.y(), 0.0f);
-            if (d2 <= r2) f(j);
-          }
-        }
-  }
-
- private:
-  Eigen::Vector3i coords(const Eigen::Vector3f& p) const {
-    const Eigen::Vector3f s = p / cell_;
-    return {int(std::floor(s.x())), int(std::floor(s.y())), dims_ == 3 ? int(std::floor(s.z())) : 0};
-  }
-  static std::int64_t key(const Eigen::Vector3i& c) {
-    // 21 bits a coordinate: cells of >= 1e-3 mm over +-1 km (checked by the callers' radius).
-    auto b = [](int v) { return std::int64_t(v & 0x1FFFFF); };
-    return (b(c.x()) << 42) | (b(c.y()) << 21) | b(c.z());
-  }
-
-  const PointCloud& cloud_;
-  float cell_;
-  int dims_;
-  std::unordered_map<std::int64_t, std::vector<std::uint32_t>> cells_;
-};
 
 void check_radius(float r, const char* what) {
   if (!(r > 0) || std::isinf(r)) throw InputError(std::string(what) + " must be positive (mm)");
@@ -79,7 +34,7 @@ std::vector<float> cloud_lowpass_z(const PointCloud& cloud, float radius, float 
   check_cloud(cloud);
   check_radius(radius, "cloud low-pass radius");
   if (!(max_jump > 0)) throw InputError("cloud low-pass depth gate must be positive (mm)");
-  const Grid grid(cloud, radius, 2);
+  const PointGrid grid(cloud, radius, 2);
   std::vector<float> out(cloud.points.size());
   for (std::size_t i = 0; i < cloud.points.size(); ++i) {
     double sum = 0.0;
@@ -96,7 +51,7 @@ std::vector<float> cloud_lowpass_z(const PointCloud& cloud, float radius, float 
 std::vector<Eigen::Vector3f> cloud_normals(const PointCloud& cloud, float radius) {
   check_cloud(cloud);
   check_radius(radius, "cloud normal radius");
-  const Grid grid(cloud, radius, 3);
+  const PointGrid grid(cloud, radius, 3);
   std::vector<Eigen::Vector3f> out(cloud.points.size(), Eigen::Vector3f::Zero());
   for (std::size_t i = 0; i < cloud.points.size(); ++i) {
     const Eigen::Vector3d c = cloud.points[i].cast<double>();
