@@ -19,7 +19,8 @@
 # `--list` lists them. A second list, held out, is run only when asked (`@held-out`, or its sets
 # by name; `--list-held-out` lists them): five more parts of tools/unseen_parts.py (a gear shaft,
 # a cap screw, a flange, an angle bar, a stepped block). Run it after tuning on the main list, to
-# see whether a gain carries over; never tune on it.
+# see whether a gain carries over; never tune on it. A third, `@tilted` (`--list-tilted`): nine
+# sets seen by a camera tilted 20-40 degrees, six in solid bins and three in baskets.
 # BINS=N (default 4) makes and runs N images a set instead: 4-image sets move by an image or two
 # under small perturbations, so a change whose gain is that size wants more. The sets are the
 # same bins, extended (each bin has its own seed): WORK/data/SET-bN holds them, so WORK/data/SET
@@ -46,6 +47,19 @@ SETS=(
   "bentsheet_sl_n3|--model @bentsheet --bins 4 --objects 100 --seed 109 --distractors builtin:bolt,builtin:plate --sensor-model structured-light --noise 0.03"
   "washer_sl|--model @washer --bins 4 --objects 100 --seed 110 --distractors builtin:bolt,builtin:bracket --sensor-model structured-light --specular-cone 8 --dropout-share 0.5"
 )
+# Tilted cameras (20-40 degrees): solid bins, where the near side is nearest the camera, and
+# baskets, where it is seen through the near wall (docs/pipeline.md, "seen through a wall").
+TILTED=(
+  "tee_t30|--model builtin:tee --bins 4 --objects 100 --seed 301 --distractors builtin:bolt,builtin:plate --sensor-model structured-light --noise 0.02 --camera-tilt 30 --camera-height 1400"
+  "shaft_t35|--model builtin:shaft --bins 4 --objects 100 --seed 302 --distractors builtin:bracket --sensor-model structured-light --camera-tilt 35 --camera-height 1400"
+  "plate_t30|--model builtin:plate --bins 4 --objects 100 --seed 303 --distractors builtin:bracket:0.125,builtin:bolt:0.125 --sensor-model structured-light --noise 0.02 --camera-tilt 30 --camera-height 1400"
+  "bolt_t20_n5|--model builtin:bolt --bins 4 --objects 150 --seed 304 --sensor-model structured-light --noise 0.05 --camera-tilt 20 --camera-height 1200"
+  "anglebar_t30|--model @anglebar --bins 4 --objects 60 --seed 305 --distractors builtin:tee --sensor-model structured-light --noise 0.02 --camera-tilt 30 --camera-height 1400"
+  "flange_t40|--model @flange --bins 4 --objects 60 --seed 306 --distractors builtin:plate,builtin:bolt --sensor-model structured-light --camera-tilt 40 --camera-height 1500"
+  "plate_basket_t35|--model builtin:plate --diameter 150 --bins 4 --objects 60 --seed 401 --distractors builtin:bracket,builtin:bolt,builtin:tee --sensor-model structured-light --specular-cone 8 --dropout-share 0.55 --bin-mesh @basket --width 2064 --height 1544 --camera-height 2200 --camera-tilt 35"
+  "tee_basket_t25|--model builtin:tee --bins 4 --objects 60 --seed 402 --distractors builtin:plate,builtin:bolt --sensor-model structured-light --specular-cone 8 --dropout-share 0.5 --bin-mesh @basket_arm --width 2064 --height 1544 --camera-height 2200 --camera-tilt 25"
+  "anglebar_basket_t30|--model @anglebar --bins 4 --objects 60 --seed 403 --distractors builtin:bracket,builtin:plate --sensor-model structured-light --noise 0.02 --bin-mesh @basket --width 2064 --height 1544 --camera-height 2400 --camera-tilt 30"
+)
 # Held out: parts and sets nobody tuned for (the same form).
 HELD_OUT=(
   "gearshaft_sl|--model @gearshaft --bins 4 --objects 60 --seed 201 --distractors builtin:bolt,builtin:plate --sensor-model structured-light --noise 0.02"
@@ -68,7 +82,11 @@ if [ "${1:-}" = "--list-held-out" ]; then
   for s in "${HELD_OUT[@]}"; do echo "${s%%|*}"; done
   exit 0
 fi
-usage="usage: bench/realistic_sets.sh BINPICK WORK TAG [SET...|@held-out] | --list | --list-held-out"
+if [ "${1:-}" = "--list-tilted" ]; then
+  for s in "${TILTED[@]}"; do echo "${s%%|*}"; done
+  exit 0
+fi
+usage="usage: bench/realistic_sets.sh BINPICK WORK TAG [SET...|@held-out|@tilted] | --list | --list-held-out | --list-tilted"
 BINPICK=$(readlink -f "${1:?$usage}")
 WORK=${2:?$usage}
 TAG=${3:?$usage}
@@ -81,6 +99,8 @@ wanted=()
 for w in "$@"; do
   if [ "$w" = "@held-out" ]; then
     for s in "${HELD_OUT[@]}"; do wanted+=("${s%%|*}"); done
+  elif [ "$w" = "@tilted" ]; then
+    for s in "${TILTED[@]}"; do wanted+=("${s%%|*}"); done
   else
     wanted+=("$w")
   fi
@@ -109,7 +129,7 @@ asset() {
 
 options_of() {
   local s
-  for s in "${SETS[@]}" "${HELD_OUT[@]}"; do
+  for s in "${SETS[@]}" "${HELD_OUT[@]}" "${TILTED[@]}"; do
     if [ "${s%%|*}" = "$1" ]; then
       local word file out=()
       for word in ${s#*|}; do

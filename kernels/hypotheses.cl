@@ -86,6 +86,29 @@ __kernel void hyp_exclude(__global const float4* points, const uint n,
     excluded[i] = 1;
 }
 
+/* Before the first round, when "highest" is along the bin's up (u, a unit vector from its
+ * floor towards the camera's side) rather than nearest the camera: each pixel's key is -u . p,
+ * p its point at the filtered depth (on the ray, as hyp_at places it), and the argmin kernels
+ * read the keys in place of the filtered depth (hyp_select still places the point from the
+ * filtered depth). 0 stays no data; a key at or below 0 (a point level with the camera or
+ * above it along u) becomes the least positive float, so it is still a valid pixel. */
+__kernel void hyp_height_key(__global const float4* points, __global const float* filtered,
+                             const uint n, const float ux, const float uy, const float uz,
+                             __global float* key) {
+  const uint i = get_global_id(0);
+  if (i >= n) return;
+  const float d = filtered[i];
+  if (!(d > 0.0f)) {
+    key[i] = 0.0f;
+    return;
+  }
+  const float4 p = points[i];
+  const float s = d / p.z;
+  const float x = p.x * s, y = p.y * s;
+  const float k = -((ux * x + uy * y) + uz * d);
+  key[i] = k > 0.0f ? k : FLT_MIN;
+}
+
 /* Before the first round, with a "may be used" mask (kernels/scene_mask.cl): the pixels it
  * does not keep start excluded, so they never become a highest point. */
 __kernel void hyp_exclude_masked(__global const uchar* mask, const uint n,

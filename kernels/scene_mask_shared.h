@@ -19,9 +19,23 @@ typedef struct {
   bp_u32 reserved[3];
 } bp_box;
 
+/* The bin's walls, for points the sensor sees through one (a wire-mesh basket's, between its
+ * bars): in the frame of the bin box (bin.r, bin.t: origin at the floor's centre, z up), the
+ * inner faces at x = +-reach[0] and y = +-reach[1] from the floor (z = 0) to the rim (z =
+ * height). sides: bit 0 the wall at +x, 1 at -x, 2 at +y, 3 at -y (a wall the bin fit did not see
+ * is not tested: its place is a guess); 0: no test. cam: the camera's centre in that frame. */
+typedef struct {
+  float reach[2];
+  float height;
+  bp_u32 sides;
+  float cam[3];
+  bp_u32 reserved;
+} bp_walls;
+
 typedef struct {
   bp_box roi; /* --roi, already in the camera frame's terms */
   bp_box bin; /* the bin's interior shrunk by the margin */
+  bp_walls walls; /* with bin active: points seen through these walls are not kept */
 } bp_region;
 
 BP_FN int bp_box_keeps(const bp_box* b, float x, float y, float z) {
@@ -34,10 +48,43 @@ BP_FN int bp_box_keeps(const bp_box* b, float x, float y, float z) {
   return 1;
 }
 
+/* 1 when the segment from the camera c to the point q (both in the bin's frame) crosses the
+ * plane of coordinate `axis` = at (the other horizontal coordinate within +-span) between the
+ * floor and the rim, before reaching q. Without a division: the crossing lies at s = a / b of
+ * the segment (a = at - c, b = q - c on that axis, the same sign when it crosses), so its
+ * coordinates times |b| are compared with the bounds times |b|. */
+BP_FN int bp_segment_crosses_wall(const float c[3], const float q[3], int axis, float at,
+                                  float span, float height) {
+  const float a = at - c[axis], b = q[axis] - c[axis];
+  if (!((a > 0.0f && b >= a) || (a < 0.0f && b <= a))) return 0;
+  const float ab = a < 0.0f ? -a : a, bb = b < 0.0f ? -b : b;
+  const int other = 1 - axis;
+  const float o = c[other] * bb + ab * (q[other] - c[other]);
+  const float h = c[2] * bb + ab * (q[2] - c[2]);
+  const float ob = span * bb;
+  return o >= -ob && o <= ob && h >= 0.0f && h <= height * bb;
+}
+
+/* 1 when the point (camera frame) is seen through one of the walls tested. */
+BP_FN int bp_seen_through_walls(const bp_box* bin, const bp_walls* w, float x, float y, float z) {
+  if (!bin->active || w->sides == 0u) return 0;
+  const float dx = x - bin->t[0], dy = y - bin->t[1], dz = z - bin->t[2];
+  float q[3];
+  for (int a = 0; a < 3; ++a) q[a] = bin->r[3 * a] * dx + bin->r[3 * a + 1] * dy + bin->r[3 * a + 2] * dz;
+  for (int k = 0; k < 4; ++k) {
+    if (!(w->sides & (1u << k))) continue;
+    const int axis = k / 2;
+    const float at = (k % 2 == 0) ? w->reach[axis] : -w->reach[axis];
+    if (bp_segment_crosses_wall(w->cam, q, axis, at, w->reach[1 - axis], w->height)) return 1;
+  }
+  return 0;
+}
+
 /* 1 when the point (w != 0: it has data) may be used. */
 BP_FN unsigned char bp_region_keeps(const bp_region* g, float x, float y, float z, float w) {
   if (w == 0.0f) return 0;
-  return (unsigned char)(bp_box_keeps(&g->roi, x, y, z) && bp_box_keeps(&g->bin, x, y, z));
+  return (unsigned char)(bp_box_keeps(&g->roi, x, y, z) && bp_box_keeps(&g->bin, x, y, z) &&
+                         !bp_seen_through_walls(&g->bin, &g->walls, x, y, z));
 }
 
 /* Plane scoring of the bin fit (kernels/bin_planes.cl): a plane n . p + d = 0 with unit n.

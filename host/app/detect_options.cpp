@@ -37,6 +37,14 @@ void add_detect_cli_options(CLI::App* verb, DetectCliOptions& a, const std::stri
       "when no pose of the first --hypotheses scores --confident or more, this many more "
           "highest points are tried and all ranked together (a bin with other parts mixed in "
           "puts highest points on them), in [0, 1000]; 0: never");
+  add("highest-up", a.highest_up,
+      "1: with a bin found (--bin), the highest points are the highest along the bin's up "
+          "direction (a tilted camera's nearest points lie on the bin's near side, not on top of "
+          "the pile); 0: nearest the camera (the paper's)");
+  add("through-walls", a.through_walls,
+      "1: points the sensor sees through a wall of the bin found (between a wire-mesh "
+          "basket's bars) may hold highest points and crops; 0: they are kept out, as the walls "
+          "are");
   add("flat-region", p.flat_region,
       "flat-region test: a highest point on a flat patch this many times larger than the "
           "part's widest flat region (a plate lying on the parts sought) is skipped and the "
@@ -149,6 +157,8 @@ DetectParams resolve(const DetectCliOptions& a) {
   p.more_hypotheses = narrow(a.more_hypotheses, "--more-hypotheses");
   p.peaks_per_ref = narrow(a.peaks_per_ref, "--peaks-per-ref");
   p.candidates = narrow(a.candidates, "--candidates");
+  p.highest_up = narrow(a.highest_up, "--highest-up");
+  p.through_walls = narrow(a.through_walls, "--through-walls");
   p.unique_votes = narrow(a.unique_votes, "--unique-votes");
   p.spread_votes = narrow(a.spread_votes, "--spread-votes");
   p.local_peaks = narrow(a.local_peaks, "--local-peaks");

@@ -478,6 +478,11 @@ BinFit fit_bin(ocl::Device& dev, const PlaneSamples& s, const BinFitOptions& opt
   bin.axes.col(1) = y;
   bin.axes.col(2) = up;
   bin.origin = centre.x() * a1 + centre.y() * a2 + floor_h * up;
+  for (const std::string& side : bin.unseen_sides) {
+    const Eigen::Vector3d out = (side[0] == '+' ? 1.0 : -1.0) * (side[2] == '1' ? a1 : a2);
+    const double ox = out.dot(x), oy = out.dot(y);
+    bin.unseen_walls |= std::abs(ox) > std::abs(oy) ? (ox > 0 ? 1u : 2u) : (oy > 0 ? 4u : 8u);
+  }
   bin.measured = {long_side, short_side, rim.height - floor_h};
   if (opt.spec.mode == BinSpec::Mode::sized)
     bin.interior = {std::max(opt.spec.size.x(), opt.spec.size.y()),
@@ -497,6 +502,17 @@ RegionBox bin_interior_box(const BinFit& bin, double margin, double above,
   b.hi = Eigen::Vector3d(0.5 * bin.interior.x() - margin, 0.5 * bin.interior.y() - margin,
                          bin.interior.z() + above).cast<float>();
   return b;
+}
+
+BinWalls bin_walls(const BinFit& bin) {
+  BinWalls w;
+  // Moved out by the fit's tolerance and down from the rim by as much: a fitted wall a few mm
+  // inside the true one would otherwise take the points seen just over a solid wall's top (a
+  // ray over the rim crosses a plane further in lower down) for points seen through it.
+  w.half = (0.5 * bin.interior.head<2>() + Eigen::Vector2d::Constant(bin.tol)).cast<float>();
+  w.height = float(bin.interior.z() - bin.tol);
+  w.sides = 15u & ~bin.unseen_walls;  // a wall not seen is not where the interior ends
+  return w;
 }
 
 RegionBox roi_box(const RoiSpec& roi, const BinFit* bin) {

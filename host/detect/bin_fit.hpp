@@ -53,6 +53,8 @@ struct BinFit {
   // Sides of the rim where neither the rim nor a wall plane was seen ("+a1" ...): the interior
   // there ends at the farthest point seen below the rim, so W or D may be short of the truth.
   std::vector<std::string> unseen_sides;
+  // The same in the bin's frame: bit 0 the side at +x (axes.col(0)), 1 at -x, 2 at +y, 3 at -y.
+  std::uint32_t unseen_walls = 0;
   std::size_t samples = 0, planes = 0, rim_points = 0;
   double tol = 0;
   // The floor plane in the camera frame: up . p + floor_d = 0 (up = axes.col(2)).
@@ -75,6 +77,10 @@ BinFit fit_bin(ocl::Device& dev, const PlaneSamples& samples, const BinFitOption
 // below the floor (the floor stays).
 RegionBox bin_interior_box(const BinFit& bin, double margin, double above,
                            double floor_clearance = -1);
+
+// The interior's walls for the see-through test of the mask (scene_mask.hpp), a fit tolerance
+// outside the interior and under the rim; those of the sides the fit did not see left out.
+BinWalls bin_walls(const BinFit& bin);
 
 // The ROI's box; a bin-frame ROI needs a found bin (std::logic_error otherwise).
 RegionBox roi_box(const RoiSpec& roi, const BinFit* bin);

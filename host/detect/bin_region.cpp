@@ -56,6 +56,7 @@ SceneRegionMask apply_region(PreparedScene& scene, const RegionSetup& setup, int
       region.bin = bin_interior_box(*out.bin, setup.margin, setup.above,
                                     clear ? std::min(out.bin->tol, setup.floor_clearance_cap)
                                           : -1);
+      if (!setup.keep_through_walls) region.walls = bin_walls(*out.bin);
     } else {
       out.warning = fmt::format("no bin found ({}); detecting in the whole image{}", out.bin->why,
                                 setup.roi && setup.roi->frame == RoiSpec::Frame::bin

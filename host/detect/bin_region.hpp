@@ -29,6 +29,9 @@ struct RegionSetup {
   // Keep the floor out: points less than the bin fit's plane tolerance above a fitted floor
   // are not used (bin_interior_box); false: the floor stays, from margin below it.
   bool clear_floor = true;
+  // Points the sensor sees through one of the fitted walls (between a wire-mesh basket's bars)
+  // are kept out as the walls are; true: they stay in (scene_mask.hpp, BinWalls).
+  bool keep_through_walls = false;
   // ... but never more than this (mm): half the part's thinnest extent, so that a sheet thinner
   // than the tolerance (1.5 mm against 3 to 6 mm at 1 to 2 m) lying on the floor stays in.
   double floor_clearance_cap = std::numeric_limits<double>::infinity();

@@ -52,6 +52,8 @@ const std::map<std::string, Field>& fields() {
       {"ref-ratio", real(&DetectParams::ref_ratio)},
       {"hypotheses", count(&DetectParams::hypotheses)},
       {"more-hypotheses", count(&DetectParams::more_hypotheses)},
+      {"highest-up", count(&DetectParams::highest_up)},
+      {"through-walls", count(&DetectParams::through_walls)},
       {"flat-region", real(&DetectParams::flat_region)},
       {"confident", real(&DetectParams::confident)},
       {"exclusion-ratio", real(&DetectParams::exclusion_ratio)},

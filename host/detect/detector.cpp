@@ -149,6 +149,8 @@ std::optional<ParamProblem> find_param_problem(const DetectParams& p) {
       {p.hypotheses >= 1 && p.hypotheses <= 1000, {"hypotheses", double(p.hypotheses), "[1, 1000]"}},
       {p.more_hypotheses <= 1000, {"more-hypotheses", double(p.more_hypotheses), "[0, 1000]"}},
       {in(p.confident, 0, 1), {"confident", p.confident, "[0, 1]"}},
+      {p.highest_up <= 1, {"highest-up", double(p.highest_up), "{0, 1}"}},
+      {p.through_walls <= 1, {"through-walls", double(p.through_walls), "{0, 1}"}},
       {in(p.flat_region, 0, 100) && (p.flat_region == 0 || p.flat_region >= 1),
        {"flat-region", p.flat_region, "{0} or [1, 100]"}},
       {in(p.exclusion_ratio, 0, 100), {"exclusion-ratio", p.exclusion_ratio, "[0, 100]"}},
@@ -567,6 +569,7 @@ std::vector<Detection> Detector::detect(const DepthImage& depth, const bp_camera
   region.min_height = 0.5 * model_.diameter;  // a tray shallower than half a part holds none
   region.min_side = model_.diameter;          // nor one narrower than a part
   region.floor_clearance_cap = 0.5 * thinnest_extent_;
+  region.keep_through_walls = params_.through_walls != 0;
   const BinFit* known_bin = shared ? shared->bin(params_.bin, model_.diameter) : nullptr;
   const SceneRegionMask masked =
       apply_region(scene, region, prep.lowpass_radius, &t.stages, known_bin);
@@ -598,6 +601,10 @@ std::vector<Detection> Detector::detect(const DepthImage& depth, const bp_camera
   HypothesisOptions ho;
   ho.count = hypotheses_sought(params_);
   ho.exclusion_radius = float(params_.exclusion_ratio * model_.diameter);
+  if (params_.highest_up && masked.bin && masked.bin->found) {
+    ho.up = masked.bin->axes.col(2).normalized().cast<float>();
+    region_report_ += fmt::format("{}highest along the bin's up", region_report_.empty() ? "" : "; ");
+  }
   Stopwatch hyp_clock;
   const auto find = [&] {
     return find_hypotheses(dev_, scene.device->points, scene.device->filtered, scene.width,

@@ -46,6 +46,14 @@ struct DetectParams {
   // Flat-region test (0: off; flat_region.hpp): a highest point on a flat patch this many times
   // larger than the part's widest flat region is skipped and the next one taken (an image's
   // hypotheses on other, flatter parts). Measured in docs/pipeline.md, step 3.
+  // 1: with a bin found (--bin), "highest" is along the bin's up rather than nearest the camera
+  // (the same for a camera looking straight down; for a tilted one the nearest points are on the
+  // bin's near side). 0: nearest the camera, the paper's. Measured in docs/pipeline.md, step 2:
+  // off, since keeping out what is seen through the walls (through_walls) did better.
+  std::uint32_t highest_up = 0;
+  // 1: points the sensor sees through a wall of the bin found (between a wire-mesh basket's bars)
+  // may hold highest points and crops; 0: they are kept out, as the walls are (bin_region.hpp).
+  std::uint32_t through_walls = 0;
   double flat_region = 1.25;
   double confident = 0.7;
   double exclusion_ratio = 1.2;    // radius excluded around a highest point

@@ -42,7 +42,8 @@ std::vector<Hypothesis> from_device(const std::vector<bp_hypothesis>& hyps) {
 // other tile's argmin is unchanged (nothing in it was excluded), so each round picks the pixel
 // the whole-image rounds pick.
 std::vector<Hypothesis> rounds_on_tiles(ocl::Device& dev, const ocl::Buffer<float>& points,
-                                        const ocl::Buffer<float>& filtered, std::uint32_t width,
+                                        const ocl::Buffer<float>& filtered,
+                                        const ocl::Buffer<float>& keys, std::uint32_t width,
                                         std::uint32_t height, const HypothesisOptions& opt,
                                         const bp_camera& cam, ocl::Buffer<std::uint8_t>& excluded) {
   if (cam.width != width || cam.height != height)
@@ -61,7 +62,7 @@ std::vector<Hypothesis> rounds_on_tiles(ocl::Device& dev, const ocl::Buffer<floa
   std::uint32_t tx0 = 0, ty0 = 0, ntx = t.x, nty = t.y;
   std::vector<Hypothesis> out;
   for (cl_uint k = 0; k < opt.count; ++k) {
-    ocl::launch(dev, argmin, std::size_t(ntx) * nty, filtered, excluded, cl_uint(width),
+    ocl::launch(dev, argmin, std::size_t(ntx) * nty, keys, excluded, cl_uint(width),
                 cl_uint(height), cl_uint(t.w), cl_uint(t.h), cl_uint(t.x), cl_uint(tx0),
                 cl_uint(ty0), cl_uint(ntx), cl_uint(nty), part_depth, part_pixel);
     ocl::launch(dev, select, 1, part_depth, part_pixel, cl_uint(t.count()), points, filtered,
@@ -98,6 +99,25 @@ void check(const HypothesisOptions& opt) {
   if (!(opt.exclusion_radius >= 0) || std::isinf(opt.exclusion_radius))
     throw InputError("hypothesis exclusion radius must be finite and non-negative (mm)");
   if (opt.count > 10000) throw InputError("at most 10000 hypotheses");
+  if (opt.up && !(std::abs(opt.up->norm() - 1.0f) < 1e-3f))
+    throw InputError("the hypotheses' up direction must be a unit vector");
+}
+
+std::vector<float> height_keys_reference(const PointImage& points,
+                                         const std::vector<float>& filtered,
+                                         const Eigen::Vector3f& up) {
+  check_filtered(points, filtered);
+  std::vector<float> key(filtered.size(), 0.0f);
+  for (std::size_t i = 0; i < filtered.size(); ++i) {
+    const float d = filtered[i];
+    if (!(d > 0.0f)) continue;
+    const float* p = &points.xyzw[4 * i];
+    const float s = d / p[2];
+    const float x = p[0] * s, y = p[1] * s;
+    const float k = -((up.x() * x + up.y() * y) + up.z() * d);
+    key[i] = k > 0.0f ? k : std::numeric_limits<float>::min();
+  }
+  return key;
 }
 
 std::vector<Hypothesis> find_hypotheses(ocl::Device& dev, const ocl::Buffer<float>& points,
@@ -121,7 +141,17 @@ std::vector<Hypothesis> find_hypotheses(ocl::Device& dev, const ocl::Buffer<floa
   } else {
     excluded.fill(dev, 0);
   }
-  if (camera) return rounds_on_tiles(dev, points, filtered, width, height, opt, *camera, excluded);
+  // The argmin reads keys: the filtered depth, or the height keys along opt.up.
+  std::optional<ocl::Buffer<float>> height_keys;
+  if (opt.up) {
+    height_keys.emplace(dev, n);
+    cl::Kernel key = dev.kernel("hypotheses.cl", "hyp_height_key");
+    ocl::launch(dev, key, n, points, filtered, cl_uint(n), opt.up->x(), opt.up->y(), opt.up->z(),
+                *height_keys);
+  }
+  const ocl::Buffer<float>& keys = height_keys ? *height_keys : filtered;
+  if (camera)
+    return rounds_on_tiles(dev, points, filtered, keys, width, height, opt, *camera, excluded);
   ocl::Buffer<float> part_depth(dev, ch.count);
   ocl::Buffer<cl_uint> part_pixel(dev, ch.count);
   ocl::Buffer<bp_hypothesis> hyps(dev, opt.count);
@@ -130,7 +160,7 @@ std::vector<Hypothesis> find_hypotheses(ocl::Device& dev, const ocl::Buffer<floa
   cl::Kernel exclude = dev.kernel("hypotheses.cl", "hyp_exclude");
   const float radius2 = opt.exclusion_radius * opt.exclusion_radius;
   for (cl_uint k = 0; k < opt.count; ++k) {
-    ocl::launch(dev, argmin, ch.count, filtered, excluded, cl_uint(n), cl_uint(ch.size),
+    ocl::launch(dev, argmin, ch.count, keys, excluded, cl_uint(n), cl_uint(ch.size),
                 part_depth, part_pixel);
     ocl::launch(dev, select, 1, part_depth, part_pixel, cl_uint(ch.count), points, filtered,
                 cl_uint(width), k, hyps);
@@ -163,6 +193,7 @@ std::vector<Hypothesis> find_hypotheses_reference(const PointImage& points,
   const std::size_t n = filtered.size();
   if (mask && mask->size() != n) throw InputError("the hypothesis mask does not match the image");
   const float radius2 = opt.exclusion_radius * opt.exclusion_radius;
+  const std::vector<float> keys = opt.up ? height_keys_reference(points, filtered, *opt.up) : filtered;
   std::vector<std::uint8_t> excluded(n, 0);
   if (mask)
     for (std::size_t i = 0; i < n; ++i) excluded[i] = (*mask)[i] ? 0 : 1;
@@ -171,7 +202,7 @@ std::vector<Hypothesis> find_hypotheses_reference(const PointImage& points,
     float best = std::numeric_limits<float>::infinity();
     std::size_t best_i = n;
     for (std::size_t i = 0; i < n; ++i)
-      if (filtered[i] > 0.0f && !excluded[i] && filtered[i] < best) best = filtered[i], best_i = i;
+      if (keys[i] > 0.0f && !excluded[i] && keys[i] < best) best = keys[i], best_i = i;
     if (best_i == n) break;
     const float* p = &points.xyzw[4 * best_i];
     const float s = filtered[best_i] / p[2];

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <cstdint>
+#include <optional>
 #include <vector>
 
 #include <Eigen/Core>
@@ -18,6 +19,12 @@ namespace binpick {
 struct HypothesisOptions {
   std::uint32_t count = 5;        // the paper's 5
   float exclusion_radius = 60.0f;  // mm; slightly larger than the diameter (52 in the paper)
+  // Highest along this unit direction (the bin's up, from its floor towards the camera's side)
+  // instead of nearest the camera: a pixel's key is -up . p, p its point at the filtered depth.
+  // For a camera looking straight down (up = -z) that is the depth itself, the paper's rule; for
+  // a tilted camera the nearest points lie on the bin's near side, not on top of the pile.
+  // None: nearest the camera.
+  std::optional<Eigen::Vector3f> up = std::nullopt;
 };
 
 struct Hypothesis {
@@ -40,7 +47,7 @@ struct Tiles {
 Tiles tiles_for(std::uint32_t width, std::uint32_t height);
 
 // Routine: on the device, from a point image and its filtered depth (one float a pixel,
-// 0 = no data). Highest first; fewer than count when the valid pixels run out. With a mask (one
+// 0 = no data). Highest first (nearest the camera, or along opt.up); fewer than count when the valid pixels run out. With a mask (one
 // byte a pixel, scene_mask.hpp), pixels it does not keep start excluded: they never become a
 // highest point (the exclusion around each chosen point is unchanged).
 // camera: the camera whose depth_to_points made the points (of the same width x height), if
@@ -57,6 +64,13 @@ std::vector<Hypothesis> find_hypotheses_reference(const PointImage& points,
                                                   const std::vector<float>& filtered,
                                                   const HypothesisOptions& opt = {},
                                                   const std::vector<std::uint8_t>* mask = nullptr);
+
+// Reference of the keys the rounds compare when opt.up is given (kernel hyp_height_key): -up . p
+// of each pixel's point at its filtered depth, 0 where there is none, the least positive float
+// where -up . p <= 0.
+std::vector<float> height_keys_reference(const PointImage& points,
+                                         const std::vector<float>& filtered,
+                                         const Eigen::Vector3f& up);
 
 // The rounds on device buffers (one read-back at the end; with a camera one small read-back a
 // round, for the rectangle); mask and camera as above (mask n bytes) or null.

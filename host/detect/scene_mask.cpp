@@ -1,5 +1,6 @@
 #include "host/detect/scene_mask.hpp"
 
+#include <cmath>
 #include <string>
 
 #include "host/core/error.hpp"
@@ -23,7 +24,18 @@ bp_box shared_box(const std::optional<RegionBox>& box) {
 }  // namespace
 
 bp_region to_shared(const SceneRegion& region) {
-  return {shared_box(region.roi), shared_box(region.bin)};
+  bp_region g{shared_box(region.roi), shared_box(region.bin), bp_walls{}};
+  if (region.bin && region.walls && region.walls->sides != 0) {
+    const BinWalls& w = *region.walls;
+    if (!w.half.allFinite() || !std::isfinite(w.height))
+      throw InputError("the bin's walls have a non-finite value");
+    g.walls.reach[0] = w.half.x(), g.walls.reach[1] = w.half.y();
+    g.walls.height = w.height;
+    g.walls.sides = w.sides & 15u;
+    const Eigen::Vector3f cam = region.bin->R * (-region.bin->t);  // the camera, bin frame
+    for (int a = 0; a < 3; ++a) g.walls.cam[a] = cam[a];
+  }
+  return g;
 }
 
 ocl::Buffer<std::uint8_t> scene_mask(ocl::Device& dev, const ocl::Buffer<float>& points,

@@ -23,9 +23,18 @@ struct RegionBox {
   Eigen::Vector3f lo = Eigen::Vector3f::Zero(), hi = Eigen::Vector3f::Zero();  // mm
 };
 
+// The bin's walls in the frame of SceneRegion::bin (kernels/scene_mask_shared.h, bp_walls): the
+// points seen through one are not kept.
+struct BinWalls {
+  Eigen::Vector2f half = Eigen::Vector2f::Zero();  // inner faces at x = +-half[0], y = +-half[1]
+  float height = 0;                                // mm, floor to rim
+  std::uint32_t sides = 0;  // bit 0: +x, 1: -x, 2: +y, 3: -y; the walls tested
+};
+
 struct SceneRegion {
   std::optional<RegionBox> roi;  // --roi
   std::optional<RegionBox> bin;  // the bin's interior within the margin (bin_fit.hpp)
+  std::optional<BinWalls> walls;  // with bin: points seen through these walls are not kept
   bool active() const { return roi.has_value() || bin.has_value(); }
 };
 

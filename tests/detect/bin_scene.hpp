@@ -25,6 +25,9 @@ struct BinSceneSpec {
       {-100, -50, 25, 25}, {60, 40, 25, 25}, {120, -80, 30, 30}, {-20, 90, 20, 20}};
   double depth_scale = 0.1;
   bool wall_px = true;  // false: no +x wall nor rim (seen through to the ground, as a mesh's)
+  // > 0: the -y wall is a mesh's, vertical bars 4 mm wide this far apart under a 10 mm rim bar
+  // (the parts behind it are seen between the bars).
+  double bars_my = 0;
   // More axis-aligned boxes in the bin frame (lo, hi): a robot arm, a fixture.
   std::vector<std::pair<Eigen::Vector3d, Eigen::Vector3d>> boxes;
 };
@@ -89,6 +92,12 @@ inline BinScene make_bin_scene(const BinSceneSpec& s = {}) {
       {{-hw, hd, 0}, {hw, hd + t, s.H}},
       {{-3000, -3000, -40}, {3000, 3000, -20}},             // the ground
   };
+  if (s.bars_my > 0) {
+    boxes.erase(boxes.begin() + 3);  // the -y wall
+    boxes.push_back({{-hw - t, -hd - t, s.H - 10}, {hw + t, -hd, s.H}});
+    for (double x = -hw; x <= hw; x += s.bars_my)
+      boxes.push_back({{x - 2, -hd - t, 0}, {x + 2, -hd, s.H - 10}});
+  }
   if (!s.wall_px) boxes.erase(boxes.begin() + 2);
   for (const auto& [lo, hi] : s.boxes) boxes.push_back({lo, hi});
   out.cam.depth_scale = float(s.depth_scale);

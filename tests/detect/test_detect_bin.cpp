@@ -210,3 +210,55 @@ TEST(DetectBin, SheetsLyingOnTheFloorStayInTheRegion) {
     EXPECT_GT(d.score, 0.15);
   }
 }
+
+namespace {
+
+// Whether a point (camera frame) of the scene is seen through its -y wall below the rim.
+bool behind_near_wall(const BinScene& scene, const BinSceneSpec& s, const Eigen::Vector3d& p) {
+  const Eigen::Vector3d c = scene.to_bin(Eigen::Vector3d::Zero()), q = scene.to_bin(p);
+  const double at = -s.D / 2;
+  if (!(c.y() < at && q.y() >= at)) return false;
+  const double f = (at - c.y()) / (q.y() - c.y());
+  return c.z() + f * (q.z() - c.z()) < s.H;
+}
+
+}  // namespace
+
+// A bin whose near wall is bars, seen by a camera tilted 35 degrees beyond it: the parts lying
+// along that wall are nearest the camera, seen between the bars. Kept in (--through-walls 1)
+// they draw the first hypotheses; by default none lies behind the wall.
+TEST(DetectBin, NoHypothesisBehindAMeshWall) {
+  BinSceneSpec s;
+  s.tilt_deg = 35;
+  s.bars_my = 24;
+  s.spheres = {{-60, -120, 25, 25}, {70, -115, 22, 22}, {-100, 40, 25, 25}, {90, 60, 25, 25}};
+  const BinScene scene = make_bin_scene(s);
+  DetectParams p = fast_params();
+  p.bin = "auto";
+  p.through_walls = 1;
+  Detector kept(bracket(), p);
+  std::size_t behind = 0;
+  for (const Detection& d : kept.detect(scene.depth, scene.cam))
+    behind += behind_near_wall(scene, s, d.hypothesis.point.cast<double>());
+  EXPECT_NE(kept.region_report().find("bin: interior"), std::string::npos) << kept.region_report();
+  EXPECT_GT(behind, 0u) << "the premise: without the test hypotheses lie behind the bars";
+  p.through_walls = 0;
+  Detector det(bracket(), p);
+  const auto found = det.detect(scene.depth, scene.cam);
+  EXPECT_FALSE(found.empty());
+  for (const Detection& d : found)
+    EXPECT_FALSE(behind_near_wall(scene, s, d.hypothesis.point.cast<double>()))
+        << d.hypothesis.point.transpose();
+  for (const Detection& d : det.skipped())
+    EXPECT_FALSE(behind_near_wall(scene, s, d.hypothesis.point.cast<double>()));
+  EXPECT_EQ(det.region_report().find("highest along"), std::string::npos);
+  // Highest along the bin's up (--highest-up 1): said in the report, and still none behind.
+  p.highest_up = 1;
+  Detector up(bracket(), p);
+  const auto along = up.detect(scene.depth, scene.cam);
+  EXPECT_FALSE(along.empty());
+  for (const Detection& d : along)
+    EXPECT_FALSE(behind_near_wall(scene, s, d.hypothesis.point.cast<double>()));
+  EXPECT_NE(up.region_report().find("highest along the bin's up"), std::string::npos)
+      << up.region_report();
+}

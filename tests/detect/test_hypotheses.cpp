@@ -58,6 +58,16 @@ DepthImage render(const bp_camera& cam, const std::vector<Sphere>& spheres,
   return img;
 }
 
+// The points of `count` random spheres over the floor, 1 mm of noise, 5 % of the pixels lost.
+PointImage random_spheres(std::mt19937& rng, const bp_camera& cam, int count) {
+  std::uniform_real_distribution<float> U(0.0f, 1.0f);
+  std::vector<Sphere> spheres;
+  for (int s = 0; s < count; ++s)
+    spheres.push_back({{(U(rng) - 0.5f) * 1000.0f, (U(rng) - 0.5f) * 800.0f, 800.0f + 150.0f * U(rng)},
+                       15.0f + 40.0f * U(rng)});
+  return depth_to_points_reference(render(cam, spheres, {}, rng, 1.0f, 0.05f), cam);
+}
+
 void expect_same(const std::vector<Hypothesis>& got, const std::vector<Hypothesis>& want) {
   ASSERT_EQ(got.size(), want.size());
   for (std::size_t k = 0; k < got.size(); ++k) {
@@ -73,14 +83,9 @@ void expect_same(const std::vector<Hypothesis>& got, const std::vector<Hypothesi
 
 TEST(Hypotheses, MatchReferenceExactlyOnRandomScenes) {
   std::mt19937 rng(1);
-  std::uniform_real_distribution<float> U(0.0f, 1.0f);
   for (int t = 0; t < 6; ++t) {
     const bp_camera cam = camera(120 + 40 * t, 90, 100.0f);
-    std::vector<Sphere> spheres;
-    for (int s = 0; s < 12; ++s)
-      spheres.push_back({{(U(rng) - 0.5f) * 1000.0f, (U(rng) - 0.5f) * 800.0f, 800.0f + 150.0f * U(rng)},
-                         15.0f + 40.0f * U(rng)});
-    const PointImage pts = depth_to_points_reference(render(cam, spheres, {}, rng, 1.0f, 0.05f), cam);
+    const PointImage pts = random_spheres(rng, cam, 12);
     const std::vector<float> filtered = lowpass_depth_reference(pts, t % 3);
     const HypothesisOptions opt{std::uint32_t(1 + 3 * t), 40.0f + 20.0f * t};
     const auto got = find_hypotheses(test_device(), pts, filtered, opt);
@@ -176,6 +181,93 @@ TEST(Hypotheses, TopsOfTheHighestObjectsInOrder) {
   ASSERT_EQ(c.size(), 6u);
   for (int k = 0; k < 3; ++k) EXPECT_LT((c[k].point - tops[k]).norm(), 5.0f) << k;
   EXPECT_NEAR(c[3].point.z(), 930.0f, 1.0f);
+}
+
+// Highest along a bin's up (HypothesisOptions::up): the device rounds, on the whole image and
+// on tiles, masked or not, against the reference (the same pixels exactly); straight down is the
+// nearest-the-camera rule exactly; a bad direction is refused.
+TEST(Hypotheses, AlongTheUpDirectionMatchReferenceExactly) {
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<float> U(0.0f, 1.0f);
+  std::normal_distribution<float> N(0.0f, 0.3f);
+  for (int t = 0; t < 4; ++t) {
+    const bp_camera cam = camera(120 + 50 * t, 90 + 20 * t, 100.0f);
+    const PointImage pts = random_spheres(rng, cam, 10);
+    const std::vector<float> filtered = lowpass_depth_reference(pts, t % 3);
+    const std::vector<std::uint8_t> mask = [&] {
+      std::vector<std::uint8_t> m(filtered.size());
+      for (auto& b : m) b = U(rng) < 0.8f;
+      return m;
+    }();
+    HypothesisOptions opt{std::uint32_t(3 + 3 * t), 40.0f + 20.0f * t};
+    opt.up = Eigen::Vector3f(N(rng), N(rng), -1.0f).normalized();
+    for (const auto* m : {static_cast<const std::vector<std::uint8_t>*>(nullptr), &mask}) {
+      const auto want = find_hypotheses_reference(pts, filtered, opt, m);
+      ASSERT_EQ(want.size(), opt.count);
+      expect_same(find_hypotheses(test_device(), pts, filtered, opt, m), want);
+      expect_same(find_hypotheses(test_device(), pts, filtered, opt, m, &cam), want);
+      // Highest first along up.
+      for (std::size_t k = 1; k < want.size(); ++k)
+        EXPECT_GE(opt.up->dot(want[k - 1].point), opt.up->dot(want[k].point) - 1e-3f) << k;
+    }
+    // Straight down: the paper's rule, pixel for pixel.
+    HypothesisOptions down = opt;
+    down.up = Eigen::Vector3f(0, 0, -1);
+    opt.up.reset();
+    expect_same(find_hypotheses(test_device(), pts, filtered, down, nullptr, &cam),
+                find_hypotheses(test_device(), pts, filtered, opt, nullptr, &cam));
+  }
+  const PointImage p{2, 1, std::vector<float>(8, 0.0f)};
+  HypothesisOptions bad{5, 10.0f};
+  bad.up = Eigen::Vector3f(0, 0, -2);
+  EXPECT_THROW(find_hypotheses(test_device(), p, std::vector<float>(2), bad), InputError);
+  bad.up = Eigen::Vector3f(NAN, 0, 0);
+  EXPECT_THROW(find_hypotheses(test_device(), p, std::vector<float>(2), bad), InputError);
+}
+
+// A camera tilted 30 degrees over a floor with a tall sphere on its far side and a small one on
+// its near side: the nearest point to the camera is the near floor (the paper's rule), the
+// highest along the floor's up is the tall sphere's top, then the small one's.
+TEST(Hypotheses, ATiltedCameraTakesTheTopOfThePileAlongUp) {
+  const bp_camera cam = camera(400, 300, 400.0f);
+  const float tilt = 30.0f * float(M_PI) / 180.0f;
+  const Eigen::Vector3f up(0.0f, -std::sin(tilt), -std::cos(tilt));  // towards the camera
+  const float c = -up.dot(Eigen::Vector3f(0, 0, 1000));  // floor: up . p + c = 0
+  const auto on_floor = [&](float x, float y) {  // the floor point under (x, y)
+    return Eigen::Vector3f(x, y, -(c + up.x() * x + up.y() * y) / up.z());
+  };
+  const std::vector<Sphere> spheres{{on_floor(60, -150) + 40.0f * up, 40.0f},   // top 80 mm up
+                                    {on_floor(-60, 150) + 12.0f * up, 12.0f}};  // top 24 mm up
+  DepthImage depth{cam.width, cam.height, std::vector<std::uint16_t>(cam.width * cam.height, 0)};
+  for (std::uint32_t v = 0; v < cam.height; ++v)
+    for (std::uint32_t u = 0; u < cam.width; ++u) {
+      const Eigen::Vector3f d((u - cam.cx) / cam.fx, (v - cam.cy) / cam.fy, 1.0f);
+      float t = -c / up.dot(d);
+      for (const Sphere& s : spheres) {
+        const float a = d.squaredNorm(), b = d.dot(s.c), q = s.c.squaredNorm() - s.r * s.r;
+        if (b * b - a * q >= 0) t = std::min(t, (b - std::sqrt(b * b - a * q)) / a);
+      }
+      depth.raw[v * cam.width + u] = std::uint16_t(std::lround(t / cam.depth_scale));
+    }
+  ScenePrepOptions prep;
+  prep.lowpass_radius = 2;
+  const PreparedScene s = prepare_scene(test_device(), depth, cam, prep);
+  const auto height = [&](const Hypothesis& h) { return up.dot(h.point) + c; };
+  // The exclusion (150 mm) reaches past the floor the tall sphere hides from the camera: next to
+  // its silhouette the low-pass mixes the sphere's depth into the floor's and lifts the point.
+  const auto nearest = find_hypotheses(test_device(), s.points, s.filtered_depth, {3, 150.0f}, nullptr, &cam);
+  ASSERT_EQ(nearest.size(), 3u);
+  EXPECT_LT(height(nearest[0]), 2.0f) << "the near floor";
+  EXPECT_GT(nearest[0].v, cam.height * 3 / 4);
+  HypothesisOptions opt{3, 150.0f};
+  opt.up = up;
+  const auto along = find_hypotheses(test_device(), s.points, s.filtered_depth, opt, nullptr, &cam);
+  ASSERT_EQ(along.size(), 3u);
+  expect_same(along, find_hypotheses_reference(s.points, s.filtered_depth, opt));
+  const Eigen::Vector3f top0 = spheres[0].c + spheres[0].r * up, top1 = spheres[1].c + spheres[1].r * up;
+  EXPECT_LT((along[0].point - top0).norm(), 3.0f) << along[0].point.transpose();
+  EXPECT_LT((along[1].point - top1).norm(), 3.0f) << along[1].point.transpose();
+  EXPECT_NEAR(height(along[0]), 80.0f, 1.0f);
 }
 
 TEST(CloudScene, NormalsCropAndBadInput) {

@@ -6,7 +6,9 @@
 // composed rounds are tests/detect/test_hypotheses.cpp's.
 #include <gtest/gtest.h>
 
+#include <limits>
 #include <random>
+#include <string>
 #include <tuple>
 
 #include "host/detect/hypotheses.hpp"
@@ -140,6 +142,49 @@ TEST(HypothesisKernels, hyp_exclude_matches_reference) {
       } else {
         EXPECT_EQ(excluded[hyp.pixel], 1u);
       }
+    }
+  }
+}
+
+// The height keys (highest along the bin's up): random images with holes and random unit
+// directions, among them straight down (keys = filtered depth exactly), one lying in the image
+// plane and one pointing away from the camera (every key at or below 0: the least positive
+// float). Within 4 ulp of the reference's magnitude (a float division, OpenCL allows 2.5 ulp);
+// no data exactly 0.
+TEST(HypothesisKernels, hyp_height_key_matches_reference) {
+  auto& dev = ocl::Device::shared();
+  cl::Kernel k = dev.kernel("hypotheses.cl", "hyp_height_key");
+  std::mt19937 rng(605);
+  std::normal_distribution<float> N(0.0f, 1.0f);
+  std::vector<Eigen::Vector3f> ups{{0, 0, -1}, {1, 0, 0}, {0, 0, 1}};
+  for (int t = 0; t < 5; ++t) ups.push_back(Eigen::Vector3f(N(rng), N(rng), N(rng) - 2.0f).normalized());
+  for (auto [w, h, holes] : {std::tuple{1u, 1u, 0.0f}, {37u, 23u, 0.1f}, {160u, 120u, 0.3f}}) {
+    const PointImage pts = random_point_image(rng, w, h, holes);
+    const std::size_t n = std::size_t(w) * h;
+    const std::vector<float> filtered = lowpass_depth_reference(pts, 2);
+    ocl::Buffer<float> p_buf = upload(dev, pts.xyzw), f_buf = upload(dev, filtered);
+    for (std::size_t j = 0; j < ups.size(); ++j) {
+      const Eigen::Vector3f& up = ups[j];
+      ocl::Buffer<float> key = guarded_buffer(dev, std::vector<float>(n, -1.0f), kGuard, -1.0f);
+      ocl::launch(dev, k, n, p_buf, f_buf, u32(n), up.x(), up.y(), up.z(), key);
+      const std::vector<float> got = key.read(dev);
+      const std::vector<float> want = height_keys_reference(pts, filtered, up);
+      const std::string at = std::to_string(w) + "x" + std::to_string(h) + " up " + std::to_string(j);
+      for (std::size_t i = 0; i < n; ++i) {
+        if (!(filtered[i] > 0)) {
+          ASSERT_EQ(got[i], 0.0f) << at << " pixel " << i;
+          continue;
+        }
+        ASSERT_GT(got[i], 0.0f) << at << " pixel " << i;  // a valid pixel keeps a positive key
+        ASSERT_NEAR(got[i], want[i], 4 * std::numeric_limits<float>::epsilon() * filtered[i])
+            << at << " pixel " << i;
+        if (j == 0) {
+          ASSERT_EQ(got[i], filtered[i]) << at;  // straight down: the depth itself
+        } else if (j == 2) {
+          ASSERT_EQ(got[i], std::numeric_limits<float>::min()) << at;
+        }
+      }
+      for (std::size_t i = n; i < got.size(); ++i) ASSERT_EQ(got[i], -1.0f) << at;
     }
   }
 }
