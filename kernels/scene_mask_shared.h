@@ -70,7 +70,8 @@ BP_FN int bp_seen_through_walls(const bp_box* bin, const bp_walls* w, float x, f
   if (!bin->active || w->sides == 0u) return 0;
   const float dx = x - bin->t[0], dy = y - bin->t[1], dz = z - bin->t[2];
   float q[3];
-  for (int a = 0; a < 3; ++a) q[a] = bin->r[3 * a] * dx + bin->r[3 * a + 1] * dy + bin->r[3 * a + 2] * dz;
+  for (int a = 0; a < 3; ++a)
+    q[a] = bin->r[3 * a] * dx + bin->r[3 * a + 1] * dy + bin->r[3 * a + 2] * dz;
   for (int k = 0; k < 4; ++k) {
     if (!(w->sides & (1u << k))) continue;
     const int axis = k / 2;

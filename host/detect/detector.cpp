@@ -603,7 +603,8 @@ std::vector<Detection> Detector::detect(const DepthImage& depth, const bp_camera
   ho.exclusion_radius = float(params_.exclusion_ratio * model_.diameter);
   if (params_.highest_up && masked.bin && masked.bin->found) {
     ho.up = masked.bin->axes.col(2).normalized().cast<float>();
-    region_report_ += fmt::format("{}highest along the bin's up", region_report_.empty() ? "" : "; ");
+    region_report_ +=
+        fmt::format("{}highest along the bin's up", region_report_.empty() ? "" : "; ");
   }
   Stopwatch hyp_clock;
   const auto find = [&] {

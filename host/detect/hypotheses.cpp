@@ -193,7 +193,8 @@ std::vector<Hypothesis> find_hypotheses_reference(const PointImage& points,
   const std::size_t n = filtered.size();
   if (mask && mask->size() != n) throw InputError("the hypothesis mask does not match the image");
   const float radius2 = opt.exclusion_radius * opt.exclusion_radius;
-  const std::vector<float> keys = opt.up ? height_keys_reference(points, filtered, *opt.up) : filtered;
+  const std::vector<float> keys =
+      opt.up ? height_keys_reference(points, filtered, *opt.up) : filtered;
   std::vector<std::uint8_t> excluded(n, 0);
   if (mask)
     for (std::size_t i = 0; i < n; ++i) excluded[i] = (*mask)[i] ? 0 : 1;

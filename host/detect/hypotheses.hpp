@@ -47,9 +47,10 @@ struct Tiles {
 Tiles tiles_for(std::uint32_t width, std::uint32_t height);
 
 // Routine: on the device, from a point image and its filtered depth (one float a pixel,
-// 0 = no data). Highest first (nearest the camera, or along opt.up); fewer than count when the valid pixels run out. With a mask (one
-// byte a pixel, scene_mask.hpp), pixels it does not keep start excluded: they never become a
-// highest point (the exclusion around each chosen point is unchanged).
+// 0 = no data). Highest first (nearest the camera, or along opt.up); fewer than count when the
+// valid pixels run out. With a mask (one byte a pixel, scene_mask.hpp), pixels it does not
+// keep start excluded: they never become a highest point (the exclusion around each chosen
+// point is unchanged).
 // camera: the camera whose depth_to_points made the points (of the same width x height), if
 // they were made so: then a round excludes only in the rectangle the exclusion sphere projects
 // into (crop_pixel_rect) and looks again only at the tiles (Tiles) it touches: the same
