@@ -313,6 +313,16 @@ BinFit fit_bin(ocl::Device& dev, const PlaneSamples& s, const BinFitOptions& opt
     const double need = c < from_planes ? 1.0 : kSearchedUpMargin;
     if (!rim.found || (best.rim.found && !(double(rim.points) > need * double(best.rim.points))))
       continue;
+    // A frame seen on one side only cannot replace one seen on two or more: more samples at one
+    // height along one side is weaker evidence of a frame than two sides meeting. With the
+    // camera tilted 35 degrees over a wire-mesh basket, the near wall's outer face was a level
+    // plane along whose normal the wall's horizontal bars made a one-sided "frame" with twice the
+    // true rim's samples (seen on two sides), and the bin was lost (plate_basket_t35 of
+    // bench/realistic_sets.sh: 2 of 4 images).
+    const auto sides = [](const RimFit& r) {
+      return std::count(r.seen.begin(), r.seen.end(), true);
+    };
+    if (best.rim.found && sides(rim) < 2 && sides(best.rim) >= 2) continue;
     // A frame with a level floor under it (the plane up came from, or one parallel, with nothing
     // below it) is a bin, not a slice of a pile: a later candidate (another plane's up, or the one
     // searched along the rim) must have one too to replace it. A thin rim holds few samples, and a

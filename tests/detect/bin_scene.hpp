@@ -97,6 +97,8 @@ inline BinScene make_bin_scene(const BinSceneSpec& s = {}) {
     boxes.push_back({{-hw - t, -hd - t, s.H - 10}, {hw + t, -hd, s.H}});
     for (double x = -hw; x <= hw; x += s.bars_my)
       boxes.push_back({{x - 2, -hd - t, 0}, {x + 2, -hd, s.H - 10}});
+    for (double z = 0; z < s.H - 10; z += 1.5 * s.bars_my)
+      boxes.push_back({{-hw - t, -hd - t - 4, z}, {hw + t, -hd - t, z + 4}});
   }
   if (!s.wall_px) boxes.erase(boxes.begin() + 2);
   for (const auto& [lo, hi] : s.boxes) boxes.push_back({lo, hi});

@@ -491,6 +491,20 @@ TEST(BinFit, AFrameOverAFloorIsNotOutbidByAFaceBesideIt) {
   }
 }
 
+// A camera tilted 40 degrees beyond a bin whose near wall is a mesh's (bin_scene.hpp's bars_my,
+// horizontal bars outside vertical ones) and whose walls are thin: along the normal of the near
+// wall's outer face (a large plane facing the camera) the horizontal bars make a "frame" seen on
+// one side only with more samples than the true rim, seen on two; it must not replace the rim
+// (before, the fit took it: an interior of 731 x 19 mm).
+TEST(BinFit, AOneSidedFrameAlongAMeshWallDoesNotReplaceTheRim) {
+  BinSceneSpec s;
+  s.tilt_deg = 40;
+  s.bars_my = 24;
+  s.wall = 4;
+  const BinScene scene = make_bin_scene(s);
+  expect_matches(fit(scene, {BinSpec::Mode::find, {}}), scene, s, true);
+}
+
 // Samples above a height along the border: all of them, or all but those on the image side
 // holding the most (a corner's sample belongs to both its sides).
 TEST(BinFit, SamplesAboveCanLeaveOutTheMostCoveredImageSide) {
