@@ -38,11 +38,17 @@ typedef struct {
   bp_walls walls; /* with bin active: points seen through these walls are not kept */
 } bp_region;
 
+/* Coordinate a of the point p (camera frame, already less the box's origin: d = p - t) in the
+ * box's frame. */
+BP_FN float bp_box_coord(const bp_box* b, int a, float dx, float dy, float dz) {
+  return b->r[3 * a] * dx + b->r[3 * a + 1] * dy + b->r[3 * a + 2] * dz;
+}
+
 BP_FN int bp_box_keeps(const bp_box* b, float x, float y, float z) {
   if (!b->active) return 1;
   const float dx = x - b->t[0], dy = y - b->t[1], dz = z - b->t[2];
   for (int a = 0; a < 3; ++a) {
-    const float q = b->r[3 * a] * dx + b->r[3 * a + 1] * dy + b->r[3 * a + 2] * dz;
+    const float q = bp_box_coord(b, a, dx, dy, dz);
     if (!(q >= b->lo[a] && q <= b->hi[a])) return 0;
   }
   return 1;
@@ -70,8 +76,7 @@ BP_FN int bp_seen_through_walls(const bp_box* bin, const bp_walls* w, float x, f
   if (!bin->active || w->sides == 0u) return 0;
   const float dx = x - bin->t[0], dy = y - bin->t[1], dz = z - bin->t[2];
   float q[3];
-  for (int a = 0; a < 3; ++a)
-    q[a] = bin->r[3 * a] * dx + bin->r[3 * a + 1] * dy + bin->r[3 * a + 2] * dz;
+  for (int a = 0; a < 3; ++a) q[a] = bp_box_coord(bin, a, dx, dy, dz);
   for (int k = 0; k < 4; ++k) {
     if (!(w->sides & (1u << k))) continue;
     const int axis = k / 2;

@@ -519,7 +519,7 @@ BinWalls bin_walls(const BinFit& bin) {
   // Moved out by the fit's tolerance and down from the rim by as much: a fitted wall a few mm
   // inside the true one would otherwise take the points seen just over a solid wall's top (a
   // ray over the rim crosses a plane further in lower down) for points seen through it.
-  w.half = (0.5 * bin.interior.head<2>() + Eigen::Vector2d::Constant(bin.tol)).cast<float>();
+  w.reach = (0.5 * bin.interior.head<2>() + Eigen::Vector2d::Constant(bin.tol)).cast<float>();
   w.height = float(bin.interior.z() - bin.tol);
   w.sides = 15u & ~bin.unseen_walls;  // a wall not seen is not where the interior ends
   return w;

@@ -27,9 +27,9 @@ bp_region to_shared(const SceneRegion& region) {
   bp_region g{shared_box(region.roi), shared_box(region.bin), bp_walls{}};
   if (region.bin && region.walls && region.walls->sides != 0) {
     const BinWalls& w = *region.walls;
-    if (!w.half.allFinite() || !std::isfinite(w.height))
+    if (!w.reach.allFinite() || !std::isfinite(w.height))
       throw InputError("the bin's walls have a non-finite value");
-    g.walls.reach[0] = w.half.x(), g.walls.reach[1] = w.half.y();
+    g.walls.reach[0] = w.reach.x(), g.walls.reach[1] = w.reach.y();
     g.walls.height = w.height;
     g.walls.sides = w.sides & 15u;
     const Eigen::Vector3f cam = region.bin->R * (-region.bin->t);  // the camera, bin frame

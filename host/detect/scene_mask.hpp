@@ -26,7 +26,7 @@ struct RegionBox {
 // The bin's walls in the frame of SceneRegion::bin (kernels/scene_mask_shared.h, bp_walls): the
 // points seen through one are not kept.
 struct BinWalls {
-  Eigen::Vector2f half = Eigen::Vector2f::Zero();  // inner faces at x = +-half[0], y = +-half[1]
+  Eigen::Vector2f reach = Eigen::Vector2f::Zero();  // inner faces at x = +-reach[0], y = +-reach[1]
   float height = 0;                                // mm, floor to rim
   std::uint32_t sides = 0;  // bit 0: +x, 1: -x, 2: +y, 3: -y; the walls tested
 };

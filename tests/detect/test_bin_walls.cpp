@@ -98,11 +98,11 @@ TEST(BinWalls, MaskKernelMatchesReference) {
       b.R = to_cam.transpose();
       b.t = mean + Eigen::Vector3f(50 * U(rng), 50 * U(rng), 100.0f + 50 * U(rng));
       BinWalls walls;
-      walls.half = {150.0f + 100 * U(rng), 120.0f + 80 * U(rng)};
+      walls.reach = {150.0f + 100 * U(rng), 120.0f + 80 * U(rng)};
       walls.height = 150.0f + 100 * U(rng);
       walls.sides = t == 5 ? 0u : std::uint32_t(15 - t);
-      b.lo = {-walls.half.x(), -walls.half.y(), -500.0f};
-      b.hi = {walls.half.x(), walls.half.y(), 500.0f};
+      b.lo = {-walls.reach.x(), -walls.reach.y(), -500.0f};
+      b.hi = {walls.reach.x(), walls.reach.y(), 500.0f};
       region.bin = b;
       region.walls = walls;
       const std::vector<std::uint8_t> got = scene_mask(dev, pts, region);
