@@ -20,7 +20,8 @@
 # by name; `--list-held-out` lists them): five more parts of tools/unseen_parts.py (a gear shaft,
 # a cap screw, a flange, an angle bar, a stepped block). Run it after tuning on the main list, to
 # see whether a gain carries over; never tune on it. A third, `@tilted` (`--list-tilted`): nine
-# sets seen by a camera tilted 20-40 degrees, six in solid bins and three in baskets.
+# sets seen by a camera tilted 20-40 degrees, six in solid bins and three in baskets. A fourth,
+# `@far` (`--list-far`): three baskets seen through a wider lens, the ground all around them.
 # BINS=N (default 4) makes and runs N images a set instead: 4-image sets move by an image or two
 # under small perturbations, so a change whose gain is that size wants more. The sets are the
 # same bins, extended (each bin has its own seed): WORK/data/SET-bN holds them, so WORK/data/SET
@@ -60,6 +61,14 @@ TILTED=(
   "tee_basket_t25|--model builtin:tee --bins 4 --objects 60 --seed 402 --distractors builtin:plate,builtin:bolt --sensor-model structured-light --specular-cone 8 --dropout-share 0.5 --bin-mesh @basket_arm --width 2064 --height 1544 --camera-height 2200 --camera-tilt 25"
   "anglebar_basket_t30|--model @anglebar --bins 4 --objects 60 --seed 403 --distractors builtin:bracket,builtin:plate --sensor-model structured-light --noise 0.02 --bin-mesh @basket --width 2064 --height 1544 --camera-height 2400 --camera-tilt 30"
 )
+# Farther off: baskets seen through a wider lens (the focal length about half the default's,
+# which shows just the interior), so that the ground shows all around them (docs/pipeline.md,
+# "the ground all around").
+FAR=(
+  "plate_basket_far|--model builtin:plate --diameter 150 --bins 4 --objects 60 --seed 501 --distractors builtin:bracket,builtin:bolt,builtin:tee --sensor-model structured-light --specular-cone 8 --dropout-share 0.55 --bin-mesh @basket --width 2064 --height 1544 --camera-height 2400 --camera-tilt 25 --intrinsics 3000,3000,1031.5,771.5"
+  "bracket_basket_far|--model builtin:bracket --bins 4 --objects 60 --seed 502 --distractors builtin:plate,builtin:bolt --sensor-model structured-light --specular-cone 8 --dropout-share 0.5 --bin-mesh @basket_arm --width 2064 --height 1544 --camera-height 2200 --intrinsics 3200,3200,1031.5,771.5"
+  "tee_basket_far_t35|--model builtin:tee --bins 4 --objects 60 --seed 503 --distractors builtin:plate,builtin:bolt --sensor-model structured-light --noise 0.02 --bin-mesh @basket --width 2064 --height 1544 --camera-height 2600 --camera-tilt 35 --intrinsics 2800,2800,1031.5,771.5"
+)
 # Held out: parts and sets nobody tuned for (the same form).
 HELD_OUT=(
   "gearshaft_sl|--model @gearshaft --bins 4 --objects 60 --seed 201 --distractors builtin:bolt,builtin:plate --sensor-model structured-light --noise 0.02"
@@ -86,7 +95,11 @@ if [ "${1:-}" = "--list-tilted" ]; then
   for s in "${TILTED[@]}"; do echo "${s%%|*}"; done
   exit 0
 fi
-usage="usage: bench/realistic_sets.sh BINPICK WORK TAG [SET...|@held-out|@tilted] | --list | --list-held-out | --list-tilted"
+if [ "${1:-}" = "--list-far" ]; then
+  for s in "${FAR[@]}"; do echo "${s%%|*}"; done
+  exit 0
+fi
+usage="usage: bench/realistic_sets.sh BINPICK WORK TAG [SET...|@held-out|@tilted|@far] | --list | --list-held-out | --list-tilted | --list-far"
 BINPICK=$(readlink -f "${1:?$usage}")
 WORK=${2:?$usage}
 TAG=${3:?$usage}
@@ -101,6 +114,8 @@ for w in "$@"; do
     for s in "${HELD_OUT[@]}"; do wanted+=("${s%%|*}"); done
   elif [ "$w" = "@tilted" ]; then
     for s in "${TILTED[@]}"; do wanted+=("${s%%|*}"); done
+  elif [ "$w" = "@far" ]; then
+    for s in "${FAR[@]}"; do wanted+=("${s%%|*}"); done
   else
     wanted+=("$w")
   fi
@@ -129,7 +144,7 @@ asset() {
 
 options_of() {
   local s
-  for s in "${SETS[@]}" "${HELD_OUT[@]}" "${TILTED[@]}"; do
+  for s in "${SETS[@]}" "${HELD_OUT[@]}" "${TILTED[@]}" "${FAR[@]}"; do
     if [ "${s%%|*}" = "$1" ]; then
       local word file out=()
       for word in ${s#*|}; do
@@ -146,7 +161,7 @@ options_of() {
       return 0
     fi
   done
-  echo "realistic_sets: no set named $1 (--list and --list-held-out list them)" >&2
+  echo "realistic_sets: no set named $1 (--list, --list-held-out, --list-tilted and --list-far list them)" >&2
   exit 2
 }
 

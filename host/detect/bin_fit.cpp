@@ -10,7 +10,9 @@
 #include <fmt/format.h>
 
 #include "host/core/angles.hpp"
+#include "host/core/quantile.hpp"
 #include "host/detect/bin_floor.hpp"
+#include "host/detect/bin_ground.hpp"
 #include "host/detect/bin_planes.hpp"
 #include "host/detect/bin_rim.hpp"
 #include "host/detect/bin_side.hpp"
@@ -18,12 +20,6 @@
 
 namespace binpick {
 namespace {
-
-double quantile(std::vector<double> xs, double q) {
-  const std::size_t k = std::min(xs.size() - 1, std::size_t(q * double(xs.size() - 1)));
-  std::nth_element(xs.begin(), xs.begin() + std::ptrdiff_t(k), xs.end());
-  return xs[k];
-}
 
 // The fraction of the image a plane's inliers span (5th to 95th percentile), the smaller of
 // the two directions: a floor or a rim spans much of the view, a part's face does not.
@@ -175,10 +171,15 @@ BinFit fit_bin(ocl::Device& dev, const std::vector<float>& xyzw, std::uint32_t w
   return fit_bin(dev, sample_points(xyzw, width, height), opt);
 }
 
-BinFit fit_bin(ocl::Device& dev, const PlaneSamples& s, const BinFitOptions& opt) {
+namespace {
+
+// The fit; with the planes of the whole image given, along the border of s.window only.
+BinFit fit_bin_in(ocl::Device& dev, const PlaneSamples& s, const BinFitOptions& opt,
+                  const std::vector<FoundPlane>* found_planes) {
   BinFit bin;
   if (opt.spec.mode == BinSpec::Mode::none) throw std::logic_error("fit_bin: no bin asked for");
   bin.samples = s.points.size();
+  bin.window = s.window;
   if (s.points.size() < 100) {
     bin.why = "too few points with depth";
     return bin;
@@ -190,8 +191,23 @@ BinFit fit_bin(ocl::Device& dev, const PlaneSamples& s, const BinFitOptions& opt
   PlaneSearch ps;
   ps.tol = float(bin.tol);
   ps.seed = opt.seed;
-  const std::vector<FoundPlane> planes = find_planes(dev, s, ps);
+  const std::vector<FoundPlane> planes = found_planes ? *found_planes : find_planes(dev, s, ps);
   bin.planes = planes.size();
+  // A camera farther off than the bin is wide sees the ground all around it, and the rim lies
+  // inside the border band, where fit_rim looks for it, or not in it at all (bin_ground.hpp):
+  // the rim is then looked for along the border of the window of what stands above the ground.
+  // Only there: along the image's border, the ground all around it, a heap of parts on the
+  // ground with no bin gave a "frame" 900 x 110 mm along a searched up 14 degrees off
+  // (BinFit.AHeapOnTheGroundIsNoBin).
+  if (!found_planes) {
+    GroundOptions go;
+    go.tol = bin.tol;
+    if (const std::optional<PixelWindow> w = window_above_ground(s, planes, go)) {
+      PlaneSamples in_window = s;
+      in_window.window = *w;
+      return fit_bin_in(dev, in_window, opt, &planes);
+    }
+  }
   // "Up" is the normal of a large plane facing the camera that spans much of the image: the floor
   // with flat parts on it, or a layer of parts. With the camera tilted far (30 degrees) the near
   // wall's outer face is such a plane too, often the largest, and heights along its normal put
@@ -502,6 +518,12 @@ BinFit fit_bin(ocl::Device& dev, const PlaneSamples& s, const BinFitOptions& opt
   return bin;
 }
 
+}  // namespace
+
+BinFit fit_bin(ocl::Device& dev, const PlaneSamples& s, const BinFitOptions& opt) {
+  return fit_bin_in(dev, s, opt, nullptr);
+}
+
 RegionBox bin_interior_box(const BinFit& bin, double margin, double above,
                            double floor_clearance) {
   RegionBox b;
@@ -549,6 +571,11 @@ std::string describe(const BinFit& bin) {
       bin.interior.z(), bin.floor_plane ? "plane" : "(not seen as a plane)", bin.floor_d(),
       up.x(), up.y(), up.z(), bin.tilt_degrees(), bin.origin.x(), bin.origin.y(), bin.origin.z(),
       bin.samples, bin.planes, bin.rim_points, bin.tol) +
+         (bin.window.u1 == 0
+              ? std::string()
+              : fmt::format("; the rim looked for along pixels {}-{} x {}-{}, the ground all "
+                            "around",
+                            bin.window.u0, bin.window.u1, bin.window.v0, bin.window.v1)) +
          (bin.unseen_sides.empty()
               ? std::string()
               : fmt::format("; {} side(s) of the rim unseen, the interior taken to the farthest "

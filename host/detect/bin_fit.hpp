@@ -56,6 +56,9 @@ struct BinFit {
   // The same in the bin's frame: bit 0 the side at +x (axes.col(0)), 1 at -x, 2 at +y, 3 at -y.
   std::uint32_t unseen_walls = 0;
   std::size_t samples = 0, planes = 0, rim_points = 0;
+  // The window along whose border the rim was found: what stands above the ground all around
+  // the bin (bin_ground.hpp), or the whole image (u1 = 0).
+  PixelWindow window;
   double tol = 0;
   // The floor plane in the camera frame: up . p + floor_d = 0 (up = axes.col(2)).
   double floor_d() const;

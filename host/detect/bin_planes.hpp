@@ -15,11 +15,19 @@
 
 namespace binpick {
 
+// A rectangle of pixels, [u0, u1) x [v0, v1); u1 = 0: the whole image.
+struct PixelWindow {
+  std::uint32_t u0 = 0, v0 = 0, u1 = 0, v1 = 0;
+};
+
 // A sparse sample of a point image: every stride-th pixel in both directions that has data.
 struct PlaneSamples {
   std::vector<Eigen::Vector3f> points;             // mm, camera frame
   std::vector<std::uint32_t> u, v;                 // their pixels
   std::uint32_t stride = 1, width = 0, height = 0; // of the image sampled
+  // The window whose border the rim is looked for along (bin_rim.hpp's border band): the
+  // whole image, or what stands above the ground all around a bin (bin_ground.hpp).
+  PixelWindow window;
 };
 
 // The grid stride that samples at most about max_points of `valid` points with data.

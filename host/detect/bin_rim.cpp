@@ -8,6 +8,7 @@
 
 #include <Eigen/Eigenvalues>
 
+#include "host/core/quantile.hpp"
 #include "host/core/two_halves.hpp"
 
 namespace binpick {
@@ -44,12 +45,6 @@ double histogram_sharpness(const std::vector<double>& xs, double width,
   std::uint64_t sum = 0;
   for (std::uint32_t c : counts) sum += std::uint64_t(c) * c;
   return double(sum);
-}
-
-double quantile(std::vector<double> xs, double q) {
-  const std::size_t k = std::min(xs.size() - 1, std::size_t(q * double(xs.size() - 1)));
-  std::nth_element(xs.begin(), xs.begin() + std::ptrdiff_t(k), xs.end());
-  return xs[k];
 }
 
 // The frame's two sides along one axis: the inner edge of each, and whether it is there.
@@ -121,13 +116,15 @@ Sides find_sides(const std::vector<double>& xs, double width, double half_spacin
 
 }  // namespace
 
-BorderBand border_band(const PlaneSamples& s, double band, std::size_t stride) {
+BorderBand border_band(const PlaneSamples& s, double band, std::size_t stride, bool outside) {
   BorderBand out;
-  const double bw = band * s.width, bh = band * s.height;
+  const PixelWindow w = s.window.u1 ? s.window : PixelWindow{0, 0, s.width, s.height};
+  const double bw = band * (w.u1 - w.u0), bh = band * (w.v1 - w.v0);
   std::size_t seen = 0;
   for (std::size_t i = 0; i < s.points.size(); ++i) {
-    const int sides = (s.u[i] < bw ? 1 : 0) | (s.u[i] >= s.width - bw ? 2 : 0) |
-                      (s.v[i] < bh ? 4 : 0) | (s.v[i] >= s.height - bh ? 8 : 0);
+    if (!outside && (s.u[i] < w.u0 || s.u[i] >= w.u1 || s.v[i] < w.v0 || s.v[i] >= w.v1)) continue;
+    const int sides = (s.u[i] < w.u0 + bw ? 1 : 0) | (s.u[i] >= w.u1 - bw ? 2 : 0) |
+                      (s.v[i] < w.v0 + bh ? 4 : 0) | (s.v[i] >= w.v1 - bh ? 8 : 0);
     if (!sides || seen++ % stride != 0) continue;
     out.index.push_back(i);
     out.points.push_back(s.points[i]);
@@ -154,7 +151,7 @@ std::size_t samples_above(const BorderBand& band, const Eigen::Vector3d& up, dou
 RimFit fit_rim(const PlaneSamples& s, const Eigen::Vector3d& up, const Eigen::Vector3d& e1,
                const Eigen::Vector3d& e2, const RimOptions& opt) {
   RimFit rim;
-  const BorderBand border = border_band(s, opt.band);
+  const BorderBand border = border_band(s, opt.band, 1, false);
   const std::vector<std::size_t>& band = border.index;
   std::vector<double> heights;
   for (std::size_t i : band) heights.push_back(up.dot(s.points[i].cast<double>()));

@@ -43,8 +43,10 @@ struct BorderBand {
   std::vector<std::uint8_t> sides;  // bit 0 left, 1 right, 2 top, 3 bottom
 };
 
-// Every stride-th sample in the band (stride 1: all of them).
-BorderBand border_band(const PlaneSamples& samples, double band, std::size_t stride = 1);
+// Every stride-th sample in the band (stride 1: all of them) along the border of the samples'
+// window, with those outside the window (beyond its border: the ground around a bin) or without.
+BorderBand border_band(const PlaneSamples& samples, double band, std::size_t stride = 1,
+                       bool outside = true);
 
 // How many of the band's samples stand above `height` along `up`; with one_side_may_be_covered,
 // those on the image side that holds the most of them are not counted (a sample in a corner

@@ -107,7 +107,7 @@ std::size_t rim_support(const BorderBand& band, const Eigen::Vector3d& up, doubl
 }
 
 std::optional<RimUp> search_rim_up(const PlaneSamples& s, const RimUpSearch& opt) {
-  const BorderBand all = border_band(s, opt.band);
+  const BorderBand all = border_band(s, opt.band, 1, false);
   if (all.points.size() < 50) return std::nullopt;
   // The band's reach across the optical axis: a direction e off up moves heights by up to
   // reach * e, which sets the coarse steps' bin widths.
@@ -120,7 +120,7 @@ std::optional<RimUp> search_rim_up(const PlaneSamples& s, const RimUpSearch& opt
   const double reach = r[std::size_t(0.95 * double(r.size() - 1))];
   // The coarse steps need fewer samples: a few thousand hold the rim's hundreds.
   const auto thinned = [&](std::size_t at_most) {
-    return border_band(s, opt.band, std::max<std::size_t>(1, all.points.size() / at_most));
+    return border_band(s, opt.band, std::max<std::size_t>(1, all.points.size() / at_most), false);
   };
   const BorderBand coarse = thinned(2000), middle = thinned(6000), fine = thinned(12000);
   struct Level {
