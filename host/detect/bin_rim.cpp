@@ -122,7 +122,8 @@ BorderBand border_band(const PlaneSamples& s, double band, std::size_t stride, b
   const double bw = band * (w.u1 - w.u0), bh = band * (w.v1 - w.v0);
   std::size_t seen = 0;
   for (std::size_t i = 0; i < s.points.size(); ++i) {
-    if (!outside && (s.u[i] < w.u0 || s.u[i] >= w.u1 || s.v[i] < w.v0 || s.v[i] >= w.v1)) continue;
+    const bool in_window = s.u[i] >= w.u0 && s.u[i] < w.u1 && s.v[i] >= w.v0 && s.v[i] < w.v1;
+    if (!outside && !in_window) continue;
     const int sides = (s.u[i] < w.u0 + bw ? 1 : 0) | (s.u[i] >= w.u1 - bw ? 2 : 0) |
                       (s.v[i] < w.v0 + bh ? 4 : 0) | (s.v[i] >= w.v1 - bh ? 8 : 0);
     if (!sides || seen++ % stride != 0) continue;

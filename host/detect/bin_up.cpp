@@ -120,7 +120,8 @@ std::optional<RimUp> search_rim_up(const PlaneSamples& s, const RimUpSearch& opt
   const double reach = r[std::size_t(0.95 * double(r.size() - 1))];
   // The coarse steps need fewer samples: a few thousand hold the rim's hundreds.
   const auto thinned = [&](std::size_t at_most) {
-    return border_band(s, opt.band, std::max<std::size_t>(1, all.points.size() / at_most), false);
+    const std::size_t stride = std::max<std::size_t>(1, all.points.size() / at_most);
+    return border_band(s, opt.band, stride, false);
   };
   const BorderBand coarse = thinned(2000), middle = thinned(6000), fine = thinned(12000);
   struct Level {
