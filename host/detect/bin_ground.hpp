@@ -19,10 +19,16 @@ struct GroundOptions {
   double max_area = 0.8;     // the window is at most this share of the image, or no window
   double margin = 0.02;      // the window grows by this fraction of the image each way
   double tol = 5.0;          // mm: within 2 tol of the plane is on the ground
+  // The window's ends where what stands above the ground is narrower across than this share
+  // of its typical width (a robot arm reaching out of the bin) are left out, unless less than
+  // min_kept of the window would be left.
+  double narrow_share = 0.5;
+  double min_kept = 0.3;
 };
 
 // The window of the samples standing more than 3 tol above the ground (their 0.5-99.5 % range
-// of pixels, grown by the margin), if one of the planes is a ground: the lowest level (at most
+// of pixels, an end at the image's border left out where they are narrow there, grown by the
+// margin), if one of the planes is a ground: the lowest level (at most
 // max_below of the samples under it by 2 tol), holding ring_share of the ring's samples on
 // every side of the image with depth in its ring (10 samples), and there are three such sides
 // or more, with the window small enough. Every side: with a side whose ring is something else

@@ -158,3 +158,42 @@ TEST(BinFit, FindsTheBinWithTheGroundAllAround) {
           expect_found_with_the_ground_around(scene, s);
         }
 }
+
+// A robot arm reaching into the bin over its -y wall and out to the image's border stands above
+// the ground too, and the window ran along it to the border, where the rim's side is not: its
+// end there is left out (the arm's rows are narrow), and the bin is found along the window's
+// border. From 1.4 and 1.8 m, straight down and tilted 30 degrees, with and without holes; all
+// 8 windows ran to the border before. Not from 1.8 m with holes: there the rim's side over the
+// arm (3.5 pixels wide, half of it lost) is not seen, and the interior ends short of it (by 14
+// and 52 mm), though the window leaves the arm out.
+TEST(BinGround, AnArmToTheImagesBorderIsLeftOutOfTheWindow) {
+  for (double distance : {1400.0, 1800.0})
+    for (double tilt : {0.0, 30.0})
+      for (double holes : {0.0, 0.5}) {
+        if (distance > 1500 && holes > 0) continue;
+        SCOPED_TRACE(testing::Message() << distance << " mm, tilt " << tilt << ", holes " << holes);
+        BinSceneSpec s;
+        s.distance = distance;
+        s.tilt_deg = tilt;
+        // 120 mm wide, its top 30 mm under the rim, from 80 mm inside the wall to 1.5 m out.
+        s.boxes.push_back({{-60, -s.D / 2 - 1500, 40}, {60, -s.D / 2 + 80, s.H - 30}});
+        BinScene scene = make_bin_scene(s);
+        // The premise: the arm reaches the image's border (before the holes).
+        const PointImage pts = depth_to_points_reference(scene.depth, scene.cam);
+        const auto high = [&](std::uint32_t u, std::uint32_t v) {
+          const float* p = &pts.xyzw[4 * (std::size_t(v) * pts.width + u)];
+          return p[3] != 0.0f && scene.to_bin(Eigen::Vector3d(p[0], p[1], p[2])).z() > 30;
+        };
+        bool at_border = false;
+        for (std::uint32_t v = 0; v < pts.height; ++v)
+          at_border |= high(0, v) || high(pts.width - 1, v);
+        for (std::uint32_t u = 0; u < pts.width; ++u)
+          at_border |= high(u, 0) || high(u, pts.height - 1);
+        ASSERT_TRUE(at_border);
+        if (holes > 0) punch_holes(scene.depth, holes, 3);
+        const std::optional<PixelWindow> w = window_of(scene);
+        ASSERT_TRUE(w.has_value());
+        EXPECT_TRUE(w->v0 > 0 && w->v1 < scene.cam.height) << w->v0 << "-" << w->v1;
+        expect_found_with_the_ground_around(scene, s);
+      }
+}
