@@ -141,6 +141,23 @@ TEST_F(MeshIo, UnitScaleAndDiameter) {
   EXPECT_LT((half.positions[7] - part.positions[7] / 2).norm(), 1e-5f);
 }
 
+// A part read in the wrong unit is named: the bolt (52 mm) as if its file were in metres and
+// read as mm, or in micrometres read as mm; the bolt itself, and a 2 mm washer, pass.
+TEST(ImplausibleSize, NamesAFileInTheWrongUnit) {
+  Mesh bolt = make_builtin_part("bolt");
+  EXPECT_EQ(implausible_size(bolt), "");
+  Mesh metres = bolt, micrometres = bolt, small = bolt;
+  for (auto& p : metres.positions) p /= 1000.0f;
+  for (auto& p : micrometres.positions) p *= 1000.0f;
+  for (auto& p : small.positions) p *= 2.0f / 52.0f;
+  EXPECT_NE(implausible_size(metres).find("--unit-scale 1000"), std::string::npos)
+      << implausible_size(metres);
+  EXPECT_NE(implausible_size(micrometres).find("--unit-scale 0.001"), std::string::npos)
+      << implausible_size(micrometres);
+  EXPECT_EQ(implausible_size(small), "");
+  EXPECT_EQ(implausible_size(Mesh{}), "");
+}
+
 TEST_F(MeshIo, AtomicWriteLeavesNothingOnFailure) {
   const fs::path target = dir_ / "out.bin";
   EXPECT_THROW(write_file_atomically(target,

@@ -1,5 +1,6 @@
 #include "host/formats/mesh/load_model.hpp"
 
+#include <fmt/format.h>
 #include <spdlog/spdlog.h>
 
 #include <algorithm>
@@ -109,6 +110,11 @@ double scale_to_millimetres(Mesh& mesh, const ModelOptions& options) {
   return factor;
 }
 
+void warn_if_implausible(const std::string& name, const Mesh& mesh) {
+  if (const std::string why = implausible_size(mesh); !why.empty())
+    spdlog::warn("{}: {}", name, why);
+}
+
 // Runs make (which returns the mesh as read) and completes it; every error names `name`.
 template <class Make>
 Model named_model(const std::string& name, const ModelOptions& options, Make&& make) {
@@ -117,6 +123,7 @@ Model named_model(const std::string& name, const ModelOptions& options, Make&& m
     Model model = make();
     check_and_complete(model.mesh);
     model.symmetries = model.symmetries.scaled(scale_to_millimetres(model.mesh, options));
+    warn_if_implausible(name, model.mesh);
     return model;
   } catch (const InputError& e) {
     const std::string message = e.what();
@@ -129,6 +136,22 @@ Model named_model(const std::string& name, const ModelOptions& options, Make&& m
 }
 
 }  // namespace
+
+std::string implausible_size(const Mesh& mesh) {
+  if (mesh.positions.empty()) return "";
+  Eigen::Vector3f lo = mesh.positions.front(), hi = lo;
+  for (const auto& p : mesh.positions) lo = lo.cwiseMin(p), hi = hi.cwiseMax(p);
+  const double extent = double((hi - lo).maxCoeff());
+  if (extent < kMinPlausibleMm)
+    return fmt::format("the part is only {:.3g} mm across: if the file is in metres (glTF always "
+                       "is), give --unit-scale 1000, or --diameter with its size in mm",
+                       extent);
+  if (extent > kMaxPlausibleMm)
+    return fmt::format("the part is {:.4g} mm across: if the file is in micrometres, give "
+                       "--unit-scale 0.001, or --diameter with its size in mm",
+                       extent);
+  return "";
+}
 
 Model load_model_with_symmetries(const std::string& path, const ModelOptions& options) {
   return named_model(path, options, [&] {
@@ -158,6 +181,7 @@ Mesh parse_model(std::string_view bytes, std::string_view format, const ModelOpt
     Mesh mesh = read_model(bytes, format, options, directory);
     check_and_complete(mesh);
     scale_to_millimetres(mesh, options);
+    warn_if_implausible("model", mesh);
     return mesh;
   } catch (const std::bad_alloc&) {
     throw InputError("out of memory while reading the model (is it corrupt?)");

@@ -33,6 +33,14 @@ Model load_model_with_symmetries(const std::string& path, const ModelOptions& op
 // load_model_with_symmetries(path, options).mesh
 Mesh load_model(const std::string& path, const ModelOptions& options);
 
+// Why a mesh in mm is probably in the wrong unit, or "" when its size is plausible for a part
+// picked from a bin (its largest bounding-box side from kMinPlausibleMm to kMaxPlausibleMm).
+// A file in metres (glTF's unit by its specification, and many STL exports) read as mm makes
+// a part a thousand times too small, whose model then matches nothing, with no error: the
+// loaders log this as a warning.
+inline constexpr double kMinPlausibleMm = 1.0, kMaxPlausibleMm = 5000.0;
+std::string implausible_size(const Mesh& mesh);
+
 // The same checks, repairs and scaling for a mesh from elsewhere (a built-in part): name is
 // what error messages start with.
 Model complete_model(Mesh mesh, PartSymmetries symmetries, const std::string& name,
