@@ -142,7 +142,8 @@ TEST_F(MeshIo, UnitScaleAndDiameter) {
 }
 
 // A part read in the wrong unit is named: the bolt (52 mm) as if its file were in metres and
-// read as mm, or in micrometres read as mm; the bolt itself, and a 2 mm washer, pass.
+// read as mm, or in micrometres read as mm; the bolt itself, and the bolt scaled to 2 mm
+// across (a small part, but a part), pass.
 TEST(ImplausibleSize, NamesAFileInTheWrongUnit) {
   Mesh bolt = make_builtin_part("bolt");
   EXPECT_EQ(implausible_size(bolt), "");
