@@ -139,9 +139,7 @@ Model named_model(const std::string& name, const ModelOptions& options, Make&& m
 
 std::string implausible_size(const Mesh& mesh) {
   if (mesh.positions.empty()) return "";
-  Eigen::Vector3f lo = mesh.positions.front(), hi = lo;
-  for (const auto& p : mesh.positions) lo = lo.cwiseMin(p), hi = hi.cwiseMax(p);
-  const double extent = double((hi - lo).maxCoeff());
+  const double extent = double(bounding_box(mesh.positions).size().maxCoeff());
   if (extent < kMinPlausibleMm)
     return fmt::format("the part is only {:.3g} mm across: if the file is in metres (glTF always "
                        "is), give --unit-scale 1000, or --diameter with its size in mm",
