@@ -141,12 +141,14 @@ std::string implausible_size(const Mesh& mesh) {
   if (mesh.positions.empty()) return "";
   const double extent = double(bounding_box(mesh.positions).size().maxCoeff());
   if (extent < kMinPlausibleMm)
-    return fmt::format("the part is only {:.3g} mm across: if the file is in metres (glTF always "
-                       "is), give --unit-scale 1000, or --diameter with its size in mm",
+    return fmt::format("the mesh is only {:.3g} mm across: if the file is in metres (glTF always "
+                       "is), a part needs --unit-scale 1000 or --diameter with its size in mm "
+                       "(a --bin-mesh file: scale it to mm)",
                        extent);
   if (extent > kMaxPlausibleMm)
-    return fmt::format("the part is {:.4g} mm across: if the file is in micrometres, give "
-                       "--unit-scale 0.001, or --diameter with its size in mm",
+    return fmt::format("the mesh is {:.4g} mm across: if the file is in micrometres, a part "
+                       "needs --unit-scale 0.001 or --diameter with its size in mm (a --bin-mesh "
+                       "file: scale it to mm)",
                        extent);
   return "";
 }

@@ -37,7 +37,7 @@ Mesh load_model(const std::string& path, const ModelOptions& options);
 // picked from a bin (its largest bounding-box side from kMinPlausibleMm to kMaxPlausibleMm).
 // A file in metres (glTF's unit by its specification, and many STL exports) read as mm makes
 // a part a thousand times too small, whose model then matches nothing, with no error: the
-// loaders log this as a warning.
+// loaders log this as a warning (also for a bin mesh, which synth reads the same way).
 inline constexpr double kMinPlausibleMm = 1.0, kMaxPlausibleMm = 5000.0;
 std::string implausible_size(const Mesh& mesh);
 
