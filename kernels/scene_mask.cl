@@ -21,3 +21,14 @@ __kernel void masked_points(__global const float4* points, __global const uchar*
   if (i >= n) return;
   out[i] = mask[i] ? points[i] : (float4)(0.0f, 0.0f, 0.0f, 0.0f);
 }
+
+/* Each pixel's class against the rim (bp_over_rim_class) and its height in the bin's frame. */
+__kernel void over_rim_classes(__global const float4* points, const uint n, const bp_over_rim g,
+                               __global uchar* classes, __global float* heights) {
+  const uint i = get_global_id(0);
+  if (i >= n) return;
+  const float4 p = points[i];
+  float h;
+  classes[i] = (uchar)bp_over_rim_class(&g, p.x, p.y, p.z, p.w, &h);
+  heights[i] = h;
+}

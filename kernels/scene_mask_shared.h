@@ -93,6 +93,43 @@ BP_FN unsigned char bp_region_keeps(const bp_region* g, float x, float y, float 
                          !bp_seen_through_walls(&g->bin, &g->walls, x, y, z));
 }
 
+/* What reaches into the bin over its rim from outside (a robot arm, a hose, a part hanging over
+ * the rim): standing higher than the rim, it is the highest thing inside the interior's box
+ * without being in the bin. A pixel's class, in the bin's frame (q = r (p - t), origin the
+ * floor's centre, z up): no data; not over the rim (q.z <= lift: the rim, the pile, the floor,
+ * the ground); over the rim inside the footprint |q.x| <= reach[0], |q.y| <= reach[1]; or over
+ * the rim beyond a side of the footprint the bin fit saw (sides: bit 0 +x, 1 -x, 2 +y, 3 -y),
+ * where nothing the bin holds can be. host/detect/over_rim.hpp grows the last class into the
+ * pixels over the rim it is joined to. */
+#define BP_OVER_RIM_NO 0u     /* has data, not over the rim */
+#define BP_OVER_RIM_IN 1u     /* over the rim, over the bin's footprint */
+#define BP_OVER_RIM_OUT 2u    /* over the rim, beyond a side seen */
+#define BP_OVER_RIM_NODATA 3u /* no depth */
+
+typedef struct {
+  float r[9]; /* rows: the bin's axes in camera coordinates */
+  float t[3]; /* the floor's centre, camera frame (mm) */
+  float reach[2];
+  float lift;
+  bp_u32 sides;
+} bp_over_rim;
+
+/* The class of a point (w = 0: no data); *height = its height in the bin's frame. */
+BP_FN bp_u32 bp_over_rim_class(const bp_over_rim* g, float x, float y, float z, float w,
+                               float* height) {
+  *height = 0.0f;
+  if (w == 0.0f) return BP_OVER_RIM_NODATA;
+  const float dx = x - g->t[0], dy = y - g->t[1], dz = z - g->t[2];
+  const float qx = g->r[0] * dx + g->r[1] * dy + g->r[2] * dz;
+  const float qy = g->r[3] * dx + g->r[4] * dy + g->r[5] * dz;
+  const float qz = g->r[6] * dx + g->r[7] * dy + g->r[8] * dz;
+  *height = qz;
+  if (!(qz > g->lift)) return BP_OVER_RIM_NO;
+  const bp_u32 beyond = (qx > g->reach[0] ? 1u : 0u) | (qx < -g->reach[0] ? 2u : 0u) |
+                        (qy > g->reach[1] ? 4u : 0u) | (qy < -g->reach[1] ? 8u : 0u);
+  return (beyond & g->sides) ? BP_OVER_RIM_OUT : BP_OVER_RIM_IN;
+}
+
 /* Plane scoring of the bin fit (kernels/bin_planes.cl): a plane n . p + d = 0 with unit n.
  * A point is an inlier when |n . p + d| <= tol. */
 typedef struct {

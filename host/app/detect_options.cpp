@@ -45,6 +45,9 @@ void add_detect_cli_options(CLI::App* verb, DetectCliOptions& a, const std::stri
       "1: points the sensor sees through a wall of the bin found (between a wire-mesh "
           "basket's bars) may hold highest points and crops; 0: they are kept out, as the walls "
           "are");
+  add("over-rim", a.over_rim,
+      "1: what reaches into the bin found over its rim from outside (a robot arm over the "
+          "rim) may hold highest points and crops; 0: it is kept out, as the rim is");
   add("flat-region", p.flat_region,
       "flat-region test: a highest point on a flat patch this many times larger than the "
           "part's widest flat region (a plate lying on the parts sought) is skipped and the "
@@ -159,6 +162,7 @@ DetectParams resolve(const DetectCliOptions& a) {
   p.candidates = narrow(a.candidates, "--candidates");
   p.highest_up = narrow(a.highest_up, "--highest-up");
   p.through_walls = narrow(a.through_walls, "--through-walls");
+  p.over_rim = narrow(a.over_rim, "--over-rim");
   p.unique_votes = narrow(a.unique_votes, "--unique-votes");
   p.spread_votes = narrow(a.spread_votes, "--spread-votes");
   p.local_peaks = narrow(a.local_peaks, "--local-peaks");

@@ -18,7 +18,7 @@ struct DetectCliOptions {
   DetectParams params;
   // Wide types, so a negative value reaches the range check with a clear message.
   std::int64_t hypotheses = 5, more_hypotheses = 5, peaks_per_ref = 3, candidates = 4, refine_iterations = 10,
-               highest_up = 0, through_walls = 0, unique_votes = 0, spread_votes = 0,
+               highest_up = 0, through_walls = 0, over_rim = 0, unique_votes = 0, spread_votes = 0,
                local_peaks = 1, instances = 0;
   std::map<std::string, CLI::Option*> options;  // parameter name -> its option
 };

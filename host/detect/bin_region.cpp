@@ -5,6 +5,7 @@
 #include <fmt/format.h>
 
 #include "host/core/error.hpp"
+#include "host/detect/over_rim.hpp"
 #include "host/detect/scene_lowpass.hpp"
 
 namespace binpick {
@@ -23,6 +24,43 @@ void lowpass_if_missing(PreparedScene& scene, int lowpass_radius, StageTimings* 
   ocl::finish(dev);
   scene.has_lowpass = true;
   if (timings) timings->push_back({"lowpass", clock.lap()});
+}
+
+// Clears from the mask m what reaches into the bin over its rim (over_rim.hpp); how many pixels
+// it kept before. Over the rim and beyond the walls by max(3 tolerances, the margin): the rim
+// and the pile's top at its height stay; neighbours join within that or over_rim_gap mm of
+// height, whichever is more, and a hole of up to over_rim_gap mm (in pixels at the rim's
+// distance) is crossed.
+std::size_t keep_over_rim_out(ocl::Device& dev, const PreparedScene& scene, const BinFit& bin,
+                              const RegionSetup& setup, std::vector<std::uint8_t>& m) {
+  const double clearance = std::max(3 * bin.tol, setup.margin);
+  const std::size_t n = std::size_t(scene.width) * scene.height;
+  const OverRimClasses c =
+      over_rim_classes(dev, scene.device->points, n, over_rim_test(bin, clearance));
+  // A step between neighbours as large as a hole: an edge seen edge on (a vertical end face
+  // from above) jumps by more than the clearance in one pixel.
+  const double step = std::max(clearance, setup.over_rim_gap);
+  // The rim's distance over the floor's centre (up faces the camera).
+  const double rim_z = std::max(1.0, (bin.origin + bin.interior.z() * bin.axes.col(2)).z());
+  const double focal = 0.5 * (scene.camera.fx + scene.camera.fy);
+  const auto gap = std::uint32_t(std::clamp(std::ceil(setup.over_rim_gap * focal / rim_z), 0.0,
+                                            double(std::max(scene.width, scene.height))));
+  std::vector<std::uint8_t> reached =
+      reaching_in(c, scene.width, scene.height, float(step), gap);
+  // Below the rim it goes on along its faces (over_rim.hpp); only when it reached in at all.
+  bool in = false;
+  for (std::size_t i = 0; i < n && !in; ++i) in = reached[i] && c.classes[i] == BP_OVER_RIM_IN;
+  if (in) {
+    const std::vector<float> xyzw = scene.device->points.read(dev, 4 * n);
+    const float tol = float(bin.tol);
+    follow_planes(xyzw, scene.width, scene.height,
+                  reaching_planes(dev, xyzw, scene.width, scene.height, reached, tol), tol, gap,
+                  reached);
+  }
+  std::size_t cleared = 0;
+  for (std::size_t i = 0; i < n; ++i)
+    if (reached[i] && m[i]) m[i] = 0, ++cleared;
+  return cleared;
 }
 
 }  // namespace
@@ -73,9 +111,18 @@ SceneRegionMask apply_region(PreparedScene& scene, const RegionSetup& setup, int
   }
 
   out.mask.emplace(scene_mask(dev, scene.device->points, n, region));
-  const std::vector<std::uint8_t> m = out.mask->read(dev);
-  out.kept = std::size_t(std::count(m.begin(), m.end(), std::uint8_t(1)));
+  std::vector<std::uint8_t> m = out.mask->read(dev);
   if (timings) timings->push_back({"mask", clock.lap()});
+  if (region.bin && !setup.keep_over_rim) {
+    out.over_rim = keep_over_rim_out(dev, scene, *out.bin, setup, m);
+    if (out.over_rim > 0) {
+      out.mask->write(dev, std::span<const std::uint8_t>(m));
+      out.report += fmt::format("; {} pixels over the rim reaching in from outside left out",
+                                out.over_rim);
+    }
+    if (timings) timings->push_back({"over rim", clock.lap()});
+  }
+  out.kept = std::size_t(std::count(m.begin(), m.end(), std::uint8_t(1)));
   enqueue_lowpass_depth(dev, scene.device->points, scene.width, scene.height, lowpass_radius,
                         scene.device->filtered, &*out.mask);
   ocl::finish(dev);

@@ -32,6 +32,10 @@ struct RegionSetup {
   // Points the sensor sees through one of the fitted walls (between a wire-mesh basket's bars)
   // are kept out as the walls are; true: they stay in (scene_mask.hpp, BinWalls).
   bool keep_through_walls = false;
+  // What reaches into the bin over its rim from outside (over_rim.hpp: a robot arm) is kept
+  // out as the rim is; true: it stays in. over_rim_gap (mm): the holes in its depth crossed.
+  bool keep_over_rim = false;
+  double over_rim_gap = 0;
   // ... but never more than this (mm): half the part's thinnest extent, so that a sheet thinner
   // than the tolerance (1.5 mm against 3 to 6 mm at 1 to 2 m) lying on the floor stays in.
   double floor_clearance_cap = std::numeric_limits<double>::infinity();
@@ -44,6 +48,7 @@ struct SceneRegionMask {
   std::string report;   // for --verbose: the bin found and the pixels kept
   std::string warning;  // the bin asked for was not found (the whole image is used, or the ROI)
   std::size_t kept = 0;  // pixels the mask keeps (when there is one)
+  std::size_t over_rim = 0;  // pixels of them left out as reaching in over the rim (over_rim.hpp)
 };
 
 // On a scene prepared on the device (prepare_scene): its `filtered` buffer is replaced by the

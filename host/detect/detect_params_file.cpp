@@ -54,6 +54,7 @@ const std::map<std::string, Field>& fields() {
       {"more-hypotheses", count(&DetectParams::more_hypotheses)},
       {"highest-up", count(&DetectParams::highest_up)},
       {"through-walls", count(&DetectParams::through_walls)},
+      {"over-rim", count(&DetectParams::over_rim)},
       {"flat-region", real(&DetectParams::flat_region)},
       {"confident", real(&DetectParams::confident)},
       {"exclusion-ratio", real(&DetectParams::exclusion_ratio)},

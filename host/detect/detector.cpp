@@ -151,6 +151,7 @@ std::optional<ParamProblem> find_param_problem(const DetectParams& p) {
       {in(p.confident, 0, 1), {"confident", p.confident, "[0, 1]"}},
       {p.highest_up <= 1, {"highest-up", double(p.highest_up), "{0, 1}"}},
       {p.through_walls <= 1, {"through-walls", double(p.through_walls), "{0, 1}"}},
+      {p.over_rim <= 1, {"over-rim", double(p.over_rim), "{0, 1}"}},
       {in(p.flat_region, 0, 100) && (p.flat_region == 0 || p.flat_region >= 1),
        {"flat-region", p.flat_region, "{0} or [1, 100]"}},
       {in(p.exclusion_ratio, 0, 100), {"exclusion-ratio", p.exclusion_ratio, "[0, 100]"}},
@@ -570,6 +571,8 @@ std::vector<Detection> Detector::detect(const DepthImage& depth, const bp_camera
   region.min_side = model_.diameter;          // nor one narrower than a part
   region.floor_clearance_cap = 0.5 * thinnest_extent_;
   region.keep_through_walls = params_.through_walls != 0;
+  region.keep_over_rim = params_.over_rim != 0;
+  region.over_rim_gap = 0.25 * model_.diameter;  // a hole in the depth of an arm's face
   const BinFit* known_bin = shared ? shared->bin(params_.bin, model_.diameter) : nullptr;
   const SceneRegionMask masked =
       apply_region(scene, region, prep.lowpass_radius, &t.stages, known_bin);

@@ -54,6 +54,11 @@ struct DetectParams {
   // 1: points the sensor sees through a wall of the bin found (between a wire-mesh basket's bars)
   // may hold highest points and crops; 0: they are kept out, as the walls are (bin_region.hpp).
   std::uint32_t through_walls = 0;
+  // 1: what reaches into the bin over its rim from outside (a robot arm over the rim: over the
+  // rim and joined to what stands over it beyond a side of the rim seen, over_rim.hpp) may hold
+  // highest points and crops; 0: it is kept out, as the rim is. Measured in docs/pipeline.md,
+  // step 1.
+  std::uint32_t over_rim = 0;
   double flat_region = 1.25;
   double confident = 0.7;
   double exclusion_ratio = 1.2;    // radius excluded around a highest point
