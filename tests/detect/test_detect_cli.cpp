@@ -213,6 +213,8 @@ TEST_F(DetectCli, ParamsFileAppliesAndCommandLineWins) {
   refused_as_option("--flat-region 101", "flat-region 101 must be in {0} or [1, 100]");
   refused_in_file(R"({"highest-up": 2})", "highest-up 2 must be in {0, 1}");
   refused_as_option("--through-walls 3", "through-walls 3 must be in {0, 1}");
+  refused_as_option("--over-rim 2", "over-rim 2 must be in {0, 1}");
+  refused_in_file(R"({"over-rim": 5})", "over-rim 5 must be in {0, 1}");
   refused_as_option("--highest-up -1", "highest-up");
   refused_as_option("--verify-edge nan", "verify-edge");
   refused_in_file(R"({"verify_lookalike": 1.5})", "verify-lookalike 1.5 must be in [0, 1]");
