@@ -109,12 +109,13 @@ BP_FN unsigned char bp_region_keeps(const bp_region* g, float x, float y, float 
 typedef struct {
   float r[9]; /* rows: the bin's axes in camera coordinates */
   float t[3]; /* the floor's centre, camera frame (mm) */
-  float reach[2];
-  float lift;
-  bp_u32 sides;
+  float reach[2]; /* the footprint's half-sizes, W / 2 and D / 2 grown by the clearance (mm) */
+  float lift;     /* the rim's height over the floor plus the clearance (mm) */
+  bp_u32 sides;   /* the sides whose beyond seeds (the sides the bin fit saw) */
 } bp_over_rim;
 
-/* The class of a point (w = 0: no data); *height = its height in the bin's frame. */
+/* The class of a point (w = 0: no data); *height = its height in the bin's frame. A NaN point
+ * is not over the rim (the comparisons fail). */
 BP_FN bp_u32 bp_over_rim_class(const bp_over_rim* g, float x, float y, float z, float w,
                                float* height) {
   *height = 0.0f;
