@@ -1,9 +1,11 @@
 #include "host/detect/over_rim.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <span>
 #include <string>
+#include <utility>
 
 #include "host/core/error.hpp"
 #include "host/detect/scene_normals.hpp"

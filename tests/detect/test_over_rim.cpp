@@ -5,9 +5,11 @@
 // analytic bin with an arm over its rim.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <random>
+#include <utility>
 
 #include "host/core/error.hpp"
 #include "host/detect/bin_region.hpp"
