@@ -22,13 +22,18 @@ __kernel void masked_points(__global const float4* points, __global const uchar*
   out[i] = mask[i] ? points[i] : (float4)(0.0f, 0.0f, 0.0f, 0.0f);
 }
 
-/* Each pixel's class against the rim (bp_over_rim_class) and its height in the bin's frame. */
+/* Each pixel's class against the rim (bp_over_rim_class) and its height in the bin's frame;
+ * *beyond (0 before) counts the pixels beyond a side, so that the host reads the classes back
+ * only when something stands over the rim outside the bin (rarely: an arm, a hose). */
 __kernel void over_rim_classes(__global const float4* points, const uint n, const bp_over_rim g,
-                               __global uchar* classes, __global float* heights) {
+                               __global uchar* classes, __global float* heights,
+                               __global uint* beyond) {
   const uint i = get_global_id(0);
   if (i >= n) return;
   const float4 p = points[i];
   float h;
-  classes[i] = (uchar)bp_over_rim_class(&g, p.x, p.y, p.z, p.w, &h);
+  const int c = bp_over_rim_class(&g, p.x, p.y, p.z, p.w, &h);
+  classes[i] = (uchar)c;
   heights[i] = h;
+  if (c == BP_OVER_RIM_OUT) atomic_inc(beyond);
 }

@@ -37,6 +37,7 @@ std::size_t keep_over_rim_out(ocl::Device& dev, const PreparedScene& scene, cons
   const std::size_t n = std::size_t(scene.width) * scene.height;
   const OverRimClasses c =
       over_rim_classes(dev, scene.device->points, n, over_rim_test(bin, clearance));
+  if (c.beyond == 0) return 0;
   // A step between neighbours as large as a hole: an edge seen edge on (a vertical end face
   // from above) jumps by more than the clearance in one pixel.
   const double step = std::max(clearance, setup.over_rim_gap);

@@ -1,13 +1,10 @@
 #include "host/detect/over_rim.hpp"
 
-#include <algorithm>
 #include <cmath>
-#include <limits>
-#include <span>
 #include <string>
-#include <utility>
 
 #include "host/core/error.hpp"
+#include "host/detect/gap_flood.hpp"
 #include "host/detect/scene_normals.hpp"
 
 namespace binpick {
@@ -37,8 +34,12 @@ OverRimClasses over_rim_classes(ocl::Device& dev, const ocl::Buffer<float>& poin
   if (n == 0) return out;
   ocl::Buffer<std::uint8_t> classes(dev, n);
   ocl::Buffer<float> heights(dev, n);
+  ocl::Buffer<cl_uint> beyond(dev, 1);
+  beyond.fill(dev, 0u);
   cl::Kernel k = dev.kernel("scene_mask.cl", "over_rim_classes");
-  ocl::launch(dev, k, n, points, cl_uint(n), test, classes, heights);
+  ocl::launch(dev, k, n, points, cl_uint(n), test, classes, heights, beyond);
+  out.beyond = beyond.read(dev)[0];
+  if (out.beyond == 0) return out;  // nothing to flood from: 15 MB not read at 2064 x 1544
   out.classes = classes.read(dev);
   out.heights = heights.read(dev);
   return out;
@@ -47,10 +48,11 @@ OverRimClasses over_rim_classes(ocl::Device& dev, const ocl::Buffer<float>& poin
 OverRimClasses over_rim_classes_reference(const PointImage& points, const bp_over_rim& test) {
   check_point_image(points);
   const std::size_t n = std::size_t(points.width) * points.height;
-  OverRimClasses out{std::vector<std::uint8_t>(n), std::vector<float>(n)};
+  OverRimClasses out{std::vector<std::uint8_t>(n), std::vector<float>(n), 0};
   for (std::size_t i = 0; i < n; ++i) {
     const float* p = &points.xyzw[4 * i];
     out.classes[i] = std::uint8_t(bp_over_rim_class(&test, p[0], p[1], p[2], p[3], &out.heights[i]));
+    out.beyond += out.classes[i] == BP_OVER_RIM_OUT;
   }
   return out;
 }
@@ -60,44 +62,16 @@ std::vector<std::uint8_t> reaching_in(const OverRimClasses& c, std::uint32_t wid
   const std::size_t n = std::size_t(width) * height;
   if (c.classes.size() != n || c.heights.size() != n)
     throw InputError("reaching_in: the classes do not match the image size");
-  std::vector<std::uint8_t> reached(n, 0);
-  // Missing pixels are entered again when a path reaches them across a shorter gap (so the
-  // result does not depend on which path came first); a pixel with data is entered once.
-  constexpr std::uint32_t unvisited = std::numeric_limits<std::uint32_t>::max();
-  std::vector<std::uint32_t> best_gap(n, unvisited);
-  struct Step {
-    std::size_t pixel;
-    float height;       // of the last pixel with data on the way here
-    std::uint32_t gap;  // missing pixels crossed since it
-  };
-  std::vector<Step> queue;
+  std::vector<std::size_t> seeds;
   for (std::size_t i = 0; i < n; ++i)
-    if (c.classes[i] == BP_OVER_RIM_OUT) {
-      reached[i] = 1;
-      best_gap[i] = 0;
-      queue.push_back({i, c.heights[i], 0});
-    }
-  for (std::size_t head = 0; head < queue.size(); ++head) {
-    const Step s = queue[head];
-    const std::size_t u = s.pixel % width, v = s.pixel / width;
-    const std::size_t next[4] = {u > 0 ? s.pixel - 1 : n, u + 1 < width ? s.pixel + 1 : n,
-                                 v > 0 ? s.pixel - width : n, v + 1 < height ? s.pixel + width : n};
-    for (const std::size_t j : next) {
-      if (j == n) continue;
-      const std::uint8_t cls = c.classes[j];
-      if (cls == BP_OVER_RIM_NODATA) {
-        const std::uint32_t gap = s.gap + 1;
-        if (gap > max_gap || gap >= best_gap[j]) continue;
-        best_gap[j] = gap;
-        queue.push_back({j, s.height, gap});
-      } else if (cls != BP_OVER_RIM_NO && !reached[j] &&
-                 std::fabs(c.heights[j] - s.height) <= max_step) {
-        reached[j] = 1;
-        best_gap[j] = 0;
-        queue.push_back({j, c.heights[j], 0});
-      }
-    }
-  }
+    if (c.classes[i] == BP_OVER_RIM_OUT) seeds.push_back(i);
+  std::vector<std::uint8_t> reached(n, 0);
+  const auto missing = [&](std::size_t j) { return c.classes[j] == BP_OVER_RIM_NODATA; };
+  const auto joins = [&](std::size_t last, std::size_t j) {
+    return c.classes[j] != BP_OVER_RIM_NO && std::fabs(c.heights[j] - c.heights[last]) <= max_step;
+  };
+  for (const std::size_t i : flood_with_gaps(width, height, seeds, missing, joins, max_gap))
+    reached[i] = 1;
   return reached;
 }
 
@@ -135,37 +109,19 @@ void follow_planes(const std::vector<float>& xyzw, std::uint32_t width, std::uin
   if (xyzw.size() != 4 * n || reached.size() != n)
     throw InputError("follow_planes: the points do not match the image size");
   const std::vector<std::uint8_t> start = reached;
-  constexpr std::uint32_t unvisited = std::numeric_limits<std::uint32_t>::max();
-  std::vector<std::uint32_t> best_gap(n);
-  std::vector<std::pair<std::size_t, std::uint32_t>> queue;  // pixel, missing pixels crossed
+  const auto missing = [&](std::size_t j) { return xyzw[4 * j + 3] == 0.0f; };
   for (const FoundPlane& pl : planes) {
     const auto on = [&](std::size_t i) {
       const float* p = &xyzw[4 * i];
       return std::fabs(pl.normal.x() * p[0] + pl.normal.y() * p[1] + pl.normal.z() * p[2] +
                        pl.d) <= tol;
     };
-    std::fill(best_gap.begin(), best_gap.end(), unvisited);
-    queue.clear();
+    std::vector<std::size_t> seeds;
     for (std::size_t i = 0; i < n; ++i)
-      if (start[i] && xyzw[4 * i + 3] != 0.0f && on(i)) best_gap[i] = 0, queue.push_back({i, 0});
-    for (std::size_t head = 0; head < queue.size(); ++head) {
-      const auto [i, g] = queue[head];
-      const std::size_t u = i % width, v = i / width;
-      const std::size_t next[4] = {u > 0 ? i - 1 : n, u + 1 < width ? i + 1 : n,
-                                   v > 0 ? i - width : n, v + 1 < height ? i + width : n};
-      for (const std::size_t j : next) {
-        if (j == n) continue;
-        if (xyzw[4 * j + 3] == 0.0f) {
-          if (g + 1 > max_gap || g + 1 >= best_gap[j]) continue;
-          best_gap[j] = g + 1;
-          queue.push_back({j, g + 1});
-        } else if (best_gap[j] != 0 && on(j)) {
-          best_gap[j] = 0;
-          reached[j] = 1;
-          queue.push_back({j, 0});
-        }
-      }
-    }
+      if (start[i] && !missing(i) && on(i)) seeds.push_back(i);
+    const auto joins = [&](std::size_t, std::size_t j) { return on(j); };
+    for (const std::size_t i : flood_with_gaps(width, height, seeds, missing, joins, max_gap))
+      reached[i] = 1;
   }
 }
 

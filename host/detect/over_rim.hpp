@@ -33,9 +33,12 @@ bp_over_rim over_rim_test(const BinFit& bin, double clearance);
 struct OverRimClasses {
   std::vector<std::uint8_t> classes;  // BP_OVER_RIM_* a pixel
   std::vector<float> heights;         // the point's height in the bin's frame (0 without data)
+  std::size_t beyond = 0;             // pixels of class BP_OVER_RIM_OUT
 };
 
-// Routine: the kernel over_rim_classes over n float4 points on the device, read back.
+// Routine: the kernel over_rim_classes over n float4 points on the device. The classes and
+// heights are read back only when some pixel is beyond a side (beyond > 0; otherwise both are
+// left empty: nothing reaches in, the usual case).
 OverRimClasses over_rim_classes(ocl::Device& dev, const ocl::Buffer<float>& points,
                                 std::size_t n, const bp_over_rim& test);
 // Reference: the same predicate in plain C++; equal byte for byte and bit for bit.

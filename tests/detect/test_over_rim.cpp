@@ -58,11 +58,22 @@ TEST(OverRimKernels, over_rim_classes_matches_reference) {
     const OverRimClasses ref = over_rim_classes_reference(pts, g);
     ocl::Buffer<float> buf(dev, std::span<const float>(pts.xyzw));
     const OverRimClasses got = over_rim_classes(dev, buf, pts.xyzw.size() / 4, g);
+    // The device's count of pixels beyond a side; with none, nothing is read back. A side not
+    // seen gives no seeds; with all four unseen, none at all.
+    ASSERT_EQ(got.beyond, ref.beyond);
+    if (unseen == 15u) {
+      EXPECT_EQ(ref.beyond, 0u);
+      EXPECT_TRUE(got.classes.empty() && got.heights.empty());
+      continue;
+    }
+    EXPECT_GT(ref.beyond, 0u);
     ASSERT_EQ(got.classes, ref.classes);
     ASSERT_EQ(got.heights.size(), ref.heights.size());
-    for (std::size_t i = 0; i < ref.heights.size(); ++i)
-      if (!(std::isnan(got.heights[i]) && std::isnan(ref.heights[i])))
+    for (std::size_t i = 0; i < ref.heights.size(); ++i) {
+      if (!(std::isnan(got.heights[i]) && std::isnan(ref.heights[i]))) {
         ASSERT_EQ(std::memcmp(&got.heights[i], &ref.heights[i], 4), 0) << i;
+      }
+    }
     EXPECT_EQ(ref.classes[0], BP_OVER_RIM_NO);
     EXPECT_EQ(ref.classes[1], BP_OVER_RIM_NO);
     int seen[4] = {};
@@ -70,9 +81,7 @@ TEST(OverRimKernels, over_rim_classes_matches_reference) {
     EXPECT_GT(seen[BP_OVER_RIM_NO], 0);
     EXPECT_GT(seen[BP_OVER_RIM_IN], 0);
     EXPECT_GT(seen[BP_OVER_RIM_NODATA], 0);
-    // A side not seen gives no seeds; with all four unseen, none at all.
-    if (unseen == 15u) EXPECT_EQ(seen[BP_OVER_RIM_OUT], 0);
-    else EXPECT_GT(seen[BP_OVER_RIM_OUT], 0);
+    EXPECT_EQ(std::size_t(seen[BP_OVER_RIM_OUT]), ref.beyond);
   }
   // No points, and a bin not found.
   EXPECT_TRUE(over_rim_classes(dev, ocl::Buffer<float>(dev, 4), 0, over_rim_test(straight_bin(), 9))
