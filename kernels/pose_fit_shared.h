@@ -51,7 +51,7 @@
 #define BP_FIT_OCCLUDED 4u
 #define BP_FIT_CLASSES 5u
 
-/* One pose to fit; all 4-byte scalars (96 bytes). */
+/* One pose to fit; all 4-byte scalars (100 bytes). */
 typedef struct {
   float r[9];       /* model -> camera rotation, row-major */
   float t[3];       /* mm */
@@ -65,6 +65,9 @@ typedef struct {
   float outline;    /* mm: the outline test's depth tolerance; 0: no outline test */
   bp_u32 residuals; /* != 0: write each model point's residual (NaN where it gives no term) and
                      * class */
+  float near_gate;  /* mm, > 0: a measured point nearer the camera than the model's surface by
+                     * more than this (along the normal) gives no ICP term: something lying on
+                     * the part (bp_near_gate); 0: the gate alone */
 } bp_pose_fit;
 
 /* What one work item (kernel) or one pose (reference) adds up. */
@@ -141,6 +144,17 @@ BP_FN bp_u32 bp_fit_classify(const bp_pose_fit* f, const bp_camera* cam, const f
   return dz > 0.0f ? BP_FIT_SEE_THROUGH : BP_FIT_OCCLUDED;
 }
 
+/* The near gate for an association gate and tolerance (mm) and the image's depth noise sigma
+ * (mm): once the gate is under 3 tolerances (the pose is near), a measured point more than
+ * max(tolerance / 2, 3 sigma) nearer than the surface is taken for something lying on the part
+ * (a plate on the plate, a part leaning on it), not for the part: inside the gate it would pull
+ * the pose toward itself. 0 (off) while the gate is wider. */
+BP_FN float bp_near_gate(float gate, float tolerance, float noise) {
+  if (!(gate < 3.0f * tolerance)) return 0.0f;
+  const float cut = 0.5f * tolerance > 3.0f * noise ? 0.5f * tolerance : 3.0f * noise;
+  return cut < gate ? cut : 0.0f;
+}
+
 /* The ICP term of a visible point q (normal nq) and the measured point p: the point-to-plane
  * residual r = nq . (p - q) and a = ((q - c) x nq, nq), so that a small rotation w about c and
  * translation v change r by -a . (w, v). Returns the weight, 0 if p is beyond the gate. */
@@ -150,6 +164,7 @@ BP_FN float bp_fit_term(const bp_pose_fit* f, const float* q, const float* nq, f
   const float res = nq[0] * (px - q[0]) + nq[1] * (py - q[1]) + nq[2] * (pz - q[2]);
   const float u = res / f->gate;
   if (!(u * u < 1.0f)) return 0.0f;
+  if (f->near_gate > 0.0f && res > f->near_gate) return 0.0f; /* r > 0: nearer the camera */
   const float cx = q[0] - f->centre[0], cy = q[1] - f->centre[1], cz = q[2] - f->centre[2];
   a[0] = cy * nq[2] - cz * nq[1];
   a[1] = cz * nq[0] - cx * nq[2];

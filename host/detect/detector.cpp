@@ -428,6 +428,9 @@ std::vector<Detection> Detector::refine_and_rank(
   // The rival test needs the measured points on the pixels' rays: a sensor's image.
   ro.keep_measured = sensor && params_.verify_rival > 0;
   ro.area_scale = float(params_.verify_area);
+  // What lies on the part is kept out of its ICP near the end (depth images: the noise known).
+  ro.near_gate = sensor;
+  ro.noise = float(image_noise_);
   const auto sums = [&](const std::vector<bp_pose_fit>& fits) {
     return pose_fit_sums(dev_, points, cam, fit_model_, fits);
   };
@@ -437,6 +440,8 @@ std::vector<Detection> Detector::refine_and_rank(
     TwinTestOptions to;
     to.band_ratio = float(params_.verify_twin);
     to.edge_scale = float(params_.verify_edge);
+    to.near_gate = ro.near_gate;
+    to.noise = ro.noise;
     twin_test(
         [&](const std::vector<bp_pose_fit>& fits) {
           return pose_fit_sums(dev_, points, cam, twin_model_, fits);
@@ -555,10 +560,11 @@ std::vector<Detection> Detector::detect(const DepthImage& depth, const bp_camera
   PreparedScene scene = shared ? shared->scene_for_model(dev_, depth, cam, prep)
                                : prepare_scene(dev_, depth, cam, prep);
   t.stages.insert(t.stages.end(), scene.timings.begin(), scene.timings.end());
-  // The image's depth noise: for the scene voxels (below) and the bin fit's floor.
+  // The image's depth noise: for the scene voxels (below), the bin fit's floor and ICP's near
+  // gate (pose_refine.hpp).
   Stopwatch noise_clock;
-  const double noise =
-      params_.noise_voxel > 1 || params_.bin != "none" ? depth_noise_mm(depth, cam) : 0.0;
+  image_noise_ = depth_noise_mm(depth, cam);
+  const double noise = params_.noise_voxel > 1 || params_.bin != "none" ? image_noise_ : 0.0;
   t.stages.push_back({"noise", noise_clock.lap()});
   // --roi / --bin: the mask of the pixels that may be used, and the low-pass of those only.
   RegionSetup region;

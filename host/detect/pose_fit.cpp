@@ -101,6 +101,7 @@ bp_pose_fit make_pose_fit(const Eigen::Matrix3d& R, const Eigen::Vector3d& t,
   f.slack = th.slack;
   f.outline = th.outline;
   f.residuals = th.residuals ? 1u : 0u;
+  f.near_gate = th.near_gate;
   f.cell = 1;
   f.dim = 0;  // nothing visible unless the pose lies in front of the camera
   const double near = c.z() - 0.5 * g.diameter;

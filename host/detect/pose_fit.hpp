@@ -62,6 +62,7 @@ struct FitThresholds {
   float gate = 0, tolerance = 0, slack = 0;  // mm
   float outline = 0;  // mm, the outline test's tolerance; 0: no outline test
   bool residuals = false;  // read back each model point's residual (the patch test)
+  float near_gate = 0;     // mm, pose_fit_shared.h (bp_near_gate); 0: off
 };
 // The cosine between a posed model point's normal nq and the ray from the point q (camera
 // frame) back to the camera: > 0 where the point faces the camera.

@@ -18,11 +18,13 @@ namespace {
 // A step rotates by at most this (radians): a step is a linearisation, trusted only nearby.
 constexpr double kMaxStepAngle = 0.25;
 
-FitThresholds thresholds(const FitGeometry& g, float tolerance, float gate) {
+FitThresholds thresholds(const FitGeometry& g, float tolerance, float gate,
+                         const RefineOptions& opt) {
   FitThresholds th;
   th.gate = gate;
   th.tolerance = tolerance;
   th.slack = zbuffer_slack(g, th.tolerance);
+  if (opt.near_gate) th.near_gate = bp_near_gate(gate, tolerance, opt.noise);
   return th;
 }
 
@@ -67,6 +69,8 @@ void check(const RefineOptions& o) {
     throw InputError(fmt::format("seen-area scale {} must be in [0, 10]", o.area_scale));
   if (bad(o.ray_band_ratio, 0, 1))
     throw InputError(fmt::format("ray test band {} must be in [0, 1]", o.ray_band_ratio));
+  if (bad(o.noise, 0, 1e6))
+    throw InputError(fmt::format("depth noise {} mm must be finite and not negative", o.noise));
   if (bad(o.min_support_ratio, 0, 1))
     throw InputError(fmt::format("verify min support {} must be in [0, 1]", o.min_support_ratio));
 }
@@ -111,7 +115,8 @@ std::vector<RefinedPose> refine_and_verify(const FitSumsFn& sums_of, const bp_ca
     index.clear();
     for (std::size_t k = 0; k < poses.size(); ++k) {
       if (!active[k]) continue;
-      fits.push_back(make_pose_fit(poses[k].R, poses[k].t, cam, g, thresholds(g, tolerance, gate)));
+      fits.push_back(
+          make_pose_fit(poses[k].R, poses[k].t, cam, g, thresholds(g, tolerance, gate, opt)));
       index.push_back(k);
     }
     if (fits.empty()) break;
@@ -139,7 +144,7 @@ std::vector<RefinedPose> refine_and_verify(const FitSumsFn& sums_of, const bp_ca
       memo->iterations[k] = out[k].iterations, memo->reasons[k] = out[k].reason;
   }
   const auto final_sums = [&](float tol, float gate, float outline, bool residuals) {
-    FitThresholds th = thresholds(g, tol, gate);
+    FitThresholds th = thresholds(g, tol, gate, opt);
     th.outline = outline;
     th.residuals = residuals;
     fits.clear();

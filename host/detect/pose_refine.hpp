@@ -74,6 +74,12 @@ struct RefineOptions {
   // Keep each pose's measured points (RefinedPose::measured) for the rival test
   // (rival_test.hpp); depth images only, whose measured points lie on the pixels' rays.
   bool keep_measured = false;
+  // Depth images: the near gate (pose_fit_shared.h, bp_near_gate) in the last ICP steps and the
+  // verification passes, from the image's depth noise (mm, depth_noise.hpp). A plate partly
+  // covered by another was pulled 1.9 degrees off by it and lost to its own flip
+  // (docs/pipeline.md, step 8).
+  bool near_gate = false;
+  float noise = 0;
 };
 void check(const RefineOptions& opt);
 

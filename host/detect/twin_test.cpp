@@ -91,6 +91,7 @@ void twin_test(const FitSumsFn& sums_of, const bp_camera& cam, const FitGeometry
     th.gate = th.tolerance = poses[k].tolerance;
     th.slack = zbuffer_slack(g, th.tolerance);
     th.residuals = true;
+    if (opt.near_gate) th.near_gate = bp_near_gate(th.gate, th.tolerance, opt.noise);
     fits.push_back(make_pose_fit(poses[k].R, poses[k].t, cam, g, th));
     index.push_back(k);
   }

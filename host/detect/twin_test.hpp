@@ -103,6 +103,8 @@ struct TwinTestOptions {
   float band_ratio = 0;          // twin test's dead band, fraction of the diameter; 0: no test
   float edge_scale = 0;          // edge test's scale, in tolerances (edge_test.hpp); 0: no test
   std::size_t min_probes = 10;   // fewer visible probes with depth: untested
+  bool near_gate = false;        // the probe pass's near gate (RefineOptions::near_gate)
+  float noise = 0;               // mm, the image's depth noise, for it
 };
 
 // One probe pass (sums: pose_fit_sums on fit points + probes, or the reference) for every pose
