@@ -286,7 +286,7 @@ class Detector {
   double program_build_s_ = 0;
   std::vector<Detection> skipped_;
   std::string region_report_;
-  double image_noise_ = 0;  // mm, the depth image's noise (depth_noise.hpp): the near gate's
+  double image_noise_ = 0;  // mm, the depth image's noise (depth_noise.hpp), for the near gate
   // The "no bin found" warning is printed once per Detector, and only for a bin of a given size:
   // `auto` (the default) is content to find none (DetectTimes counts the images it found one in).
   bool warned_no_bin_ = false;
