@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# binpick's entry point: ./run.sh demo | test [--sanitize] | bench | fuzz [SECONDS]
+# binpick's entry point: ./run.sh demo | test [--sanitize] | bench | fuzz [SECONDS | --runs N]
 # Each command installs the Debian packages it needs (only the missing ones), configures and
 # builds Release into build/, then does its job.
 set -euo pipefail
@@ -19,7 +19,7 @@ FUZZ_PACKAGES=(clang)  # libFuzzer and its sanitizers come with Debian's clang
 
 usage() {
   cat <<TXT
-usage: ./run.sh demo | test [--sanitize] | bench | fuzz [SECONDS]
+usage: ./run.sh demo | test [--sanitize] | bench | fuzz [SECONDS | --runs N]
   demo   build, then run 'binpick demo' (the whole loop on a built-in part)
   test   build, then run the test suite with ctest; --sanitize: build with AddressSanitizer
          and UndefinedBehaviorSanitizer into build-sanitize/ and run the suite there
@@ -28,7 +28,9 @@ usage: ./run.sh demo | test [--sanitize] | bench | fuzz [SECONDS]
          then bench/throughput.sh: build/bench/throughput.md
   fuzz   build the libFuzzer targets with clang into build-fuzz/ and run each for SECONDS
          (default 60) from its seed corpus fuzz/corpus/NAME, FUZZ_JOBS (default: the cores) at
-         a time; prints CPU seconds per target and in total; fails if any input crashes
+         a time; prints CPU seconds per target and in total; fails if any input crashes.
+         --runs N: each target replays its corpus and regressions, then tries N inputs mutated
+         from them with a fixed seed, from a fresh work directory (what CI runs)
 TXT
 }
 
@@ -100,8 +102,23 @@ case "$cmd" in
     echo "run.sh: report in build/bench/bench.md (and bench.json), build/bench/throughput.md; micro-benchmarks in build/bench/micro/"
     ;;
   fuzz)
-    seconds=${2:-60}
-    [[ "$seconds" =~ ^[1-9][0-9]*$ ]] || { echo "run.sh fuzz: SECONDS must be a positive integer" >&2; exit 2; }
+    # A time budget per target (SECONDS) or, with --runs N, a fixed number of mutated inputs
+    # after the corpus replay, from a fresh work directory and a fixed seed: the same inputs
+    # every time (CI).
+    limit=()
+    fresh=0
+    if [ "${2:-}" = "--runs" ]; then
+      runs=${3:-}
+      [[ "$runs" =~ ^[0-9]+$ ]] || { echo "run.sh fuzz: --runs needs a whole number" >&2; exit 2; }
+      limit=(-runs="$runs" -seed=1)
+      fresh=1
+      label="$runs runs"
+    else
+      seconds=${2:-60}
+      [[ "$seconds" =~ ^[1-9][0-9]*$ ]] || { echo "run.sh fuzz: SECONDS must be a positive integer" >&2; exit 2; }
+      limit=(-max_total_time="$seconds")
+      label="${seconds} s"
+    fi
     jobs=${FUZZ_JOBS:-$(nproc)}
     [[ "$jobs" =~ ^[1-9][0-9]*$ ]] || { echo "run.sh fuzz: FUZZ_JOBS must be a positive integer" >&2; exit 2; }
     install_packages "${BUILD_PACKAGES[@]}" "${FUZZ_PACKAGES[@]}"
@@ -117,19 +134,20 @@ case "$cmd" in
       local target=$1 name=${1#fuzz_}
       local work=build-fuzz/corpus-work/$name crashes=build-fuzz/crashes/$name
       local log=build-fuzz/logs/$name.log
+      [ "$fresh" = 1 ] && rm -rf "$work"
       mkdir -p "$work" "$crashes"
       local corpora=("$work" "fuzz/corpus/$name")  # new inputs go to work, not the repository
       [ -d "fuzz/regressions/$name" ] && corpora+=("fuzz/regressions/$name")
       # A leak, a hang (-timeout, seconds per input) or an allocation over 2 GB is a crash too.
       local TIMEFORMAT='%3U %3S'
-      { time { status=0; "build-fuzz/$target" -max_total_time="$seconds" \
+      { time { status=0; "build-fuzz/$target" "${limit[@]}" \
         -timeout=20 -rss_limit_mb=2048 -print_final_stats=1 -artifact_prefix="$crashes/" \
         "${corpora[@]}" >"$log" 2>&1 || status=$?; echo "$status" >"$log.status"; }; } 2>"$log.cpu"
     }
     # FUZZ_JOBS targets at a time (default: one per core).
     running=0
     for target in $targets; do
-      echo "== $target: ${seconds} s"
+      echo "== $target: $label"
       fuzz_one "$target" &
       running=$((running + 1))
       if [ "$running" -ge "$jobs" ]; then wait -n; running=$((running - 1)); fi

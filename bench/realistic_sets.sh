@@ -21,7 +21,9 @@
 # a cap screw, a flange, an angle bar, a stepped block). Run it after tuning on the main list, to
 # see whether a gain carries over; never tune on it. A third, `@tilted` (`--list-tilted`): nine
 # sets seen by a camera tilted 20-40 degrees, six in solid bins and three in baskets. A fourth,
-# `@far` (`--list-far`): three baskets seen through a wider lens, the ground all around them.
+# `@far` (`--list-far`): three baskets seen through a wider lens, the ground all around them. A
+# fifth, `@paper` (`--list-paper`): the paper's bins of every built-in part at noise 0, 2 and 5 %
+# (bench/same_detections.sh compares two tags of it row for row).
 # BINS=N (default 4) makes and runs N images a set instead: 4-image sets move by an image or two
 # under small perturbations, so a change whose gain is that size wants more. The sets are the
 # same bins, extended (each bin has its own seed): WORK/data/SET-bN holds them, so WORK/data/SET
@@ -69,6 +71,14 @@ FAR=(
   "bracket_basket_far|--model builtin:bracket --bins 4 --objects 60 --seed 502 --distractors builtin:plate,builtin:bolt --sensor-model structured-light --specular-cone 8 --dropout-share 0.5 --bin-mesh @basket_arm --width 2064 --height 1544 --camera-height 2200 --intrinsics 3200,3200,1031.5,771.5"
   "tee_basket_far_t35|--model builtin:tee --bins 4 --objects 60 --seed 503 --distractors builtin:plate,builtin:bolt --sensor-model structured-light --noise 0.02 --bin-mesh @basket --width 2064 --height 1544 --camera-height 2600 --camera-tilt 35 --intrinsics 2800,2800,1031.5,771.5"
 )
+# The paper's bins (unrendered bin, 350 parts, Gaussian noise) of every built-in part at noise 0,
+# 2 and 5 % of the diameter, two bins each: for checking that a change of form detects the same.
+PAPER=()
+for part in bracket bolt tee plate shaft; do
+  for noise in 0 0.02 0.05; do
+    PAPER+=("paper_${part}_n${noise#0.0}|--model builtin:$part --bins 2 --noise $noise --bin-render none --seed 601")
+  done
+done
 # Held out: parts and sets nobody tuned for (the same form).
 HELD_OUT=(
   "gearshaft_sl|--model @gearshaft --bins 4 --objects 60 --seed 201 --distractors builtin:bolt,builtin:plate --sensor-model structured-light --noise 0.02"
@@ -99,7 +109,11 @@ if [ "${1:-}" = "--list-far" ]; then
   for s in "${FAR[@]}"; do echo "${s%%|*}"; done
   exit 0
 fi
-usage="usage: bench/realistic_sets.sh BINPICK WORK TAG [SET...|@held-out|@tilted|@far] | --list | --list-held-out | --list-tilted | --list-far"
+if [ "${1:-}" = "--list-paper" ]; then
+  for s in "${PAPER[@]}"; do echo "${s%%|*}"; done
+  exit 0
+fi
+usage="usage: bench/realistic_sets.sh BINPICK WORK TAG [SET...|@held-out|@tilted|@far|@paper] | --list | --list-held-out | --list-tilted | --list-far | --list-paper"
 BINPICK=$(readlink -f "${1:?$usage}")
 WORK=${2:?$usage}
 TAG=${3:?$usage}
@@ -116,6 +130,8 @@ for w in "$@"; do
     for s in "${TILTED[@]}"; do wanted+=("${s%%|*}"); done
   elif [ "$w" = "@far" ]; then
     for s in "${FAR[@]}"; do wanted+=("${s%%|*}"); done
+  elif [ "$w" = "@paper" ]; then
+    for s in "${PAPER[@]}"; do wanted+=("${s%%|*}"); done
   else
     wanted+=("$w")
   fi
@@ -144,7 +160,7 @@ asset() {
 
 options_of() {
   local s
-  for s in "${SETS[@]}" "${HELD_OUT[@]}" "${TILTED[@]}" "${FAR[@]}"; do
+  for s in "${SETS[@]}" "${HELD_OUT[@]}" "${TILTED[@]}" "${FAR[@]}" "${PAPER[@]}"; do
     if [ "${s%%|*}" = "$1" ]; then
       local word file out=()
       for word in ${s#*|}; do

@@ -4,7 +4,6 @@
 #include <unistd.h>
 
 #include <filesystem>
-#include <fstream>
 #include <string>
 
 #include "host/core/error.hpp"
@@ -23,8 +22,8 @@ namespace {
 
 namespace fs = std::filesystem;
 
-// A directory of this process: the file for readers that only take a path, and the (empty)
-// directory where glTF buffers and OBJ materials named by an input are looked up.
+// The (empty) directory of this process where glTF buffers and OBJ materials named by an input
+// are looked up; every other reader takes the bytes themselves.
 class Scratch {
  public:
   Scratch()
@@ -41,20 +40,9 @@ class Scratch {
   fs::path dir_;
 };
 
-const Scratch& scratch() {
-  static const Scratch instance;
-  return instance;
-}
-
-fs::path empty_dir() { return scratch().dir() / "empty"; }
-
-// Writes bytes to the scratch file `name` and returns its path.
-fs::path as_file(std::string_view bytes, const char* name) {
-  const fs::path path = scratch().dir() / name;
-  std::ofstream out(path, std::ios::binary | std::ios::trunc);
-  out.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
-  if (!out) throw std::runtime_error("fuzz: cannot write " + path.string());
-  return path;
+fs::path empty_dir() {
+  static const Scratch scratch;
+  return scratch.dir() / "empty";
 }
 
 void parse_mesh(std::string_view bytes, std::string_view format) {
@@ -70,13 +58,13 @@ void parse_gltf(std::string_view bytes) { parse_mesh(bytes, "gltf"); }
 
 void parse_ppfm(std::string_view bytes) { parse_ppf_model(bytes, "fuzz.ppfm"); }
 
-void parse_camera(std::string_view bytes) { bop::read_camera(as_file(bytes, "camera.json")); }
+void parse_camera(std::string_view bytes) { bop::parse_camera(bytes, "camera.json"); }
 void parse_scene_camera(std::string_view bytes) {
-  bop::read_scene_cameras(as_file(bytes, "scene_camera.json"));
+  bop::parse_scene_cameras(bytes, "scene_camera.json");
 }
-void parse_scene_gt(std::string_view bytes) { bop::read_scene_gt(as_file(bytes, "scene_gt.json")); }
+void parse_scene_gt(std::string_view bytes) { bop::parse_scene_gt(bytes, "scene_gt.json"); }
 void parse_scene_gt_info(std::string_view bytes) {
-  bop::read_scene_gt_info(as_file(bytes, "scene_gt_info.json"));
+  bop::parse_scene_gt_info(bytes, "scene_gt_info.json");
 }
 void parse_models_info(std::string_view bytes) {
   bop::parse_models_info(std::string(bytes), "models_info.json");
@@ -85,15 +73,14 @@ void parse_models_info(std::string_view bytes) {
 // Depth images are read as 16-bit, intensity images and masks as 8-bit: both readers see every
 // input, and it parses if either accepts it.
 void parse_png(std::string_view bytes) {
-  const fs::path path = as_file(bytes, "image.png");
   bool parsed = false;
   try {
-    read_png16(path);
+    decode_png16(bytes, "image.png");
     parsed = true;
   } catch (const InputError&) {
   }
   try {
-    read_png8(path);
+    decode_png8(bytes, "image.png");
   } catch (const InputError&) {
     if (!parsed) throw;
   }
@@ -106,7 +93,7 @@ void parse_results_csv(std::string_view bytes) {
 // The file as `detect --params` reads it, with the --roi and --bin texts it may hold.
 void parse_params(std::string_view bytes) {
   DetectParams params;
-  apply_params_file(as_file(bytes, "params.json"), params);
+  apply_params_text(bytes, "params.json", params);
   parse_roi(params.roi);
   parse_bin(params.bin);
 }

@@ -6,7 +6,7 @@
 #include <cstdint>
 #include <string>
 
-#include "host/app/cli_fwd.hpp"
+#include "host/core/cli_fwd.hpp"
 
 namespace binpick::cli {
 

@@ -7,7 +7,7 @@
 #include <map>
 #include <string>
 
-#include "host/app/cli_fwd.hpp"
+#include "host/core/cli_fwd.hpp"
 
 #include "host/detect/detector.hpp"
 

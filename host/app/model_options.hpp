@@ -3,7 +3,7 @@
 // argument is resolved: a file goes to the mesh loader, builtin:NAME to the built-in parts.
 #pragma once
 
-#include "host/app/cli_fwd.hpp"
+#include "host/core/cli_fwd.hpp"
 #include <optional>
 #include <string>
 

@@ -5,7 +5,7 @@
 
 #include <string>
 
-#include "host/app/cli_fwd.hpp"
+#include "host/core/cli_fwd.hpp"
 
 #include "synth/synthesize.hpp"
 

@@ -6,7 +6,7 @@
 
 #include <string>
 
-#include "host/app/cli_fwd.hpp"
+#include "host/core/cli_fwd.hpp"
 
 #include "host/shards/shard.hpp"
 #include "host/shards/slurm_script.hpp"

@@ -5,7 +5,7 @@
 #include <cstdint>
 #include <string>
 
-#include "host/app/cli_fwd.hpp"
+#include "host/core/cli_fwd.hpp"
 
 #include "host/train/ppf_model.hpp"
 

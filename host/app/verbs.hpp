@@ -3,7 +3,7 @@
 // (binpick::InputError for bad input) and turned into one message and an exit status in main.
 #pragma once
 
-#include "host/app/cli_fwd.hpp"
+#include "host/core/cli_fwd.hpp"
 
 namespace binpick::cli {
 

@@ -103,15 +103,19 @@ const std::set<std::string>& detect_param_names() {
 
 void apply_params_file(const std::filesystem::path& path, DetectParams& params,
                        const std::set<std::string>& keep) {
-  const std::string text = read_file_bytes(path);
+  apply_params_text(read_file_bytes(path), path.string(), params, keep);
+}
+
+void apply_params_text(std::string_view text, const std::string& name, DetectParams& params,
+                       const std::set<std::string>& keep) {
   Json json;
   try {
     json = Json::parse(text);
   } catch (const Json::exception& e) {
-    throw InputError("parameter file " + path.string() + " is not valid JSON: " + e.what());
+    throw InputError("parameter file " + name + " is not valid JSON: " + e.what());
   }
   if (!json.is_object())
-    throw InputError("parameter file " + path.string() + " must hold a JSON object");
+    throw InputError("parameter file " + name + " must hold a JSON object");
   for (const auto& [raw_key, value] : json.items()) {
     std::string key = raw_key;
     std::replace(key.begin(), key.end(), '_', '-');
@@ -119,11 +123,11 @@ void apply_params_file(const std::filesystem::path& path, DetectParams& params,
     if (it == fields().end()) {
       std::string known;
       for (const auto& name : detect_param_names()) known += (known.empty() ? "" : ", ") + name;
-      throw InputError("parameter file " + path.string() + ": unknown parameter '" + raw_key +
+      throw InputError("parameter file " + name + ": unknown parameter '" + raw_key +
                        "' (known: " + known + ")");
     }
     if (keep.count(key)) continue;
-    it->second.set(params, value, "parameter file " + path.string() + ": '" + raw_key + "'");
+    it->second.set(params, value, "parameter file " + name + ": '" + raw_key + "'");
   }
 }
 

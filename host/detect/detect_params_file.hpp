@@ -11,6 +11,7 @@
 #include <filesystem>
 #include <set>
 #include <string>
+#include <string_view>
 
 #include "host/detect/detector.hpp"
 
@@ -23,6 +24,9 @@ const std::set<std::string>& detect_param_names();
 // line). InputError naming the file for bad JSON, a key that is not a parameter, or a value of
 // the wrong type (range checks are check(DetectParams)).
 void apply_params_file(const std::filesystem::path& path, DetectParams& params,
+                       const std::set<std::string>& keep = {});
+// The same for the file's text held in memory; name is what errors call the file.
+void apply_params_text(std::string_view text, const std::string& name, DetectParams& params,
                        const std::set<std::string>& keep = {});
 
 // The same JSON object for params (keys sorted, one line): also the fingerprint of a batch run.

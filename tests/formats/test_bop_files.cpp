@@ -8,6 +8,7 @@
 #include "host/formats/bop/bop_files.hpp"
 #include "host/formats/bop/png_image.hpp"
 #include "host/core/error.hpp"
+#include "host/core/read_file.hpp"
 
 using namespace binpick;
 namespace fs = std::filesystem;
@@ -122,4 +123,26 @@ TEST(BopFiles, MalformedFilesNameTheFileAndTheEntry) {
   write_text(d / "f.json", "{\"0\": [{\"obj_id\": 1, \"cam_R_m2c\": [1,0,0,0,1,0,0,0,1], \"cam_t_m2c\": [0,null,0]}]}");
   EXPECT_THROW(bop::read_scene_gt(d / "f.json"), InputError);
   EXPECT_THROW(bop::read_camera(d / "missing.json"), InputError);
+}
+
+// The readers of bytes in memory (what the fuzzers call) give what the file readers give, and
+// their errors start with the name they are handed.
+TEST(BopFiles, TextInMemoryReadsAsTheFileDoes) {
+  const fs::path d = fresh_dir("memory");
+  bop::write_camera(d / "camera.json", bop::Camera{1500.5, 1501.5, 799.5, 449.5, 1600, 900, 0.1});
+  const std::string text = read_file_bytes(d / "camera.json");
+  const bop::Camera a = bop::read_camera(d / "camera.json"), b = bop::parse_camera(text, "cam");
+  EXPECT_EQ(a.fy, b.fy);
+  EXPECT_EQ(a.height, b.height);
+  EXPECT_EQ(message_of([] { bop::parse_scene_gt("{\"0\": [", "in memory"); }).rfind("in memory", 0),
+            0u);
+  EXPECT_EQ(message_of([] { bop::parse_scene_cameras("[]", "sc"); }).rfind("sc: ", 0), 0u);
+  EXPECT_EQ(message_of([] { bop::parse_scene_gt_info("{\"0\": 1}", "info"); }).rfind("info: ", 0),
+            0u);
+
+  GrayImage<std::uint16_t> depth{3, 2, {0, 1, 2, 65535, 4, 5}};
+  write_png(d / "depth.png", depth);
+  const auto decoded = decode_png16(read_file_bytes(d / "depth.png"), "depth");
+  EXPECT_EQ(decoded.pixels, depth.pixels);
+  EXPECT_EQ(message_of([] { decode_png8("not a png", "mask"); }), "mask is not a PNG file");
 }

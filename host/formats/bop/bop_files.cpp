@@ -20,20 +20,19 @@ void write_json(const std::filesystem::path& path, const json& j) {
   write_file_atomically(path, [&](std::ostream& out) { out << j.dump(1) << "\n"; });
 }
 
-json read_json(const std::filesystem::path& path) {
-  const std::string text = read_file_bytes(path);
+json parse_json(std::string_view text, const std::string& name) {
   try {
     return json::parse(text);
   } catch (const json::exception& e) {
-    throw InputError(path.string() + " is not valid JSON: " + e.what());
+    throw InputError(name + " is not valid JSON: " + e.what());
   }
 }
 
 // Reading goes through Reader so that every error names the file and the entry.
 struct Reader {
-  const std::filesystem::path& path;
+  const std::string& name;
   [[noreturn]] void fail(const std::string& where, const std::string& what) const {
-    throw InputError(path.string() + ": " + where + ": " + what);
+    throw InputError(name + ": " + where + ": " + what);
   }
   const json& member(const json& j, const char* key, const std::string& where) const {
     if (!j.is_object() || !j.contains(key)) fail(where, std::string("missing \"") + key + "\"");
@@ -121,8 +120,12 @@ void write_camera(const std::filesystem::path& path, const Camera& c) {
 }
 
 Camera read_camera(const std::filesystem::path& path) {
-  const json j = read_json(path);
-  Reader r{path};
+  return parse_camera(read_file_bytes(path), path.string());
+}
+
+Camera parse_camera(std::string_view text, const std::string& name) {
+  const json j = parse_json(text, name);
+  Reader r{name};
   Camera c{r.number(j, "fx", "camera"), r.number(j, "fy", "camera"), r.number(j, "cx", "camera"),
            r.number(j, "cy", "camera"),
            std::uint32_t(r.integer(j, "width", "camera", 0, kMaxU32)),
@@ -143,8 +146,12 @@ void write_scene_cameras(const std::filesystem::path& path, const SceneCameras& 
 }
 
 SceneCameras read_scene_cameras(const std::filesystem::path& path) {
-  const json root = read_json(path);
-  Reader r{path};
+  return parse_scene_cameras(read_file_bytes(path), path.string());
+}
+
+SceneCameras parse_scene_cameras(std::string_view text, const std::string& name) {
+  const json root = parse_json(text, name);
+  Reader r{name};
   SceneCameras out;
   r.for_each_image(root, [&](int id, const json& j, const std::string& where) {
     SceneCamera c;
@@ -171,8 +178,12 @@ void write_scene_gt(const std::filesystem::path& path, const SceneGroundTruth& g
 }
 
 SceneGroundTruth read_scene_gt(const std::filesystem::path& path) {
-  const json root = read_json(path);
-  Reader r{path};
+  return parse_scene_gt(read_file_bytes(path), path.string());
+}
+
+SceneGroundTruth parse_scene_gt(std::string_view text, const std::string& name) {
+  const json root = parse_json(text, name);
+  Reader r{name};
   SceneGroundTruth out;
   r.for_each_image(root, [&](int id, const json& list, const std::string& where) {
     if (!list.is_array()) r.fail(where, "expected an array of object instances");
@@ -200,8 +211,12 @@ void write_scene_gt_info(const std::filesystem::path& path, const SceneGroundTru
 }
 
 SceneGroundTruthInfo read_scene_gt_info(const std::filesystem::path& path) {
-  const json root = read_json(path);
-  Reader r{path};
+  return parse_scene_gt_info(read_file_bytes(path), path.string());
+}
+
+SceneGroundTruthInfo parse_scene_gt_info(std::string_view text, const std::string& name) {
+  const json root = parse_json(text, name);
+  Reader r{name};
   SceneGroundTruthInfo out;
   r.for_each_image(root, [&](int id, const json& list, const std::string& where) {
     if (!list.is_array()) r.fail(where, "expected an array of object instances");

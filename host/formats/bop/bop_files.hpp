@@ -1,11 +1,15 @@
 // The JSON files of a BOP dataset (bop.felk.cvut.cz; docs/formats.md): camera.json,
 // scene_camera.json, scene_gt.json, scene_gt_info.json. Millimetres; rotations row-major.
-// Readers validate what they read and name the file and the entry in their InputErrors.
+// Readers validate what they read and name the file and the entry in their InputErrors. Each
+// read_X(path) is parse_X(the file's bytes, path): parse_X takes the text in memory, and name
+// is what its errors start with.
 #pragma once
 
 #include <array>
 #include <filesystem>
 #include <map>
+#include <string>
+#include <string_view>
 #include <vector>
 
 #include <Eigen/Core>
@@ -50,14 +54,18 @@ using SceneGroundTruthInfo = std::map<int, std::vector<GroundTruthInfo>>;
 
 void write_camera(const std::filesystem::path& path, const Camera& camera);
 Camera read_camera(const std::filesystem::path& path);
+Camera parse_camera(std::string_view text, const std::string& name);
 
 void write_scene_cameras(const std::filesystem::path& path, const SceneCameras& cameras);
 SceneCameras read_scene_cameras(const std::filesystem::path& path);
+SceneCameras parse_scene_cameras(std::string_view text, const std::string& name);
 
 void write_scene_gt(const std::filesystem::path& path, const SceneGroundTruth& gt);
 SceneGroundTruth read_scene_gt(const std::filesystem::path& path);
+SceneGroundTruth parse_scene_gt(std::string_view text, const std::string& name);
 
 void write_scene_gt_info(const std::filesystem::path& path, const SceneGroundTruthInfo& info);
 SceneGroundTruthInfo read_scene_gt_info(const std::filesystem::path& path);
+SceneGroundTruthInfo parse_scene_gt_info(std::string_view text, const std::string& name);
 
 }  // namespace binpick::bop

@@ -61,24 +61,23 @@ void write_gray(const std::filesystem::path& path, const GrayImage<T>& image) {
 }
 
 struct MemoryReader {
-  const std::string* bytes;
+  std::string_view bytes;
   std::size_t offset = 0;
 };
 
 template <class T>
-GrayImage<T> read_gray(const std::filesystem::path& path) {
-  const std::string bytes = read_file_bytes(path);
+GrayImage<T> decode_gray(std::string_view bytes, const std::string& name) {
   if (bytes.size() < 8 || png_sig_cmp(reinterpret_cast<png_const_bytep>(bytes.data()), 0, 8))
-    throw InputError(path.string() + " is not a PNG file");
+    throw InputError(name + " is not a PNG file");
   png_structp png = png_create_read_struct(PNG_LIBPNG_VER_STRING, nullptr, on_png_error, on_png_warning);
   png_infop info = png_create_info_struct(png);
-  MemoryReader reader{&bytes};
+  MemoryReader reader{bytes};
   GrayImage<T> image;
   try {
     png_set_read_fn(png, &reader, [](png_structp p, png_bytep data, png_size_t n) {
       auto* r = static_cast<MemoryReader*>(png_get_io_ptr(p));
-      if (r->offset + n > r->bytes->size()) throw std::runtime_error("the file is truncated");
-      std::memcpy(data, r->bytes->data() + r->offset, n);
+      if (r->offset + n > r->bytes.size()) throw std::runtime_error("the file is truncated");
+      std::memcpy(data, r->bytes.data() + r->offset, n);
       r->offset += n;
     });
     png_read_info(png, info);
@@ -111,7 +110,7 @@ GrayImage<T> read_gray(const std::filesystem::path& path) {
     png_read_end(png, nullptr);
   } catch (const std::runtime_error& e) {
     png_destroy_read_struct(&png, &info, nullptr);
-    throw InputError("cannot read " + path.string() + ": " + e.what());
+    throw InputError("cannot read " + name + ": " + e.what());
   }
   png_destroy_read_struct(&png, &info, nullptr);
   return image;
@@ -129,10 +128,16 @@ void write_png(const std::filesystem::path& path, const RgbImage& image) {
   write_samples(path, image.width, image.height, 3, image.pixels);
 }
 GrayImage<std::uint16_t> read_png16(const std::filesystem::path& path) {
-  return read_gray<std::uint16_t>(path);
+  return decode_gray<std::uint16_t>(read_file_bytes(path), path.string());
 }
 GrayImage<std::uint8_t> read_png8(const std::filesystem::path& path) {
-  return read_gray<std::uint8_t>(path);
+  return decode_gray<std::uint8_t>(read_file_bytes(path), path.string());
+}
+GrayImage<std::uint16_t> decode_png16(std::string_view bytes, const std::string& name) {
+  return decode_gray<std::uint16_t>(bytes, name);
+}
+GrayImage<std::uint8_t> decode_png8(std::string_view bytes, const std::string& name) {
+  return decode_gray<std::uint8_t>(bytes, name);
 }
 
 }  // namespace binpick

@@ -3,6 +3,8 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <string>
+#include <string_view>
 #include <vector>
 
 namespace binpick {
@@ -29,5 +31,9 @@ void write_png(const std::filesystem::path& path, const RgbImage& image);
 // of another bit depth or colour type, is an InputError naming the file.
 GrayImage<std::uint16_t> read_png16(const std::filesystem::path& path);
 GrayImage<std::uint8_t> read_png8(const std::filesystem::path& path);
+
+// The same for a PNG file held in memory; name is what errors call it.
+GrayImage<std::uint16_t> decode_png16(std::string_view bytes, const std::string& name);
+GrayImage<std::uint8_t> decode_png8(std::string_view bytes, const std::string& name);
 
 }  // namespace binpick

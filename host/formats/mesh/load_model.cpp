@@ -14,6 +14,7 @@
 #include "host/core/mesh_geometry.hpp"
 #include "host/core/mesh_normals.hpp"
 #include "host/core/mesh_orientation.hpp"
+#include "host/formats/mesh/announced_triangles.hpp"
 #include "host/formats/mesh/mesh_readers.hpp"
 #include "host/core/mesh_topology.hpp"
 
@@ -42,6 +43,11 @@ Mesh read_model(std::string_view bytes, std::string_view format, const ModelOpti
   const bool gltf = kind == "gltf" || kind == "glb";
   if (!options.mesh_name.empty() && !gltf)
     throw InputError("--mesh selects a node of a glTF file; this is a ." + kind + " file");
+  if (const auto triangles = announced_triangles(bytes, kind); triangles > kMaxModelTriangles)
+    throw InputError(fmt::format(
+        "the model has {} triangles, more than binpick reads ({}): decimate it first (training "
+        "samples a few thousand points of its surface, so little detail is lost)",
+        triangles, kMaxModelTriangles));
   if (kind == "ply") return read_ply(bytes);
   if (kind == "stl") return read_stl(bytes);
   if (kind == "obj") return read_obj(bytes, directory);
