@@ -1,6 +1,6 @@
 #include "bench/lib/pair_counts.hpp"
 
-#include "host/detect/ppf_vote.hpp"
+#include "host/detect/vote/ppf_vote.hpp"
 
 namespace binpick::bench {
 

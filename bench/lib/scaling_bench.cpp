@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "host/detect/ppf_vote.hpp"
+#include "host/detect/vote/ppf_vote.hpp"
 
 namespace binpick::bench {
 namespace {

@@ -8,7 +8,7 @@
 #include "bench/lib/pair_counts.hpp"
 #include "host/formats/bop/bop_files.hpp"
 #include "host/formats/bop/png_image.hpp"
-#include "host/detect/detect_batch.hpp"
+#include "host/detect/batch/detect_batch.hpp"
 #include "host/eval/metrics/evaluate.hpp"
 
 namespace binpick::bench {

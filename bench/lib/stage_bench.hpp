@@ -12,7 +12,7 @@
 #include "host/formats/bop/results_csv.hpp"
 #include "host/detect/detector.hpp"
 #include "host/eval/metrics/eval_dataset.hpp"
-#include "host/detect/depth_to_points.hpp"
+#include "host/detect/scene/depth_to_points.hpp"
 
 namespace binpick::bench {
 

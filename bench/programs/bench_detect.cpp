@@ -17,7 +17,7 @@
 
 #include "host/formats/bop/bop_files.hpp"
 #include "host/formats/bop/png_image.hpp"
-#include "host/detect/detect_batch.hpp"
+#include "host/detect/batch/detect_batch.hpp"
 #include "host/detect/detector.hpp"
 #include "host/app/model_options.hpp"
 #include "host/formats/mesh/load_model.hpp"

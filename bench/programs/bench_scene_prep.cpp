@@ -11,9 +11,9 @@
 #include <random>
 
 
-#include "host/detect/hypotheses.hpp"
-#include "host/detect/scene_crop.hpp"
-#include "host/detect/scene_prepare.hpp"
+#include "host/detect/hypotheses/hypotheses.hpp"
+#include "host/detect/scene/scene_crop.hpp"
+#include "host/detect/scene/scene_prepare.hpp"
 #include "bench/programs/bench_common.hpp"
 
 using namespace binpick;

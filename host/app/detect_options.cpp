@@ -6,7 +6,7 @@
 #include <fmt/format.h>
 
 #include "host/core/error.hpp"
-#include "host/detect/detect_params_file.hpp"
+#include "host/detect/batch/detect_params_file.hpp"
 #include "host/detect/detector.hpp"
 
 namespace binpick::cli {

@@ -12,7 +12,7 @@
 
 #include "host/app/verbs.hpp"
 #include "host/core/error.hpp"
-#include "host/detect/detect_parts.hpp"
+#include "host/detect/batch/detect_parts.hpp"
 #include "host/shards/shard_record.hpp"
 #include "synth/synth_shards.hpp"
 

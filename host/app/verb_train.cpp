@@ -26,7 +26,7 @@
 namespace binpick::cli {
 namespace {
 
-// "none", or the look-alike poses and the probes that tell them apart (twin_test.hpp).
+// "none", or the look-alike poses and the probes that tell them apart (lookalike_holes.hpp).
 std::string describe_look_alikes(const PpfModel& m) {
   if (m.near_symmetries.empty()) return "none";
   std::vector<std::size_t> per(m.near_symmetries.size(), 0);

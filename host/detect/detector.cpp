@@ -1,12 +1,12 @@
 #include "host/detect/detector.hpp"
-#include "host/detect/floor_check.hpp"
-#include "host/detect/area_test.hpp"
-#include "host/detect/flat_region.hpp"
-#include "host/detect/bin_fit.hpp"
-#include "host/detect/instance_select.hpp"
-#include "host/detect/lookalike_share.hpp"
-#include "host/detect/outline_test.hpp"
-#include "host/detect/scene_lowpass.hpp"
+#include "host/detect/verify/below_floor.hpp"
+#include "host/detect/verify/seen_area.hpp"
+#include "host/detect/hypotheses/flat_region.hpp"
+#include "host/detect/bin/bin_fit.hpp"
+#include "host/detect/select/instance_select.hpp"
+#include "host/detect/verify/lookalike_share.hpp"
+#include "host/detect/verify/outline.hpp"
+#include "host/detect/scene/scene_lowpass.hpp"
 #include "host/train/edge_probes.hpp"
 #include "host/train/probe_surface.hpp"
 
@@ -21,20 +21,20 @@
 #include <fmt/format.h>
 
 #include "host/core/error.hpp"
-#include "host/detect/bin_region.hpp"
-#include "host/detect/bin_spec.hpp"
-#include "host/detect/cloud_image.hpp"
-#include "host/detect/depth_noise.hpp"
-#include "host/detect/image_memory.hpp"
-#include "host/detect/ppf_pose.hpp"
-#include "host/detect/pose_refine.hpp"
-#include "host/detect/rival_test.hpp"
-#include "host/detect/scene_cloud.hpp"
-#include "host/detect/scene_crop.hpp"
-#include "host/detect/scene_neighbourhood.hpp"
-#include "host/detect/scene_prepare.hpp"
+#include "host/detect/bin/bin_region.hpp"
+#include "host/detect/bin/bin_spec.hpp"
+#include "host/detect/scene/cloud_image.hpp"
+#include "host/detect/scene/depth_noise.hpp"
+#include "host/detect/scene/image_memory.hpp"
+#include "host/detect/vote/ppf_pose.hpp"
+#include "host/detect/refine/pose_refine.hpp"
+#include "host/detect/verify/rival.hpp"
+#include "host/detect/hypotheses/scene_cloud.hpp"
+#include "host/detect/scene/scene_crop.hpp"
+#include "host/detect/scene/scene_neighbourhood.hpp"
+#include "host/detect/scene/scene_prepare.hpp"
 #include "host/detect/shared_scene.hpp"
-#include "host/detect/plane_search.hpp"
+#include "host/detect/refine/plane_search.hpp"
 #include "host/train/ppf_bucket_cap.hpp"
 #include "host/train/voxel_subsample.hpp"
 
@@ -102,7 +102,7 @@ FlatRegionOptions flat_options(const PpfModel& model, double noise, int* step) {
 
 std::string Detector::flat_skip_reason(const PointCloud& sample, const Hypothesis& h,
                                        double noise, double voxel_factor) const {
-  // Not for thin parts (sheets; outline_test.hpp): sheets stacked flat join their neighbours'
+  // Not for thin parts (sheets; outline.hpp): sheets stacked flat join their neighbours'
   // faces within the tolerance, and a sheet's face is its widest flat region, so the test
   // skipped right hypotheses (measured: 350-plate paper bins at 2 % noise lost 11 of 40).
   if (params_.flat_region <= 0 || outline_ratio_ == 0 || sample.points.empty()) return {};

@@ -16,17 +16,18 @@
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 
-#include "host/detect/hypotheses.hpp"
-#include "host/detect/ppf_vote.hpp"
-#include "host/detect/pose_cluster.hpp"
-#include "host/detect/plane_search.hpp"
-#include "host/detect/pose_fit.hpp"
-#include "host/detect/pose_refine.hpp"
-#include "host/detect/twin_test.hpp"
+#include "host/detect/hypotheses/hypotheses.hpp"
+#include "host/detect/select/detection.hpp"
+#include "host/detect/vote/ppf_vote.hpp"
+#include "host/detect/cluster/pose_cluster.hpp"
+#include "host/detect/refine/plane_search.hpp"
+#include "host/detect/refine/pose_fit.hpp"
+#include "host/detect/refine/pose_refine.hpp"
+#include "host/detect/verify/lookalike_holes.hpp"
 #include "host/core/timing.hpp"
 #include "host/core/mesh.hpp"
 #include "host/train/ppf_model.hpp"
-#include "host/detect/depth_to_points.hpp"
+#include "host/detect/scene/depth_to_points.hpp"
 
 namespace binpick {
 
@@ -89,7 +90,7 @@ struct DetectParams {
   double verify_tolerance = 0.04;  // depth agreement of a verified model point (fraction)
   double verify_noise_factor = 3.5;  // tolerance widens to this x the noise seen (0: fixed)
   double verify_patch = 0.2;       // patch test's cell side (fraction; 0: no patch test)
-  // Ray test's dead band (fraction; 0: off, ray_test.hpp): a spread along the rays wider than
+  // Ray test's dead band (fraction; 0: off, ray_spread.hpp): a spread along the rays wider than
   // the image's best pose's by more than this costs score. 0.01 d, the patch test's dead band
   // (a right pose's leftover error); measured in docs/pipeline.md, step 9.
   double verify_ray = 0.01;
@@ -97,20 +98,20 @@ struct DetectParams {
   // past the part counts against the pose as much as this many agreeing points count for it;
   // measured in docs/pipeline.md, step 9.
   double verify_through = 1.0;
-  // Twin test's dead band (fraction; 0: off, twin_test.hpp): a pose whose surface the sensor
+  // Twin test's dead band (fraction; 0: off, lookalike_holes.hpp): a pose whose surface the sensor
   // sees through where a look-alike of it has a hole, by more than this on average, costs
   // score. Measured in docs/pipeline.md, step 9.
   double verify_twin = 0.005;
-  // Edge test's scale (0: off; twin_test.hpp, edge_test.hpp), for thin parts only: the score is
+  // Edge test's scale (0: off; lookalike_holes.hpp, edge_step.hpp), for thin parts only: the score is
   // multiplied by the depth the sensor sees the part's edges step down by (an upper bound) over
   // this many verification tolerances, at most 1. Measured in docs/pipeline.md, step 9.
   double verify_edge = 1.0;
-  // Seen-area test's scale (0: off; area_test.hpp): the score is multiplied by the area the
+  // Seen-area test's scale (0: off; seen_area.hpp): the score is multiplied by the area the
   // pose shows the sensor over this many times the part's mean projected area, at most 1.
   // Off by default: measured in docs/pipeline.md, step 9, it costs as many right poses seen
   // obliquely as it gains where steep wrong poses (a robot arm's side face) win.
   double verify_area = 0.0;
-  // Rival test's significance (standard errors; 0: off; rival_test.hpp): a pose that fits the
+  // Rival test's significance (standard errors; 0: off; rival.hpp): a pose that fits the
   // measured points it shares with another pose worse by more than this cannot outrank it.
   // Measured in docs/pipeline.md, step 9.
   double verify_rival = 2.0;
@@ -149,50 +150,6 @@ std::size_t hypotheses_sought(const DetectParams& params);
 std::string describe(const ParamProblem& problem);
 // InputError naming the parameter ("detection parameter ref-ratio ...") for a value out of range.
 void check(const DetectParams& params);
-
-// The pose found around one hypothesis (model to camera, mm).
-struct Detection {
-  Hypothesis hypothesis;
-  std::uint32_t index = 0;          // the hypothesis' rank by height (0 = highest)
-  Eigen::Matrix3d R = Eigen::Matrix3d::Identity();
-  Eigen::Vector3d t = Eigen::Vector3d::Zero();
-  double score = 0;                 // verified score in [0, 1] (pose_refine.hpp): the ranking
-  std::uint64_t votes = 0;          // of the pose's cluster
-  std::uint32_t candidate = 0;      // which of the hypothesis' clusters (0 = most voted)
-  std::uint32_t twin = 0;           // 0: the cluster's pose; k: its k-th near-symmetric copy
-                                    // (near_symmetry.hpp)
-  std::uint32_t visible = 0, inliers = 0;  // model points seen at the pose, and agreeing
-  // Outline cells where the measured surface runs on past the part's edge, and where it steps
-  // down (both 0 without the outline test: pose_fit_shared.h).
-  std::uint32_t outline_continue = 0, outline_step = 0;
-  // Model patches tested and found biased by the patch test (patch_test.hpp; 0 without it).
-  std::uint32_t patches_tested = 0, patches_biased = 0;
-  // The ray test's excess RMS along the rays beyond the image's noise (mm; ray_test.hpp), if run.
-  bool ray_tested = false;
-  double ray_excess = 0;
-  // The twin test's largest mean depth excess at a look-alike's probes (mm; twin_test.hpp).
-  bool twin_tested = false;
-  double twin_excess = 0;
-  // The edge test's step down at the part's edges (mm, an upper bound; edge_test.hpp), if run.
-  bool edge_tested = false;
-  double edge_step = 0;
-  // The seen-area test's share: the area the pose shows over the part's mean (area_test.hpp).
-  bool area_tested = false;
-  double area_share = 0;
-  // The rival test (rival_test.hpp): out-fitted by another pose on this many shared measured
-  // points, its mean clipped squared residual there against the rival's (mm^2).
-  bool rival_out_fitted = false;
-  std::uint32_t rival_shared = 0;
-  double own_ms = 0, rival_ms = 0;
-  double lookalike_score = 0;  // its best look-alike's score (lookalike_share.hpp); 0 if none
-  double fit_score = 0;  // its score before the look-alike share
-  std::uint32_t see_through = 0;    // visible model points the sensor sees past
-  std::string reason;               // why the score is 0 or refinement stopped early, or why the
-                                    // hypothesis was skipped (Detector::skipped)
-  // neighbourhood: points in the crop (from a depth image: pixels with data, whether or not
-  // they have a normal, since normals are computed only for the points subsampling keeps).
-  std::size_t neighbourhood = 0, subsampled = 0, refs = 0, peaks = 0, clusters = 0;
-};
 
 // Time per stage over the work done (ms), for the summary line and the benchmark.
 struct DetectTimes {
@@ -261,10 +218,10 @@ class Detector {
                                             DetectTimes& t);
   // Refines and verifies every hypothesis' candidates against a point image on the device
   // (one batch for all), keeps each hypothesis' best and ranks them. With a bin found, a pose
-  // that sinks the part into its floor scores 0 (floor_check.hpp). sensor: the points are a
+  // that sinks the part into its floor scores 0 (below_floor.hpp). sensor: the points are a
   // sensor's depth image. Not for a cloud seen through a virtual camera (scene_cloud.hpp),
   // whose empty pixels are only gaps between points and whose depths are the nearest point's
-  // in a pixel, not the surface along the ray: the twin test (twin_test.hpp), which weighs
+  // in a pixel, not the surface along the ray: the twin test (lookalike_holes.hpp), which weighs
   // millimetres of depth at a few hundred points, runs only on a sensor's image (measured: on
   // the shaft's cloud it turned a right pose end for end).
   // vote(from, to) votes on the hypotheses [from, to) and keeps them; rank() refines,
@@ -294,13 +251,13 @@ class Detector {
   DetectParams params_;
   DeviceModel device_model_;
   DeviceFitModel fit_model_;
-  // The fit points followed by the look-alikes' probes and the edge probes (twin_test.hpp);
+  // The fit points followed by the look-alikes' probes and the edge probes (lookalike_holes.hpp);
   // empty without probes.
   DeviceFitModel twin_model_;
   PlaneSearchModel plane_search_model_;  // thin parts with --plane-search only
   TwinProbeModel twin_probes_;
   FitGeometry fit_geometry_;
-  float outline_ratio_ = 0;  // the verification's outline test, 0 for thin parts (outline_test.hpp)
+  float outline_ratio_ = 0;  // the verification's outline test, 0 for thin parts (outline.hpp)
   double thinnest_extent_ = 0;  // mm, the model's extent along its least-variance axis
   // The flat-region test (flat_region.hpp) on a crop's subsample about hypothesis h: the reason
   // to skip it, or empty. noise: the image's depth noise (mm), voxel_factor: the scene voxels'

@@ -10,8 +10,8 @@
 #include <utility>
 #include <vector>
 
-#include "host/detect/bin_fit.hpp"
-#include "host/detect/scene_prepare.hpp"
+#include "host/detect/bin/bin_fit.hpp"
+#include "host/detect/scene/scene_prepare.hpp"
 
 namespace binpick {
 

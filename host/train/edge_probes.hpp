@@ -1,5 +1,5 @@
 // The points just beyond a part's edges, for the edge test of verification
-// (host/detect/twin_test.hpp, docs/pipeline.md step 9).
+// (host/detect/verify/lookalike_holes.hpp, docs/pipeline.md step 9).
 //
 // A sheet (a plate 1.5 mm thick) lying on another steps down at its edges by one thickness,
 // less than the verification's tolerance: the outline test, which asks each outline cell whether

@@ -4,7 +4,7 @@
 // of the mesh: a probe is a surface point p (normal n) whose image under the look-alike's
 // inverse, S^-1 p, lies farther than a margin from any surface facing the same way (S^-1 n).
 // At a pose P, the look-alike P S has no surface at P p, so the sensor sees the part there
-// if P is right and looks through the part's hole if P S is (host/detect/twin_test.hpp).
+// if P is right and looks through the part's hole if P S is (host/detect/verify/lookalike_holes.hpp).
 //
 // A probe must also lie inside a surface at least the margin wide around it (not on a sheet's
 // hole wall, seen edge on over the hole, nor within the margin of an edge), so that a right pose

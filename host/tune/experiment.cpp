@@ -12,7 +12,7 @@
 #include "host/core/atomic_file.hpp"
 #include "host/core/error.hpp"
 #include "host/core/read_file.hpp"
-#include "host/detect/detect_step.hpp"
+#include "host/detect/batch/detect_step.hpp"
 #include "synth/pile_cache.hpp"
 #include "synth/synthesize.hpp"
 #include "host/core/timing.hpp"

@@ -1,6 +1,6 @@
 #include "host/tune/experiment_shards.hpp"
 
-#include "host/detect/detect_parts.hpp"
+#include "host/detect/batch/detect_parts.hpp"
 
 namespace binpick {
 namespace fs = std::filesystem;

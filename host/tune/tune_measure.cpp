@@ -2,7 +2,7 @@
 
 #include <fmt/format.h>
 
-#include "host/detect/detect_step.hpp"
+#include "host/detect/batch/detect_step.hpp"
 #include "host/eval/metrics/evaluate.hpp"
 #include "host/formats/bop/png_image.hpp"
 #include "host/formats/bop/results_csv.hpp"

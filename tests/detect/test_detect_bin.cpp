@@ -8,10 +8,10 @@
 #include <memory>
 
 #include "host/core/error.hpp"
-#include "host/detect/detect_batch.hpp"
+#include "host/detect/batch/detect_batch.hpp"
 #include "host/detect/detector.hpp"
 #include "host/train/ppf_model.hpp"
-#include "tests/detect/bin_scene.hpp"
+#include "tests/detect/bin/bin_scene.hpp"
 #include "tests/support/test_meshes.hpp"
 
 using namespace binpick;

@@ -7,7 +7,7 @@
 
 #include "host/runtime/cl/cl_buffer.hpp"
 #include "host/core/error.hpp"
-#include "host/detect/depth_to_points.hpp"
+#include "host/detect/scene/depth_to_points.hpp"
 #include "tests/support/test_device.hpp"
 
 using namespace binpick;

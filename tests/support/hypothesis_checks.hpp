@@ -1,4 +1,4 @@
-// Inputs and checks shared by the highest-point kernel tests (tests/detect/test_kernels_hypotheses.cpp,
+// Inputs and checks shared by the highest-point kernel tests (tests/detect/hypotheses/test_kernels_hypotheses.cpp,
 // test_hypothesis_tiles.cpp): filtered depths with ties, random exclusion flags, and a selected
 // hypothesis against its reference (pixel, u, v, depth and z exactly, x and y within 4 ulp: a
 // float division and a product; OpenCL allows its division 2.5 ulp).
@@ -13,7 +13,7 @@
 #include <string>
 #include <vector>
 
-#include "host/detect/scene_lowpass.hpp"
+#include "host/detect/scene/scene_lowpass.hpp"
 #include "kernels/binpick_shared.h"
 #include "kernels/scene_shared.h"
 

@@ -24,8 +24,8 @@
 #include "host/runtime/cl/cl_buffer.hpp"
 #include "host/train/ppf_features.hpp"
 #include "host/train/voxel_subsample.hpp"
-#include "host/detect/depth_to_points.hpp"
-#include "host/detect/ppf_vote.hpp"
+#include "host/detect/scene/depth_to_points.hpp"
+#include "host/detect/vote/ppf_vote.hpp"
 #include "kernels/binpick_shared.h"
 #include "kernels/scene_shared.h"
 

@@ -1,12 +1,12 @@
 // A depth image of the built-in plate lying on a plane one sheet thickness beneath it (a plate
-// on a plate), for the probe tests of verification (tests/detect/test_twin_test.cpp,
-// test_edge_test.cpp).
+// on a plate), for the probe tests of verification (tests/detect/verify/test_lookalike_holes.cpp,
+// test_edge_step.cpp).
 #pragma once
 
 #include <Eigen/Geometry>
 
-#include "host/detect/depth_to_points.hpp"
-#include "host/detect/pose_fit.hpp"
+#include "host/detect/scene/depth_to_points.hpp"
+#include "host/detect/refine/pose_fit.hpp"
 #include "host/train/ppf_model.hpp"
 
 namespace binpick::test {

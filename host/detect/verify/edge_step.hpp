@@ -1,0 +1,37 @@
+// The edge test of verification, for thin parts (docs/pipeline.md, step 9; the points it reads
+// are host/train/edge_probes.hpp's, measured in the twin test's probe pass, lookalike_holes.hpp).
+//
+// A sheet lying on a sheet steps down at its edges by one thickness, less than the
+// verification's tolerance, so the outline test is off for thin parts (outline.hpp), and
+// a pose shifted in its plane or turned on a stack of sheets agrees with the depth image
+// everywhere but at its edges, where the sensor sees the sheet run on. Beyond a right pose's
+// edges the sensor sees a step down: at least the part's thickness, often much more (a part
+// it lies across, the floor), or no depth (the projector's shadow at an edge). So at every
+// face probe with depth (edge_probes.hpp: not the rim probes, which see a step on any face seen
+// obliquely) the depth excess along the ray is taken as the twin test takes it (clamped to the
+// tolerance; something in front says nothing), and the mean plus two standard errors is how
+// far the pose's edges are seen to step down at most. The score is multiplied by that step
+// over `scale` tolerances, at most 1: a pose whose edges show no step keeps little, one whose
+// edges drop by a tolerance keeps all.
+//
+// No depth beyond an edge says nothing (NoDepth::neutral). It once counted as a step of the
+// whole tolerance, with the pose's own share of missing depth taken off the mean; but a sensor
+// that loses depth in patches (shiny sheet metal) loses it beyond some edges and not others,
+// and the pose whose edges happened to lie in the patches won. Measured: docs/pipeline.md.
+//
+// Measured before building it (a prototype on the refined poses of 34 structured-light images
+// of 120 mm and 150 mm plates among other parts, ranks recomputed): top-ranked right 17 -> 28
+// of 34; this implementation, on those and 6 more: 19 -> 37 of 40 (docs/pipeline.md).
+#pragma once
+
+#include "host/detect/verify/lookalike_holes.hpp"
+
+namespace binpick {
+
+// max(0, mean + 2 standard errors) of the edge probes' evidence (mm).
+double edge_step(const TwinEvidence& e);
+
+// min(1, step / (scale x gate)); 1 for scale <= 0 or gate <= 0 (no test).
+double edge_factor(double step, double scale, double gate);
+
+}  // namespace binpick
