@@ -55,7 +55,7 @@ if os.path.exists(sys.argv[3]) and os.path.exists(sys.argv[4]):
             if x != y:
                 diff = [f"{c}: {p} vs {q}" for c, p, q in zip(common, x, y) if p != q]
                 bad.append(f"  row {i + 1}: " + "; ".join(diff[:6])); break
-print("\n".join(bad))
+if bad: print("\n".join(bad))
 sys.exit(1 if bad else 0)
 PY
   then

@@ -84,7 +84,7 @@ void detect_cloud(const DetectArgs& a, const std::vector<ObjectDetector>& detect
   }
   const double seconds = seconds_since(start);
   std::vector<bop::ResultRow> rows;
-  std::string details = several ? kDetailsHeaderWithObjId : kDetailsHeader;
+  std::string details = details_header(several);
   for (std::size_t m = 0; m < detectors.size(); ++m) {
     const auto image_rows = detection_rows(found[m], 0, 0, detectors[m].obj_id, seconds);
     rows.insert(rows.end(), image_rows.begin(), image_rows.end());

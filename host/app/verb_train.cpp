@@ -28,10 +28,10 @@ namespace {
 
 // "none", or the look-alike poses and the probes that tell them apart (lookalike_holes.hpp).
 std::string describe_look_alikes(const PpfModel& m) {
-  if (m.near_symmetries.empty()) return "none";
-  std::vector<std::size_t> per(m.near_symmetries.size(), 0);
-  for (const std::uint32_t s : m.probe_twin) ++per[s];
-  std::string text = fmt::format("{} (probes that tell them apart:", m.near_symmetries.size());
+  if (m.lookalikes.empty()) return "none";
+  std::vector<std::size_t> per(m.lookalikes.size(), 0);
+  for (const std::uint32_t s : m.probe_lookalike) ++per[s];
+  std::string text = fmt::format("{} (probes that tell them apart:", m.lookalikes.size());
   for (const std::size_t n : per) text += fmt::format(" {}", n);
   return text + ")";
 }

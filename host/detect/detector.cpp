@@ -71,7 +71,7 @@ Detection detection_for(const std::vector<Hypothesis>& hyps, std::size_t k) {
 
 // The order of the results: the verified score, ties to the more voted.
 bool ranks_before(const Detection& a, const Detection& b) {
-  if (a.score != b.score) return a.score > b.score;
+  if (a.score() != b.score()) return a.score() > b.score();
   return a.votes > b.votes;
 }
 
@@ -133,7 +133,7 @@ std::vector<Detection> Detector::in_rounds(std::size_t found,
   // (lookalike_share.hpp): a part with a close look-alike would otherwise take the second round
   // on every image.
   const bool confident = std::any_of(out.begin(), out.end(), [&](const Detection& d) {
-    return d.fit_score >= params_.confident;
+    return d.fit_score() >= params_.confident;
   });
   if (first == found || confident) return out;
   // The second round's candidates are refined and ranked with the first's, as if all had been
@@ -254,31 +254,44 @@ Detector::Detector(const PpfModel& model, const DetectParams& params, ocl::Devic
   fit_geometry_.centroid = model_centroid(model_.cloud);
   outline_ratio_ = outline_ratio_for(model_.cloud, model_.diameter, params_.verify_tolerance);
   thinnest_extent_ = thinnest_extent(model_.cloud);
-  // The probes of one extra pass: the look-alikes' (twin test), then, for a thin part (no
-  // outline test), the edge probes that continue its faces (edge test; edge_probes.hpp says
+  // The probes of one extra pass: the look-alikes' (look-alike holes), then, for a thin part (no
+  // outline factor), the edge probes that continue its faces (edge step; edge_probes.hpp says
   // why not its rims').
-  twin_probes_.twins = static_cast<std::uint32_t>(model_.near_symmetries.size());
+  probes_.lookalikes = static_cast<std::uint32_t>(model_.lookalikes.size());
   if (params_.verify_twin > 0) {
-    twin_probes_.probes = model_.twin_probes;
-    twin_probes_.probe_twin = model_.probe_twin;
+    probes_.probes = model_.lookalike_probes;
+    probes_.probe_lookalike = model_.probe_lookalike;
   }
   if (params_.verify_edge > 0 && outline_ratio_ == 0) {
     const PointCloud faces = face_probes(model_.edge_probes, model_.edge_probe_rim);
-    twin_probes_.edge_probes = static_cast<std::uint32_t>(faces.points.size());
-    append_cloud(twin_probes_.probes, faces);
-    twin_probes_.probe_twin.resize(twin_probes_.probes.points.size(), twin_probes_.twins);
+    probes_.edge_probes = static_cast<std::uint32_t>(faces.points.size());
+    append_cloud(probes_.probes, faces);
+    probes_.probe_lookalike.resize(probes_.probes.points.size(), probes_.lookalikes);
   }
   if (params_.plane_search > 0 && outline_ratio_ == 0 && !model_.edge_probes.points.empty()) {
     plane_search_model_ = upload_plane_search_model(dev_, model_.edge_probes, model_.cloud,
                                                     fit_geometry_.centroid);
     program_build_s_ += dev_.prebuild({"plane_search.cl"});
   }
-  if (!twin_probes_.probes.points.empty()) {
-    twin_probes_.fit_points = fit_model_.size;
+  if (!probes_.probes.points.empty()) {
+    probes_.fit_points = fit_model_.size;
     PointCloud all = fit_cloud;
-    append_cloud(all, twin_probes_.probes);
-    twin_model_ = upload_fit_model(dev_, all);
+    append_cloud(all, probes_.probes);
+    probe_fit_model_ = upload_fit_model(dev_, all);
   }
+  // Refinement and verification, from the parameters (docs/detect/verify.md).
+  VerifyOptions& vo = verify_options_.verify;
+  vo.refine.iterations = params_.refine_iterations;
+  vo.refine.tolerance_ratio = float(params_.verify_tolerance);
+  vo.noise_factor = float(params_.verify_noise_factor);
+  vo.outline_ratio = outline_ratio_;
+  vo.ray_band_ratio = float(params_.verify_ray);
+  vo.through_weight = float(params_.verify_through);
+  vo.area_scale = float(params_.verify_area);
+  verify_options_.holes_band = float(params_.verify_twin);
+  verify_options_.edge_scale = float(params_.verify_edge);
+  verify_options_.rival_significance = params_.verify_rival;
+  verify_options_.lookalike_weight = params_.verify_lookalike;
 }
 
 std::vector<PoseCluster> Detector::vote_and_cluster(const PointCloud& subsampled, Detection& d,
@@ -327,37 +340,17 @@ std::vector<PoseCluster> Detector::vote_and_cluster(const PointCloud& subsampled
 
 namespace {
 
-// A detection becomes the refined pose of one of its candidates (or a look-alike, twin > 0).
-void take_pose(Detection& d, const RefinedPose& r, std::uint64_t votes, std::uint32_t candidate,
-               std::uint32_t twin) {
-  d.R = r.R;
-  d.t = r.t;
-  d.score = r.score;
+// A detection becomes the verified pose of one of its candidates (or a look-alike > 0).
+void take_pose(Detection& d, const VerifiedPose& v, std::uint64_t votes, std::uint32_t candidate,
+               std::uint32_t lookalike) {
+  d.R = v.R;
+  d.t = v.t;
   d.votes = votes;
   d.candidate = candidate;
-  d.twin = twin;
-  d.visible = r.visible;
-  d.inliers = r.inliers;
-  d.outline_continue = r.outline_continue;
-  d.outline_step = r.outline_step;
-  d.patches_tested = r.patches_tested;
-  d.patches_biased = r.patches_biased;
-  d.ray_tested = r.ray_tested;
-  d.ray_excess = r.ray_excess;
-  d.twin_tested = r.twin_tested;
-  d.twin_excess = r.twin_excess;
-  d.edge_tested = r.edge_tested;
-  d.edge_step = r.edge_step;
-  d.area_tested = r.area_tested;
-  d.area_share = r.area_share;
-  d.rival_out_fitted = r.rival_out_fitted;
-  d.rival_shared = r.rival_shared;
-  d.own_ms = r.own_ms;
-  d.rival_ms = r.rival_ms;
-  d.lookalike_score = r.lookalike_score;
-  d.fit_score = r.fit_score;
-  d.see_through = r.see_through;
-  d.reason = r.reason;
+  d.lookalike = lookalike;
+  d.evidence = v.evidence;
+  d.breakdown = v.breakdown;
+  d.reason = v.reason;
 }
 
 }  // namespace
@@ -371,7 +364,7 @@ std::vector<Detection> Detector::refine_and_rank(
   std::vector<PoseToRefine> poses;
   struct Owner {
     std::size_t detection;
-    std::uint32_t candidate, twin;
+    std::uint32_t candidate, lookalike;
   };
   std::vector<Owner> owner;
   const auto add_pose = [&](const Eigen::Matrix3d& R, const Eigen::Vector3d& t, std::size_t k,
@@ -379,8 +372,8 @@ std::vector<Detection> Detector::refine_and_rank(
     poses.push_back({R, t});
     owner.push_back({k, c, 0});
     // The pose's look-alikes: model x -> S x, then the pose.
-    for (std::uint32_t s = 0; s < model_.near_symmetries.size(); ++s) {
-      const Eigen::Isometry3d& S = model_.near_symmetries[s];
+    for (std::uint32_t s = 0; s < model_.lookalikes.size(); ++s) {
+      const Eigen::Isometry3d& S = model_.lookalikes[s];
       poses.push_back({R * S.linear(), R * S.translation() + t});
       owner.push_back({k, c, s + 1});
     }
@@ -418,85 +411,39 @@ std::vector<Detection> Detector::refine_and_rank(
     t.refine_ms += ms;
     t.stages.push_back({"plane search", ms});
   }
-  RefineOptions ro;
-  ro.iterations = params_.refine_iterations;
-  ro.tolerance_ratio = float(params_.verify_tolerance);
-  ro.noise_factor = float(params_.verify_noise_factor);
-  ro.outline_ratio = outline_ratio_;
-  ro.ray_band_ratio = float(params_.verify_ray);
-  ro.through_weight = float(params_.verify_through);
-  // The rival test needs the measured points on the pixels' rays: a sensor's image.
-  ro.keep_measured = sensor && params_.verify_rival > 0;
-  ro.area_scale = float(params_.verify_area);
-  // What lies on the part is kept out of its ICP near the end (depth images: the noise known).
-  ro.near_gate = sensor;
-  ro.noise = float(image_noise_);
-  const auto sums = [&](const std::vector<bp_pose_fit>& fits) {
-    return pose_fit_sums(dev_, points, cam, fit_model_, fits);
-  };
-  std::vector<RefinedPose> refined =
-      refine_and_verify(sums, cam, fit_geometry_, fit_model_.size, poses, ro, refined_before);
-  if (sensor && !twin_probes_.probes.points.empty()) {
-    TwinTestOptions to;
-    to.band_ratio = float(params_.verify_twin);
-    to.edge_scale = float(params_.verify_edge);
-    to.near_gate = ro.near_gate;
-    to.noise = ro.noise;
-    twin_test(
-        [&](const std::vector<bp_pose_fit>& fits) {
-          return pose_fit_sums(dev_, points, cam, twin_model_, fits);
-        },
-        cam, fit_geometry_, twin_probes_, refined, to);
-  }
-  if (bin && bin->found) {
-    // Below the floor by more than the larger of the verification tolerance and a tenth of the
-    // diameter: a right pose's error or a thin part's, and the floor fit's, stay inside it.
-    const Eigen::Vector3d up = bin->axes.col(2);
-    for (RefinedPose& r : refined) {
-      const double margin = std::max(double(r.tolerance), 0.1 * model_.diameter);
-      const double below = fraction_below_floor(model_.cloud, r.R, r.t, up, bin->floor_d(), margin);
-      if (below > kMaxBelowFloor && r.score > 0) {
-        r.score = 0;
-        r.reason = fmt::format("{:.0f} % of the part below the bin's floor", 100 * below);
-      }
-    }
-  }
-  if (ro.keep_measured) {
-    RivalTestOptions rt;
-    rt.significance = params_.verify_rival;
-    rt.max_centre_distance = kRivalCentreRatio * model_.diameter;
-    // An RMS difference of 0.005 d, the twin test's band: a noise-free right pose's leftover
-    // error is of that size (the tee: 0.5 mm, one pose fitting the model's sampling 0.03 mm^2
-    // better than another).
-    rt.dead_band_floor = std::pow(kRivalFloorRatio * model_.diameter, 2);
-    // A thin part's neighbours beyond its outline are sheets of itself a thickness lower, which
-    // any pose shifted over them explains as well as the right one does its own surface: there
-    // the edge test judges the outline, and only the shared points are compared.
-    rt.count_unexplained = outline_ratio_ > 0;
-    rival_test(refined, fit_geometry_.points, fit_geometry_.normals,
-               model_.voxel_size / kFitVoxelDivisor, cam, fit_geometry_.centroid, rt);
-  }
+  // One group a candidate: its voted pose, its in-plane search's, and their look-alikes.
+  std::vector<std::size_t> group(owner.size());
   {
-    // One group a candidate: its voted pose, its in-plane search's, and their look-alikes.
-    std::vector<std::size_t> group(owner.size());
     std::vector<std::size_t> first(candidates.size() + 1, 0);
     for (std::size_t k = 0; k < candidates.size(); ++k)
       first[k + 1] = first[k] + candidates[k].size();
     for (std::size_t i = 0; i < owner.size(); ++i)
       group[i] = first[owner[i].detection] + owner[i].candidate;
-    LookalikeOptions lo;
-    lo.weight = params_.verify_lookalike;
-    lo.max_distance = kLookalikeRatio * model_.diameter;
-    lookalike_share(refined, group, fit_geometry_.centroid, lo);
   }
+  VerifyScene scene;
+  scene.fit_sums = [&](const std::vector<bp_pose_fit>& fits) {
+    return pose_fit_sums(dev_, points, cam, fit_model_, fits);
+  };
+  if (!probes_.probes.points.empty())
+    scene.probe_sums = [&](const std::vector<bp_pose_fit>& fits) {
+      return pose_fit_sums(dev_, points, cam, probe_fit_model_, fits);
+    };
+  scene.cam = cam;
+  scene.sensor = sensor;
+  scene.noise = float(image_noise_);
+  if (bin && bin->found) scene.floor = Floor{bin->axes.col(2), bin->floor_d()};
+  const VerifyModel model{fit_geometry_, fit_model_.size, probes_, model_.cloud,
+                          model_.voxel_size / kFitVoxelDivisor};
+  const std::vector<VerifiedPose> refined =
+      verify_candidates(scene, model, verify_options_, poses, group, refined_before);
   if (params_.instances > 0) {
     // Every refined pose competes (instance_select.hpp), not only each hypothesis' best.
     std::vector<Detection> poses;
     poses.reserve(refined.size());
     for (std::size_t i = 0; i < refined.size(); ++i) {
-      const auto [k, c, twin] = owner[i];
+      const auto [k, c, lookalike] = owner[i];
       Detection d = detections[k];
-      take_pose(d, refined[i], candidates[k][c].votes, c, twin);
+      take_pose(d, refined[i], candidates[k][c].votes, c, lookalike);
       poses.push_back(std::move(d));
     }
     const double ms = clock.lap();
@@ -507,13 +454,13 @@ std::vector<Detection> Detector::refine_and_rank(
   }
   std::vector<bool> taken(detections.size(), false);
   for (std::size_t i = 0; i < refined.size(); ++i) {
-    const auto [k, c, twin] = owner[i];
+    const auto [k, c, lookalike] = owner[i];
     Detection& d = detections[k];
-    const RefinedPose& r = refined[i];
+    const VerifiedPose& v = refined[i];
     // The best score; ties go to the more voted cluster, which comes first.
-    if (taken[k] && r.score <= d.score) continue;
+    if (taken[k] && v.score() <= d.score()) continue;
     taken[k] = true;
-    take_pose(d, r, candidates[k][c].votes, c, twin);
+    take_pose(d, v, candidates[k][c].votes, c, lookalike);
   }
   const double ms = clock.lap();
   t.refine_ms += ms;

@@ -24,6 +24,7 @@
 #include "host/detect/refine/pose_fit.hpp"
 #include "host/detect/refine/pose_refine.hpp"
 #include "host/detect/verify/lookalike_holes.hpp"
+#include "host/detect/verify/verify_candidates.hpp"
 #include "host/core/timing.hpp"
 #include "host/core/mesh.hpp"
 #include "host/train/ppf_model.hpp"
@@ -253,9 +254,10 @@ class Detector {
   DeviceFitModel fit_model_;
   // The fit points followed by the look-alikes' probes and the edge probes (lookalike_holes.hpp);
   // empty without probes.
-  DeviceFitModel twin_model_;
+  DeviceFitModel probe_fit_model_;
   PlaneSearchModel plane_search_model_;  // thin parts with --plane-search only
-  TwinProbeModel twin_probes_;
+  ProbeModel probes_;
+  VerifyCandidatesOptions verify_options_;  // from params_
   FitGeometry fit_geometry_;
   float outline_ratio_ = 0;  // the verification's outline test, 0 for thin parts (outline.hpp)
   double thinnest_extent_ = 0;  // mm, the model's extent along its least-variance axis

@@ -28,14 +28,14 @@ struct PpfModel {
   // more pixels (at 5 % noise, half the rotation error). Empty in files before version 3:
   // detection then uses `cloud`.
   PointCloud fit_cloud;
-  // Look-alike poses (near_symmetry.hpp): model-frame transforms x -> S x under which most of
+  // Look-alike poses (lookalikes.hpp): model-frame transforms x -> S x under which most of
   // the surface, but not all of it, maps onto itself; detection verifies each candidate's
   // look-alikes too. Found on `cloud`, also when reading a file before version 4.
-  std::vector<Eigen::Isometry3d> near_symmetries;
-  // The points that tell a pose from each look-alike (twin_probes.hpp); probe_twin[i] indexes
-  // near_symmetries. Empty in files before version 4: detection then has no twin test.
-  PointCloud twin_probes;
-  std::vector<std::uint32_t> probe_twin;
+  std::vector<Eigen::Isometry3d> lookalikes;
+  // The points that tell a pose from each look-alike (lookalike_probes.hpp); probe_lookalike[i] indexes
+  // lookalikes. Empty in files before version 4: detection then has no twin test.
+  PointCloud lookalike_probes;
+  std::vector<std::uint32_t> probe_lookalike;
   // Points just beyond the part's edges (edge_probes.hpp), for the edge test of thin parts (its
   // face probes) and the in-plane search (all). edge_probe_rim[i] is 1 for a rim probe, 0 for a
   // face probe. Empty in files before version 5: detection then has no edge test; the kinds are

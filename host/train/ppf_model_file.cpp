@@ -11,10 +11,10 @@
 #include "host/core/error.hpp"
 #include "host/core/atomic_file.hpp"
 #include "host/core/read_file.hpp"
-#include "host/train/near_symmetry.hpp"
+#include "host/train/lookalikes.hpp"
 #include "host/train/ppf_features.hpp"
 #include "host/train/edge_probes.hpp"
-#include "host/train/twin_probes.hpp"
+#include "host/train/lookalike_probes.hpp"
 
 namespace binpick {
 namespace {
@@ -59,6 +59,7 @@ void append(std::string& out, const T* data, std::size_t count) {
 
 template <class T>
 void take(std::string_view& in, T* data, std::size_t count) {
+  if (count == 0) return;  // an empty vector's data() may be null, which memcpy must not get
   std::memcpy(data, in.data(), sizeof(T) * count);
   in.remove_prefix(sizeof(T) * count);
 }
@@ -162,17 +163,17 @@ std::string serialize_ppf_model(const PpfModel& m, std::uint32_t version) {
     for (const auto& v : m.fit_cloud.normals) append(payload, v.data(), 3);
   }
   if (version >= 4) {
-    if (m.probe_twin.size() != m.twin_probes.points.size() ||
-        m.twin_probes.normals.size() != m.twin_probes.points.size())
+    if (m.probe_lookalike.size() != m.lookalike_probes.points.size() ||
+        m.lookalike_probes.normals.size() != m.lookalike_probes.points.size())
       throw std::logic_error("serialize_ppf_model: one look-alike index and normal per probe");
-    const auto near = static_cast<std::uint32_t>(m.near_symmetries.size());
+    const auto near = static_cast<std::uint32_t>(m.lookalikes.size());
     append(payload, &near, 1);
-    for (const auto& S : m.near_symmetries) append_isometry(payload, S);
-    const auto probes = static_cast<std::uint32_t>(m.twin_probes.points.size());
+    for (const auto& S : m.lookalikes) append_isometry(payload, S);
+    const auto probes = static_cast<std::uint32_t>(m.lookalike_probes.points.size());
     append(payload, &probes, 1);
-    for (const auto& p : m.twin_probes.points) append(payload, p.data(), 3);
-    for (const auto& v : m.twin_probes.normals) append(payload, v.data(), 3);
-    append(payload, m.probe_twin.data(), m.probe_twin.size());
+    for (const auto& p : m.lookalike_probes.points) append(payload, p.data(), 3);
+    for (const auto& v : m.lookalike_probes.normals) append(payload, v.data(), 3);
+    append(payload, m.probe_lookalike.data(), m.probe_lookalike.size());
   }
   if (version >= 5) {
     if (m.edge_probes.normals.size() != m.edge_probes.points.size())
@@ -268,10 +269,10 @@ PpfModel parse_ppf_model(std::string_view bytes, const std::string& name) {
   std::uint32_t near_count = 0, probe_count = 0;
   if (h.version >= 4) {
     near_count = count_at(expected);
-    if (near_count > kMaxNearSymmetries) throw corrupt("look-alike count");
+    if (near_count > kMaxLookalikes) throw corrupt("look-alike count");
     expected += 4 + near_count * kNearSymmetryBytes;
     probe_count = count_at(expected);
-    if (probe_count > near_count * kMaxProbesPerTwin) throw corrupt("probe count");
+    if (probe_count > near_count * kMaxProbesPerLookalike) throw corrupt("probe count");
     expected += 4 + probe_count * kProbeBytes;
   }
   std::uint32_t edge_count = 0;
@@ -316,23 +317,23 @@ PpfModel parse_ppf_model(std::string_view bytes, const std::string& name) {
   }
   if (h.version >= 4) {
     payload.remove_prefix(4);
-    m.near_symmetries.resize(near_count);
-    for (auto& S : m.near_symmetries)
+    m.lookalikes.resize(near_count);
+    for (auto& S : m.lookalikes)
       if (!take_isometry(payload, S)) throw corrupt("look-alike");
     payload.remove_prefix(4);
-    m.twin_probes.points.resize(probe_count);
-    m.twin_probes.normals.resize(probe_count);
-    m.probe_twin.resize(probe_count);
-    for (auto& p : m.twin_probes.points) take(payload, p.data(), 3);
-    for (auto& v : m.twin_probes.normals) take(payload, v.data(), 3);
-    take(payload, m.probe_twin.data(), probe_count);
+    m.lookalike_probes.points.resize(probe_count);
+    m.lookalike_probes.normals.resize(probe_count);
+    m.probe_lookalike.resize(probe_count);
+    for (auto& p : m.lookalike_probes.points) take(payload, p.data(), 3);
+    for (auto& v : m.lookalike_probes.normals) take(payload, v.data(), 3);
+    take(payload, m.probe_lookalike.data(), probe_count);
     for (std::size_t i = 0; i < probe_count; ++i)
-      if (!m.twin_probes.points[i].allFinite() || !m.twin_probes.normals[i].allFinite() ||
-          m.probe_twin[i] >= near_count)
+      if (!m.lookalike_probes.points[i].allFinite() || !m.lookalike_probes.normals[i].allFinite() ||
+          m.probe_lookalike[i] >= near_count)
         throw corrupt("probe " + std::to_string(i));
   } else {
     // Older files: the look-alikes as training finds them (the model's points suffice); no probes.
-    m.near_symmetries = find_near_symmetries(m.cloud, m.voxel_size, m.symmetries);
+    m.lookalikes = find_lookalikes(m.cloud, m.voxel_size, m.symmetries);
   }
   if (h.version >= 5) {
     payload.remove_prefix(4);

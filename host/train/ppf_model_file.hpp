@@ -10,9 +10,9 @@
 //   count, discrete count (uint32 each), each continuous symmetry as axis and offset
 //   (6 doubles), each discrete one as the top three rows of its 4x4 transform (12 doubles,
 //   row-major); from version 3 on, the refinement points: count (uint32), points (3 floats
-//   each), normals (3 floats each); from version 4 on, the look-alikes (near_symmetry.hpp):
+//   each), normals (3 floats each); from version 4 on, the look-alikes (lookalikes.hpp):
 //   count (uint32), each as the top three rows of its 4x4 transform (12 doubles, row-major), and
-//   their probes (twin_probes.hpp): count (uint32), points (3 floats each), normals (3 floats
+//   their probes (lookalike_probes.hpp): count (uint32), points (3 floats each), normals (3 floats
 //   each), the look-alike of each (uint32 each); from version 5 on, the edge probes
 //   (edge_probes.hpp): count (uint32), points (3 floats each), normals (3 floats each); from
 //   version 6 on, each edge probe's kind (1 byte each: 0 a face probe, 1 a rim probe).

@@ -6,11 +6,11 @@
 #include "host/core/diameter.hpp"
 #include "host/core/cloud_input.hpp"
 #include "host/train/ppf_model.hpp"
-#include "host/train/near_symmetry.hpp"
+#include "host/train/lookalikes.hpp"
 #include "host/train/surface_sampling.hpp"
 #include "host/train/symmetry_detect.hpp"
 #include "host/train/edge_probes.hpp"
-#include "host/train/twin_probes.hpp"
+#include "host/train/lookalike_probes.hpp"
 #include "host/train/voxel_subsample.hpp"
 
 namespace binpick {
@@ -60,10 +60,10 @@ PpfModel train_ppf_model(const Mesh& mesh, const PpfTrainParams& params, PpfTrai
   model.table = build_ppf_table(dev, model.cloud, model.quant, &st.table);
   clock.lap_seconds();
   model.symmetries = find_symmetries(mesh);
-  model.near_symmetries = find_near_symmetries(model.cloud, model.voxel_size, model.symmetries);
-  const TwinProbes probes = find_twin_probes(mesh, model.voxel_size, model.near_symmetries, dev);
-  model.twin_probes = probes.cloud;
-  model.probe_twin = probes.twin;
+  model.lookalikes = find_lookalikes(model.cloud, model.voxel_size, model.symmetries);
+  const LookalikeProbes probes = find_lookalike_probes(mesh, model.voxel_size, model.lookalikes, dev);
+  model.lookalike_probes = probes.cloud;
+  model.probe_lookalike = probes.twin;
   const EdgeProbes edges = find_edge_probes(mesh, model.voxel_size, dev);
   model.edge_probes = edges.cloud;
   model.edge_probe_rim = edges.rim;

@@ -1,4 +1,4 @@
-// The dense surface that verification probes are found on (twin_probes.hpp, edge_probes.hpp):
+// The dense surface that verification probes are found on (lookalike_probes.hpp, edge_probes.hpp):
 // the mesh sampled 16 times per probe voxel area, and the candidates, that sample voxel-subsampled
 // at the probe voxel (a quarter of the model's voxel, both faces of a thin wall). The model's
 // own points (a voxel apart) are too few where only a narrow band of the part tells poses apart.

@@ -7,6 +7,7 @@
 
 #include <memory>
 
+#include "host/detect/verify/score.hpp"
 #include "host/core/error.hpp"
 #include "host/detect/batch/detect_batch.hpp"
 #include "host/detect/detector.hpp"
@@ -96,7 +97,7 @@ TEST(DetectBin, RegionKeepingEverythingChangesNothing) {
     EXPECT_EQ(a[i].R, b[i].R);
     EXPECT_EQ(a[i].t, b[i].t);
     EXPECT_EQ(a[i].votes, b[i].votes);
-    EXPECT_EQ(a[i].score, b[i].score);
+    EXPECT_EQ(a[i].score(), b[i].score());
   }
   EXPECT_NE(boxed.region_report().find("(0 excluded)"), std::string::npos) << boxed.region_report();
 }
@@ -128,14 +129,16 @@ TEST(DetectBin, LargeHolesAndSpecksAreSkippedWithAReason) {
   for (const Detection& d : det.skipped()) {
     EXPECT_LE(d.index, 1u) << "the specks are the highest points";
     EXPECT_EQ(d.votes, 0u);
-    EXPECT_EQ(d.score, 0.0);
+    EXPECT_EQ(d.score(), 0.0);
     EXPECT_NE(d.reason.find("skipped: the crop has 3 points with depth"), std::string::npos)
         << d.reason;
   }
   for (const Detection& d : found) EXPECT_GE(d.index, 2u);
   // In the details file: after the image's rows, rank empty, the reason quoted.
   const std::string rows = skipped_rows(det.skipped(), 7, 0);
-  EXPECT_TRUE(rows.starts_with("7,0,,0,0,0.000000,0,0,0,\"skipped: the crop has 3 points")) << rows;
+  EXPECT_TRUE(rows.starts_with("7,0,,0,0,0.000000,0,0,0" + std::string(kScoreFactorCount, ',') +
+                               ",\"skipped: the crop has 3 points"))
+      << rows;
   EXPECT_EQ(std::count(rows.begin(), rows.end(), '\n'), 2);
   // The bin is still found through the holes, and the specks (500 mm over the floor) are out.
   DetectParams pb = p;
@@ -207,7 +210,7 @@ TEST(DetectBin, SheetsLyingOnTheFloorStayInTheRegion) {
       nearest = std::min(nearest, (c - Eigen::Vector3d(want.x(), want.y(), 0.75)).norm());
     EXPECT_LT(nearest, 0.1 * sheet.diameter) << c.transpose();
     // The edge test scales it by the step down at the edges: 1.5 mm of a 5.8 mm tolerance.
-    EXPECT_GT(d.score, 0.15);
+    EXPECT_GT(d.score(), 0.15);
   }
 }
 

@@ -50,14 +50,8 @@ const std::vector<Layer>& layers() {
 const std::vector<std::string> detect_order = {"scene",  "bin",    "hypotheses", "vote", "cluster",
                                                "refine", "verify", "select",     "",     "batch"};
 
-// Known exceptions, each to be removed by the change that ends it: refinement still computes
-// the score's per-pose factors (until the score is one model in verify/).
-const std::set<std::pair<std::string, std::string>> allowed = {
-    {"host/detect/refine/pose_fit.hpp", "host/detect/verify/patch_bias.hpp"},
-    {"host/detect/refine/pose_refine.cpp", "host/detect/verify/seen_area.hpp"},
-    {"host/detect/refine/pose_refine.cpp", "host/detect/verify/ray_spread.hpp"},
-    {"host/detect/refine/pose_refine.cpp", "host/detect/verify/rival.hpp"},
-};
+// Known exceptions, each to be removed by the change that ends it (none now).
+const std::set<std::pair<std::string, std::string>> allowed = {};
 
 std::string layer_of(const std::string& path) {
   std::string best;

@@ -143,7 +143,7 @@ TEST(EdgeProbes, TheModelFileKeepsThemAndTheirKindsAndOlderVersionsReadAsTheyWer
   EXPECT_EQ(five.edge_face_probes(), m.edge_probes.points.size());
   const PpfModel old = parse_ppf_model(serialize_ppf_model(m, 4), "old.ppfm");
   EXPECT_TRUE(old.edge_probes.points.empty());
-  EXPECT_EQ(old.twin_probes.points, m.twin_probes.points);
+  EXPECT_EQ(old.lookalike_probes.points, m.lookalike_probes.points);
   // A non-finite probe, an absurd count, a cut inside the probes.
   PpfModel bad = m;
   bad.edge_probes.normals[5].y() = std::nanf("");

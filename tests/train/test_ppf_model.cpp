@@ -1,7 +1,7 @@
 // The PPF model: point pair features and alpha (kernels/ppf_features.cl), the device hash table
 // (kernels/ppf_table.cl) against their C++/Eigen references, degenerate input, training (with the
 // part's symmetries) and the .ppfm file (version 4 with symmetries, refinement points and the
-// look-alikes' probes, test_twin_probes.cpp; versions 1 to 3 still read).
+// look-alikes' probes, test_lookalike_probes.cpp; versions 1 to 3 still read).
 #include <gtest/gtest.h>
 
 #include <limits>
@@ -15,7 +15,7 @@
 #include <Eigen/Geometry>
 
 #include "host/core/error.hpp"
-#include "host/train/near_symmetry.hpp"
+#include "host/train/lookalikes.hpp"
 #include "host/train/ppf_features.hpp"
 #include "host/train/ppf_model.hpp"
 #include "host/train/ppf_model_file.hpp"
@@ -411,9 +411,9 @@ TEST(PpfModelFile, SymmetriesRoundTripAndVersionOneIsStillRead) {
   without.fit_cloud = {};
   // Read from a file without look-alikes, they are found again on the points (with no exact
   // symmetries known, the box's half turns are look-alikes); there are no probes.
-  without.near_symmetries = find_near_symmetries(m.cloud, m.voxel_size, {});
-  without.twin_probes = {};
-  without.probe_twin = {};
+  without.lookalikes = find_lookalikes(m.cloud, m.voxel_size, {});
+  without.lookalike_probes = {};
+  without.probe_lookalike = {};
   without.edge_probes = {};
   without.edge_probe_rim = {};
   EXPECT_TRUE(serialize_ppf_model(old) == serialize_ppf_model(without));  // (no byte dump)
@@ -459,7 +459,7 @@ TEST(PpfModelFile, RefinementPointsRoundTripAndVersionTwoIsStillRead) {
   // points are followed by the look-alike and probe counts (8 bytes), both 0 for the box.)
   const std::string v4 = serialize_ppf_model(m, 4);
   std::string huge = v4;
-  ASSERT_TRUE(m.near_symmetries.empty());
+  ASSERT_TRUE(m.lookalikes.empty());
   const std::size_t count_at = v4.size() - 8 - 24 * m.fit_cloud.points.size() - 4;
   huge[count_at + 3] = 0x7f;
   EXPECT_NE(parse_message(huge).find("is corrupt (fit point count)"), std::string::npos)

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <charconv>
 #include <chrono>
+#include <cmath>
 #include <ostream>
 
 #include <fmt/format.h>
@@ -83,7 +84,7 @@ std::vector<bop::ResultRow> detection_rows(const std::vector<Detection>& detecti
                                            int im_id, int obj_id, double seconds) {
   std::vector<bop::ResultRow> rows;
   for (const Detection& d : detections)
-    rows.push_back({scene_id, im_id, obj_id, d.score, d.R, d.t, seconds});
+    rows.push_back({scene_id, im_id, obj_id, d.score(), d.R, d.t, seconds});
   return rows;
 }
 
@@ -101,49 +102,61 @@ std::string obj_id_column(std::optional<int> obj_id) {
 
 }  // namespace
 
+std::string details_header(bool with_obj_id) {
+  std::string header = with_obj_id ? "scene_id,im_id,obj_id,rank" : "scene_id,im_id,rank";
+  header += ",hypothesis,candidate,score,votes,visible,inliers";
+  for (const ScoreFactorInfo& f : score_factors()) header += std::string(",") + f.name;
+  return header + ",reason\n";
+}
+
 std::string detail_rows(const std::vector<Detection>& detections, int scene_id, int im_id,
                         std::optional<int> obj_id) {
   std::string text;
   for (std::size_t r = 0; r < detections.size(); ++r) {
     const Detection& d = detections[r];
-    text += fmt::format("{},{},{}{},{},{},{:.6f},{},{},{},{}\n", scene_id, im_id,
-                        obj_id_column(obj_id), r, d.index, d.candidate, d.score, d.votes,
-                        d.visible, d.inliers, d.reason.empty() ? "" : csv_quoted(d.reason));
+    text += fmt::format("{},{},{}{},{},{},{:.6f},{},{},{}{},{}\n", scene_id, im_id,
+                        obj_id_column(obj_id), r, d.index, d.candidate, d.score(), d.votes,
+                        d.evidence.visible, d.evidence.inliers, factor_columns(d.breakdown),
+                        d.reason.empty() ? "" : csv_quoted(d.reason));
   }
   return text;
 }
 
 std::string skipped_rows(const std::vector<Detection>& skipped, int scene_id, int im_id,
                          std::optional<int> obj_id) {
+  const std::string no_factors(kScoreFactorCount, ',');
   std::string text;
   for (const Detection& d : skipped)
-    text += fmt::format("{},{},{},{},0,0.000000,0,0,0,{}\n", scene_id, im_id,
-                        obj_id_column(obj_id), d.index, csv_quoted(d.reason));
+    text += fmt::format("{},{},{},{},0,0.000000,0,0,0{},{}\n", scene_id, im_id,
+                        obj_id_column(obj_id), d.index, no_factors, csv_quoted(d.reason));
   return text;
 }
 
 std::string detection_line(std::size_t rank, const Detection& d) {
+  const PoseEvidence& e = d.evidence;
   std::string line = fmt::format(
-      "#{} hypothesis {} candidate {}: score {:.3f} ({} of {} visible model points agree), "
+      "#{} hypothesis {} candidate {}: score {:.3f} = {} ({} of {} visible model points agree), "
       "{} votes",
-      rank, d.index, d.candidate, d.score, d.inliers, d.visible, d.votes);
-  if (d.outline_continue + d.outline_step > 0)
-    line += fmt::format("; outline steps down at {} of {} cells", d.outline_step,
-                        d.outline_continue + d.outline_step);
-  if (d.patches_tested > 0)
-    line += fmt::format("; {} of {} patches biased", d.patches_biased, d.patches_tested);
-  if (d.ray_tested)
-    line += fmt::format("; {:.2f} mm spread along the rays beyond the noise", d.ray_excess);
-  if (d.twin_tested)
-    line += fmt::format("; {:.2f} mm seen through where a look-alike has a hole", d.twin_excess);
-  if (d.edge_tested) line += fmt::format("; edges step down by {:.2f} mm", d.edge_step);
-  if (d.area_tested) line += fmt::format("; shows {:.2f} of its mean area", d.area_share);
-  if (d.rival_out_fitted)
+      rank, d.index, d.candidate, d.score(), describe_factors(d.breakdown), e.inliers, e.visible,
+      d.votes);
+  if (e.outline_continue + e.outline_step > 0)
+    line += fmt::format("; outline steps down at {} of {} cells", e.outline_step,
+                        e.outline_continue + e.outline_step);
+  if (e.patches_tested > 0)
+    line += fmt::format("; {} of {} patches biased", e.patches_biased, e.patches_tested);
+  if (e.ray_tested)
+    line += fmt::format("; {:.2f} mm spread along the rays beyond the noise", e.ray_excess);
+  if (e.lookalike_tested)
+    line += fmt::format("; {:.2f} mm seen through where a look-alike has a hole",
+                        e.lookalike_excess);
+  if (e.edge_tested) line += fmt::format("; edges step down by {:.2f} mm", e.edge_step);
+  if (e.area_tested) line += fmt::format("; shows {:.2f} of its mean area", e.area_share);
+  if (std::isfinite(d.breakdown[kRivalCap]))
     line += fmt::format("; out-fitted by a rival pose on {} shared points ({:.2f} against {:.2f} mm^2)",
-                        d.rival_shared, d.own_ms, d.rival_ms);
-  if (d.lookalike_score > 0)
-    line += fmt::format("; a look-alike scores {:.3f}", d.lookalike_score);
-  if (d.see_through > 0) line += fmt::format("; {} seen through", d.see_through);
+                        e.rival_shared, e.own_ms, e.rival_ms);
+  if (e.lookalike_score > 0)
+    line += fmt::format("; a look-alike scores {:.3f}", e.lookalike_score);
+  if (e.see_through > 0) line += fmt::format("; {} seen through", e.see_through);
   if (!d.reason.empty()) line += "; " + d.reason;
   return line;
 }
@@ -262,7 +275,7 @@ BatchSummary detect_dataset(const std::vector<ObjectDetector>& detectors, const 
   if (detectors.empty()) throw std::logic_error("detect_dataset without a detector");
   const std::vector<int> scenes = batch_scenes(opt);
   prepare_parts(opt.out, batch_fingerprint(opt, detectors.front().detector->params()));
-  write_details_header(opt.out, detectors.size() > 1 ? kDetailsHeaderWithObjId : kDetailsHeader);
+  write_details_header(opt.out, details_header(detectors.size() > 1));
   // Shards of one batch share OUT.parts; the record tells the merge which scenes make it whole.
   const ShardRecord record = batch_shard_record(opt, scenes);
   const auto done = [&](int scene) { return scene_done(opt.out, scene); };

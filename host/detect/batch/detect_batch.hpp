@@ -77,13 +77,12 @@ std::vector<bop::ResultRow> detection_rows(const std::vector<Detection>& detecti
 
 // Beside the results OUT (BOP's CSV, whose score column is the verified score), OUT with the
 // extension .details.csv: per detection its rank, hypothesis, candidate cluster, score, votes,
-// visible and agreeing model points, and the reason of a 0 score or a refinement cut short.
+// visible and agreeing model points, one column per factor of the score (score.hpp, in their
+// order: their product is the score; rival_cap is empty where no rival capped it), and the
+// reason of a 0 score or a refinement cut short.
 std::filesystem::path details_path(const std::filesystem::path& out);
-// With several models an obj_id column follows im_id (rank is then per obj_id).
-inline constexpr const char* kDetailsHeader =
-    "scene_id,im_id,rank,hypothesis,candidate,score,votes,visible,inliers,reason\n";
-inline constexpr const char* kDetailsHeaderWithObjId =
-    "scene_id,im_id,obj_id,rank,hypothesis,candidate,score,votes,visible,inliers,reason\n";
+// The header line; with several models an obj_id column follows im_id (rank is then per obj_id).
+std::string details_header(bool with_obj_id);
 // obj_id: the column's value with several models; none with one (the column left out).
 std::string detail_rows(const std::vector<Detection>& detections, int scene_id, int im_id,
                         std::optional<int> obj_id = std::nullopt);

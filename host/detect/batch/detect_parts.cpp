@@ -34,7 +34,7 @@ void write_details_header(const fs::path& out, const std::string& header) {
   const fs::path file = details_header_file(out);
   // The one-model header is the default: no file, as parts made before several models were.
   std::error_code ec;
-  if (header == kDetailsHeader) fs::remove(file, ec);
+  if (header == details_header(false)) fs::remove(file, ec);
   else write_file_atomically(file, [&](std::ostream& s) { s << header; });
 }
 
@@ -71,7 +71,7 @@ std::size_t merge_detect_parts(const fs::path& out, const std::vector<int>& scen
     all.insert(all.end(), rows.begin(), rows.end());
   }
   const fs::path header = details_header_file(out);
-  std::string details = fs::is_regular_file(header) ? read_file_bytes(header) : kDetailsHeader;
+  std::string details = fs::is_regular_file(header) ? read_file_bytes(header) : details_header(false);
   for (int scene : scenes) details += read_file_bytes(details_part_file(out, scene));
   write_file_atomically(details_path(out), [&](std::ostream& o) { o << details; });
   bop::write_results_csv(out, all);

@@ -12,7 +12,7 @@
 
 #include "host/core/mesh.hpp"
 #include "host/detect/scene/depth_to_points.hpp"
-#include "host/detect/verify/patch_bias.hpp"
+#include "host/detect/refine/model_patches.hpp"
 #include "host/runtime/cl/cl_buffer.hpp"
 #include "kernels/binpick_shared.h"
 #include "kernels/pose_fit_shared.h"

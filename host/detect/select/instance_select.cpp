@@ -8,9 +8,9 @@ std::vector<Detection> select_instances(std::vector<Detection> poses,
                                         const Eigen::Vector3d& centroid, double min_distance,
                                         std::size_t budget) {
   // Score 0 is a pose verification rejected (or one below the floor): not a part.
-  std::erase_if(poses, [](const Detection& d) { return !(d.score > 0) || d.votes == 0; });
+  std::erase_if(poses, [](const Detection& d) { return !(d.score() > 0) || d.votes == 0; });
   std::stable_sort(poses.begin(), poses.end(), [](const Detection& a, const Detection& b) {
-    if (a.score != b.score) return a.score > b.score;
+    if (a.score() != b.score()) return a.score() > b.score();
     return a.votes > b.votes;
   });
   std::vector<Detection> kept;

@@ -4,9 +4,12 @@
 // those agree with the measured floor as well as a real part's faces agree with the part.
 #pragma once
 
+#include <vector>
+
 #include <Eigen/Core>
 
 #include "host/core/mesh.hpp"
+#include "host/detect/verify/verified_pose.hpp"
 
 namespace binpick {
 
@@ -19,5 +22,12 @@ inline constexpr double kMaxBelowFloor = 0.1;
 double fraction_below_floor(const PointCloud& model, const Eigen::Matrix3d& R,
                             const Eigen::Vector3d& t, const Eigen::Vector3d& up, double d,
                             double margin);
+
+// Sets the below-floor factor (score.hpp) of every pose with a positive score that puts more
+// than kMaxBelowFloor of the model's points below the floor by more than the larger of its
+// verification tolerance and a tenth of the diameter (a right pose's error or a thin part's, and
+// the floor fit's, stay inside it), with the reason.
+void mark_below_floor(std::vector<VerifiedPose>& poses, const PointCloud& model, double diameter,
+                      const Eigen::Vector3d& up, double d);
 
 }  // namespace binpick

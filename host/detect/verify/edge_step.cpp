@@ -4,7 +4,7 @@
 
 namespace binpick {
 
-double edge_step(const TwinEvidence& e) {
+double edge_step(const ProbeEvidence& e) {
   return std::max(0.0, e.mean + 2.0 * e.standard_error);
 }
 

@@ -1,5 +1,5 @@
 // The edge test of verification, for thin parts (docs/pipeline.md, step 9; the points it reads
-// are host/train/edge_probes.hpp's, measured in the twin test's probe pass, lookalike_holes.hpp).
+// are host/train/edge_probes.hpp's, measured in the look-alike holes' probe pass, lookalike_holes.hpp).
 //
 // A sheet lying on a sheet steps down at its edges by one thickness, less than the
 // verification's tolerance, so the outline test is off for thin parts (outline.hpp), and
@@ -8,7 +8,7 @@
 // edges the sensor sees a step down: at least the part's thickness, often much more (a part
 // it lies across, the floor), or no depth (the projector's shadow at an edge). So at every
 // face probe with depth (edge_probes.hpp: not the rim probes, which see a step on any face seen
-// obliquely) the depth excess along the ray is taken as the twin test takes it (clamped to the
+// obliquely) the depth excess along the ray is taken as the look-alike holes take it (clamped to the
 // tolerance; something in front says nothing), and the mean plus two standard errors is how
 // far the pose's edges are seen to step down at most. The score is multiplied by that step
 // over `scale` tolerances, at most 1: a pose whose edges show no step keeps little, one whose
@@ -29,7 +29,7 @@
 namespace binpick {
 
 // max(0, mean + 2 standard errors) of the edge probes' evidence (mm).
-double edge_step(const TwinEvidence& e);
+double edge_step(const ProbeEvidence& e);
 
 // min(1, step / (scale x gate)); 1 for scale <= 0 or gate <= 0 (no test).
 double edge_factor(double step, double scale, double gate);

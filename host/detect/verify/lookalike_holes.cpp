@@ -15,18 +15,18 @@ constexpr double kMissingCos = 0.5;
 
 }  // namespace
 
-TwinEvidence twin_evidence(std::span<const float> residuals, std::span<const std::uint8_t> classes,
+ProbeEvidence probe_evidence(std::span<const float> residuals, std::span<const std::uint8_t> classes,
                            const Eigen::Matrix3d& R, const Eigen::Vector3d& t,
-                           const PointCloud& probes, std::span<const std::uint32_t> probe_twin,
+                           const PointCloud& probes, std::span<const std::uint32_t> probe_lookalike,
                            std::uint32_t which, double gate, NoDepth no_depth) {
   const std::size_t n_probes = probes.points.size();
-  if (residuals.size() != n_probes || classes.size() != n_probes || probe_twin.size() != n_probes ||
+  if (residuals.size() != n_probes || classes.size() != n_probes || probe_lookalike.size() != n_probes ||
       probes.normals.size() != n_probes)
-    throw std::logic_error("twin test: one residual, class, normal and look-alike per probe expected");
+    throw std::logic_error("look-alike holes: one residual, class, normal and look-alike per probe expected");
   double sum = 0, sum2 = 0;
-  TwinEvidence e;
+  ProbeEvidence e;
   for (std::size_t j = 0; j < n_probes; ++j) {
-    if (probe_twin[j] != which) continue;
+    if (probe_lookalike[j] != which) continue;
     const float r = residuals[j];
     const std::uint8_t cls = classes[j];
     double excess = 0;
@@ -62,12 +62,12 @@ TwinEvidence twin_evidence(std::span<const float> residuals, std::span<const std
   return e;
 }
 
-double seen_excess(const TwinEvidence& with_depth, std::size_t min_probes) {
+double seen_excess(const ProbeEvidence& with_depth, std::size_t min_probes) {
   if (with_depth.n < std::max<std::size_t>(min_probes, 1)) return 0;
   return std::max(0.0, with_depth.mean - 2.0 * with_depth.standard_error);
 }
 
-double twin_excess(const TwinEvidence& e, std::size_t min_probes, double missing_rate, double gate) {
+double holes_excess(const ProbeEvidence& e, std::size_t min_probes, double missing_rate, double gate) {
   if (e.n < std::max<std::size_t>(min_probes, 1)) return 0;
   // The probes' share without depth is one draw of the pose's own share m, not e.n independent
   // ones (lookalike_holes.hpp): its spread, sqrt(m (1 - m)) gates, joins the standard error.
@@ -77,18 +77,19 @@ double twin_excess(const TwinEvidence& e, std::size_t min_probes, double missing
   return std::max(0.0, e.mean - m * gate - 2.0 * error);
 }
 
-void twin_test(const FitSumsFn& sums_of, const bp_camera& cam, const FitGeometry& g,
-               const TwinProbeModel& model, std::vector<RefinedPose>& poses,
-               const TwinTestOptions& opt) {
-  const bool twins_on = opt.band_ratio > 0 && model.twins > 0;
+void lookalike_holes(const FitSumsFn& sums_of, const bp_camera& cam, const FitGeometry& g,
+                     const ProbeModel& model, std::vector<VerifiedPose>& poses,
+                     const LookalikeHolesOptions& opt) {
+  const bool holes_on = opt.band_ratio > 0 && model.lookalikes > 0;
   const bool edges_on = opt.edge_scale > 0 && model.edge_probes > 0;
-  if (model.probes.points.empty() || !(twins_on || edges_on)) return;
+  if (model.probes.points.empty() || !(holes_on || edges_on)) return;
   std::vector<bp_pose_fit> fits;
   std::vector<std::size_t> index;
   for (std::size_t k = 0; k < poses.size(); ++k) {
-    if (!(poses[k].score > 0)) continue;
+    if (!(poses[k].score() > 0)) continue;
+    const float tolerance = poses[k].evidence.tolerance;
     FitThresholds th;
-    th.gate = th.tolerance = poses[k].tolerance;
+    th.gate = th.tolerance = tolerance;
     th.slack = zbuffer_slack(g, th.tolerance);
     th.residuals = true;
     if (opt.near_gate) th.near_gate = bp_near_gate(th.gate, th.tolerance, opt.noise);
@@ -99,39 +100,43 @@ void twin_test(const FitSumsFn& sums_of, const bp_camera& cam, const FitGeometry
   const std::vector<FitSums> sums = sums_of(fits);
   const double band = double(opt.band_ratio) * g.diameter;
   for (std::size_t i = 0; i < fits.size(); ++i) {
-    RefinedPose& r = poses[index[i]];
+    VerifiedPose& v = poses[index[i]];
+    PoseEvidence& e = v.evidence;
     const std::vector<float>& all = sums[i].residuals;
     if (all.size() != model.fit_points + model.probes.points.size() ||
         sums[i].classes.size() != all.size())
-      throw std::logic_error("twin test: the probe pass gave no residual per point");
+      throw std::logic_error("look-alike holes: the probe pass gave no residual per point");
     const std::size_t probes = model.probes.points.size();
     const std::span<const float> probe_residuals(all.data() + model.fit_points, probes);
     const std::span<const std::uint8_t> probe_classes(sums[i].classes.data() + model.fit_points,
                                                       probes);
-    const double missing_rate = r.visible > 0 ? double(r.missing) / double(r.visible) : 0.0;
-    for (std::uint32_t s = 0; twins_on && s < model.twins; ++s) {
-      const TwinEvidence e = twin_evidence(probe_residuals, probe_classes, r.R, r.t, model.probes,
-                                           model.probe_twin, s, r.tolerance);
-      if (e.n < opt.min_probes) continue;
-      r.twin_tested = true;
+    const double missing_rate = e.visible > 0 ? double(e.missing) / double(e.visible) : 0.0;
+    for (std::uint32_t s = 0; holes_on && s < model.lookalikes; ++s) {
+      const ProbeEvidence all_probes =
+          probe_evidence(probe_residuals, probe_classes, v.R, v.t, model.probes,
+                         model.probe_lookalike, s, e.tolerance);
+      if (all_probes.n < opt.min_probes) continue;
+      e.lookalike_tested = true;
       // The probes with depth alone, too: under patchy dropout the share without depth says
       // little, and those seen through are evidence however many others have none.
-      const TwinEvidence seen = twin_evidence(probe_residuals, probe_classes, r.R, r.t,
-                                              model.probes, model.probe_twin, s, r.tolerance,
-                                              NoDepth::neutral);
-      r.twin_excess = std::max({r.twin_excess, twin_excess(e, opt.min_probes, missing_rate, r.tolerance),
-                                seen_excess(seen, opt.min_probes)});
+      const ProbeEvidence seen = probe_evidence(probe_residuals, probe_classes, v.R, v.t,
+                                                model.probes, model.probe_lookalike, s,
+                                                e.tolerance, NoDepth::neutral);
+      e.lookalike_excess =
+          std::max({e.lookalike_excess,
+                    holes_excess(all_probes, opt.min_probes, missing_rate, e.tolerance),
+                    seen_excess(seen, opt.min_probes)});
     }
-    r.score *= excess_factor(r.twin_excess, band);
+    v.breakdown[kLookalikeHoles] = excess_factor(e.lookalike_excess, band);
     if (!edges_on) continue;
     // No depth beyond an edge says nothing (edge_step.hpp says why).
-    const TwinEvidence e = twin_evidence(probe_residuals, probe_classes, r.R, r.t, model.probes,
-                                         model.probe_twin, model.twins, r.tolerance,
-                                         NoDepth::neutral);
-    if (e.n < opt.min_probes) continue;
-    r.edge_tested = true;
-    r.edge_step = edge_step(e);
-    r.score *= edge_factor(r.edge_step, opt.edge_scale, r.tolerance);
+    const ProbeEvidence edges = probe_evidence(probe_residuals, probe_classes, v.R, v.t,
+                                               model.probes, model.probe_lookalike,
+                                               model.lookalikes, e.tolerance, NoDepth::neutral);
+    if (edges.n < opt.min_probes) continue;
+    e.edge_tested = true;
+    e.edge_step = edge_step(edges);
+    v.breakdown[kEdgeStep] = edge_factor(e.edge_step, opt.edge_scale, e.tolerance);
   }
 }
 

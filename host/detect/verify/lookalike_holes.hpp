@@ -1,5 +1,5 @@
-// The twin test of verification: is the pose the part, or one of its look-alikes?
-// (docs/pipeline.md, step 9; host/train/twin_probes.hpp says what a probe is.)
+// The look-alike holes factor of verification: is the pose the part, or one of its look-alikes?
+// (docs/pipeline.md, step 9; host/train/lookalike_probes.hpp says what a probe is.)
 //
 // A plate turned over lies on the same outline and faces as the right pose: every other score
 // term agrees with both. Only where one of the two has material and the other a hole does the
@@ -50,19 +50,20 @@
 
 #include "host/core/mesh.hpp"
 #include "host/detect/refine/pose_refine.hpp"
+#include "host/detect/verify/verified_pose.hpp"
 
 namespace binpick {
 
 // A look-alike's evidence at one pose: the mean (mm) and its standard error over n probes, of
 // which `missing` had no depth.
-struct TwinEvidence {
+struct ProbeEvidence {
   double mean = 0, standard_error = 0;
   std::size_t n = 0, missing = 0;
 };
 
 // How a probe that faces the camera but has no depth counts.
 enum class NoDepth {
-  seen_through,  // as the gate (the twin test: a hole's bottom the projector cannot light)
+  seen_through,  // as the gate (look-alike holes: a hole's bottom the projector cannot light)
   neutral,       // not at all, only in `missing` (the edge test)
 };
 
@@ -71,36 +72,36 @@ enum class NoDepth {
 // depth excess along its ray, clamped to [-gate, gate]; seen through without a term counts as
 // gate, no depth as `no_depth` says; hidden, and in front without a term, are skipped. Probes
 // of other look-alikes are skipped.
-TwinEvidence twin_evidence(std::span<const float> residuals, std::span<const std::uint8_t> classes,
+ProbeEvidence probe_evidence(std::span<const float> residuals, std::span<const std::uint8_t> classes,
                            const Eigen::Matrix3d& R, const Eigen::Vector3d& t,
-                           const PointCloud& probes, std::span<const std::uint32_t> probe_twin,
+                           const PointCloud& probes, std::span<const std::uint32_t> probe_lookalike,
                            std::uint32_t which, double gate,
                            NoDepth no_depth = NoDepth::seen_through);
 
 // max(0, mean - m gate - 2 sqrt(standard error^2 + m (1 - m) gate^2)): m (missing_rate) is the
 // share of the pose's visible points without depth. 0 with fewer than min_probes probes
 // (untested).
-double twin_excess(const TwinEvidence& e, std::size_t min_probes, double missing_rate, double gate);
+double holes_excess(const ProbeEvidence& e, std::size_t min_probes, double missing_rate, double gate);
 
-// max(0, mean - 2 standard errors) of a look-alike's probes with depth (twin_evidence with
+// max(0, mean - 2 standard errors) of a look-alike's probes with depth (probe_evidence with
 // NoDepth::neutral); 0 with fewer than min_probes of them (untested). A pose's excess against a
-// look-alike is the larger of this and twin_excess.
-double seen_excess(const TwinEvidence& with_depth, std::size_t min_probes);
+// look-alike is the larger of this and holes_excess.
+double seen_excess(const ProbeEvidence& with_depth, std::size_t min_probes);
 
 // The probes on the device side: the fit points followed by the probes, so that the probe pass's
 // z-buffer holds the whole model (a probe behind the part's own near side is hidden). The
-// probes are the look-alikes' (probe_twin < twins) followed by `edge_probes` edge probes
-// (probe_twin == twins).
-struct TwinProbeModel {
+// probes are the look-alikes' (probe_lookalike < lookalikes) followed by `edge_probes` edge
+// probes (probe_lookalike == lookalikes).
+struct ProbeModel {
   std::uint32_t fit_points = 0;  // residuals [0, fit_points) belong to the fit points
   PointCloud probes;             // model frame
-  std::vector<std::uint32_t> probe_twin;
-  std::uint32_t twins = 0;       // look-alike count
+  std::vector<std::uint32_t> probe_lookalike;
+  std::uint32_t lookalikes = 0;  // look-alike count
   std::uint32_t edge_probes = 0;
 };
 
-struct TwinTestOptions {
-  float band_ratio = 0;          // twin test's dead band, fraction of the diameter; 0: no test
+struct LookalikeHolesOptions {
+  float band_ratio = 0;          // the factor's dead band, fraction of the diameter; 0: no test
   float edge_scale = 0;          // edge test's scale, in tolerances (edge_step.hpp); 0: no test
   std::size_t min_probes = 10;   // fewer visible probes with depth: untested
   bool near_gate = false;        // the probe pass's near gate (RefineOptions::near_gate)
@@ -108,11 +109,11 @@ struct TwinTestOptions {
 };
 
 // One probe pass (sums: pose_fit_sums on fit points + probes, or the reference) for every pose
-// with a positive score, at its verification tolerance as the gate; multiplies the scores by
-// the twin and edge factors and records twin_excess / twin_tested, edge_step / edge_tested.
-// No-op without probes or with both tests off.
-void twin_test(const FitSumsFn& sums, const bp_camera& cam, const FitGeometry& geometry,
-               const TwinProbeModel& model, std::vector<RefinedPose>& poses,
-               const TwinTestOptions& opt);
+// with a positive score, at its verification tolerance as the gate; sets the look-alike holes
+// and edge step factors and their evidence (lookalike_excess / lookalike_tested, edge_step /
+// edge_tested). No-op without probes or with both off.
+void lookalike_holes(const FitSumsFn& sums, const bp_camera& cam, const FitGeometry& geometry,
+                     const ProbeModel& model, std::vector<VerifiedPose>& poses,
+                     const LookalikeHolesOptions& opt);
 
 }  // namespace binpick

@@ -21,7 +21,7 @@
 
 #include <Eigen/Core>
 
-#include "host/detect/refine/pose_refine.hpp"
+#include "host/detect/verify/verified_pose.hpp"
 
 namespace binpick {
 
@@ -36,8 +36,9 @@ struct LookalikeOptions {
 };
 
 // group[i]: the candidate pose i was refined from (one id per candidate); centroid: the
-// model's centroid in the model frame. Sets each pose's lookalike_score and scales its score.
-void lookalike_share(std::vector<RefinedPose>& poses, const std::vector<std::size_t>& group,
+// model's centroid in the model frame. Sets each pose's lookalike_score (evidence) and its
+// look-alike share factor (score.hpp, lookalike_share_factor), against the poses' fits.
+void lookalike_share(std::vector<VerifiedPose>& poses, const std::vector<std::size_t>& group,
                      const Eigen::Vector3d& centroid, const LookalikeOptions& opt);
 
 }  // namespace binpick

@@ -7,29 +7,8 @@
 
 namespace binpick {
 
-ModelPatches model_patches(const PointCloud& model, float size) {
-  if (!(size > 0)) throw std::logic_error("patch size must be positive");
-  ModelPatches out;
-  if (model.points.empty()) return out;
-  out.of_point.reserve(model.points.size());
-  // The grid starts at the model's lowest corner, not at its origin: the same part gives the
-  // same patches wherever its CAD file puts the origin.
-  Eigen::Vector3f low = model.points.front();
-  for (const Eigen::Vector3f& p : model.points) low = low.cwiseMin(p);
-  std::map<std::tuple<long, long, long>, std::uint32_t> cells;
-  for (const Eigen::Vector3f& point : model.points) {
-    const Eigen::Vector3f p = (point - low) / size;
-    const auto cell = std::make_tuple(long(std::floor(p.x())), long(std::floor(p.y())),
-                                      long(std::floor(p.z())));
-    const auto [it, added] = cells.emplace(cell, out.count);
-    if (added) ++out.count;
-    out.of_point.push_back(it->second);
-  }
-  return out;
-}
-
-PatchTest patch_test(std::span<const float> residuals, const ModelPatches& patches,
-                     const PatchTestOptions& opt) {
+PatchBias patch_bias(std::span<const float> residuals, const ModelPatches& patches,
+                     const PatchBiasOptions& opt) {
   if (residuals.size() != patches.of_point.size())
     throw std::logic_error("patch test: one residual per model point expected");
   std::vector<double> sum(patches.count, 0.0);
@@ -45,7 +24,7 @@ PatchTest patch_test(std::span<const float> residuals, const ModelPatches& patch
     all_sq += r * r;
     ++all_n;
   }
-  PatchTest t;
+  PatchBias t;
   if (all_n < 2) return t;
   const double mean = all_sum / double(all_n);
   const double variance = std::max(0.0, all_sq / double(all_n) - mean * mean);

@@ -21,33 +21,25 @@
 #include <span>
 #include <vector>
 
-#include "host/core/mesh.hpp"
+#include "host/detect/refine/model_patches.hpp"
 
 namespace binpick {
 
-// Each model point's patch: its cell of a grid of `size` mm in the model's frame, numbered
-// 0, 1, ... in the order the points first reach them.
-struct ModelPatches {
-  std::vector<std::uint32_t> of_point;
-  std::uint32_t count = 0;
-};
-ModelPatches model_patches(const PointCloud& model, float size);
-
-struct PatchTest {
+struct PatchBias {
   std::uint32_t tested = 0;  // patches with at least min_points residuals
   std::uint32_t biased = 0;  // of those, the ones whose mean residual is off (see above)
   // The score's factor: the share of tested patches not biased (1 when none was tested).
   double factor() const { return tested == 0 ? 1.0 : 1.0 - double(biased) / double(tested); }
 };
 
-struct PatchTestOptions {
+struct PatchBiasOptions {
   float dead_band = 0;             // mm: a mean residual within this is never biased
   std::uint32_t min_points = 15;   // residuals a patch needs to be tested
   float significance = 3;          // standard errors beyond the dead band
 };
 
 // residuals: one per model point (NaN: no residual), as pose_fit writes them.
-PatchTest patch_test(std::span<const float> residuals, const ModelPatches& patches,
-                     const PatchTestOptions& opt);
+PatchBias patch_bias(std::span<const float> residuals, const ModelPatches& patches,
+                     const PatchBiasOptions& opt);
 
 }  // namespace binpick

@@ -52,7 +52,7 @@ RaySpread ray_floor(std::span<const RaySpread> poses, std::size_t min_points = 5
 double ray_excess(const RaySpread& pose, const RaySpread& floor);
 
 // The score's factor for an excess past a dead band (both mm): 1 within it, band / excess past
-// (the twin test, lookalike_holes.hpp, uses it too).
+// (look-alike holes, lookalike_holes.hpp, use it too).
 inline double excess_factor(double excess, double band) {
   return excess > band ? band / excess : 1.0;
 }

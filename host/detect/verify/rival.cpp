@@ -205,7 +205,7 @@ RivalComparison compare_rivals(const PosedSurface& a, std::span<const Eigen::Vec
     sum_d2 += (sb - sa) * (sb - sa);
   };
   const auto hopeless = [&] {
-    // The most the whole union could share, against the share as rival_test checks it.
+    // The most the whole union could share, against the share as cap_by_rivals checks it.
     const std::size_t most = total - (c.union_size - c.shared);
     if (!(double(most) < min_shared * double(total))) return false;
     c.union_size = total;  // the share stays below min_shared, as the whole union's would
@@ -237,13 +237,13 @@ RivalComparison compare_rivals(const PosedSurface& a, std::span<const Eigen::Vec
                         own_residuals(b, measured_b), tolerance, count_unexplained);
 }
 
-void rival_test(std::vector<RefinedPose>& poses, std::span<const Eigen::Vector3f> points,
+void cap_by_rivals(std::vector<VerifiedPose>& poses, std::span<const Eigen::Vector3f> points,
                 std::span<const Eigen::Vector3f> normals, float spacing, const bp_camera& cam,
-                const Eigen::Vector3d& centroid, const RivalTestOptions& opt) {
+                const Eigen::Vector3d& centroid, const RivalOptions& opt) {
   if (!(opt.significance > 0)) return;
   const std::size_t n = poses.size();
   std::vector<double> before(n), cap(n, INFINITY);
-  for (std::size_t k = 0; k < n; ++k) before[k] = poses[k].score;
+  for (std::size_t k = 0; k < n; ++k) before[k] = poses[k].score();
   // The pairs to compare, and the surfaces they need.
   std::vector<std::pair<std::size_t, std::size_t>> pairs;
   std::vector<std::size_t> needed;
@@ -276,7 +276,7 @@ void rival_test(std::vector<RefinedPose>& poses, std::span<const Eigen::Vector3f
     for (std::size_t p = first; p < last; ++p) {
       const auto [i, j] = pairs[p];
       compared[p] = compare_rivals(*surface[i], poses[i].measured, own[i], *surface[j],
-                                   poses[j].measured, own[j], poses[i].tolerance,
+                                   poses[j].measured, own[j], poses[i].evidence.tolerance,
                                    opt.count_unexplained, opt.min_shared);
     }
   });
@@ -285,9 +285,9 @@ void rival_test(std::vector<RefinedPose>& poses, std::span<const Eigen::Vector3f
     const double limit = before[winner] * (ms_l > 0 ? ms_w / ms_l : 1.0);
     if (limit < cap[loser]) {
       cap[loser] = limit;
-      poses[loser].rival_shared = std::uint32_t(shared);
-      poses[loser].rival_ms = ms_w;
-      poses[loser].own_ms = ms_l;
+      poses[loser].evidence.rival_shared = std::uint32_t(shared);
+      poses[loser].evidence.rival_ms = ms_w;
+      poses[loser].evidence.own_ms = ms_l;
     }
   };
   // In pair order, as one thread would: the first of equal caps is kept.
@@ -303,10 +303,7 @@ void rival_test(std::vector<RefinedPose>& poses, std::span<const Eigen::Vector3f
     else if (c.ms_a - c.ms_b > margin) out_fits(j, i, c.ms_b, c.ms_a, c.shared);
   }
   for (std::size_t k = 0; k < n; ++k)
-    if (cap[k] < poses[k].score) {
-      poses[k].rival_out_fitted = true;
-      poses[k].score = std::max(0.0, cap[k]);
-    }
+    if (cap[k] < poses[k].score()) poses[k].breakdown[kRivalCap] = cap[k];
 }
 
 }  // namespace binpick

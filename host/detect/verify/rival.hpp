@@ -28,7 +28,7 @@
 
 #include <Eigen/Core>
 
-#include "host/detect/refine/pose_refine.hpp"
+#include "host/detect/verify/verified_pose.hpp"
 #include "kernels/binpick_shared.h"
 
 namespace binpick {
@@ -95,10 +95,10 @@ RivalComparison compare_rivals(const PosedSurface& a, std::span<const Eigen::Vec
 // Poses whose posed centroids lie farther apart than this fraction of the diameter are not
 // compared (they cannot share most of their points); a pruning for speed.
 inline constexpr double kRivalCentreRatio = 0.5;
-// The dead band's floor as an RMS, fraction of the diameter (RivalTestOptions::dead_band_floor).
+// The dead band's floor as an RMS, fraction of the diameter (RivalOptions::dead_band_floor).
 inline constexpr double kRivalFloorRatio = 0.005;
 
-struct RivalTestOptions {
+struct RivalOptions {
   double significance = 2;      // standard errors; 0: off
   double min_shared = 0.8;      // share of the union's points both poses have surface at
   // The worse mean square must exceed the better by this share of it (at noise, clipping and
@@ -114,11 +114,12 @@ struct RivalTestOptions {
   bool count_unexplained = true;
 };
 
-// Caps the score of every pose out-fitted by a rival (the scores before the test count) and
-// records it (RefinedPose::rival_*). Each pose's measured points: RefinedPose::measured;
-// points, normals: the model's (fit points), spacing: theirs (mm); centroid: the model's.
-void rival_test(std::vector<RefinedPose>& poses, std::span<const Eigen::Vector3f> points,
-                std::span<const Eigen::Vector3f> normals, float spacing, const bp_camera& cam,
-                const Eigen::Vector3d& centroid, const RivalTestOptions& opt);
+// Sets the rival cap of every pose out-fitted by a rival (the scores before any cap count) and
+// records the comparison (PoseEvidence::rival_shared, own_ms, rival_ms). Each pose's measured
+// points: VerifiedPose::measured; points, normals: the model's (fit points), spacing: theirs
+// (mm); centroid: the model's.
+void cap_by_rivals(std::vector<VerifiedPose>& poses, std::span<const Eigen::Vector3f> points,
+                   std::span<const Eigen::Vector3f> normals, float spacing, const bp_camera& cam,
+                   const Eigen::Vector3d& centroid, const RivalOptions& opt);
 
 }  // namespace binpick

@@ -13,6 +13,7 @@
 
 #include <fmt/format.h>
 
+#include "host/detect/verify/score.hpp"
 #include "host/formats/bop/bop_files.hpp"
 #include "host/formats/bop/png_image.hpp"
 #include "host/formats/bop/results_csv.hpp"
@@ -133,7 +134,10 @@ TEST_F(DetectCli, WritesResultsBestFirstResumesAndIsDeterministic) {
       ranked.push_back(line);
       continue;
     }
-    EXPECT_NE(line.find(",0.000000,0,0,0,\"skipped: "), std::string::npos) << line;
+    // Score 0, no votes or points, and no factor: the hypothesis was never verified.
+    EXPECT_NE(line.find(",0.000000,0,0,0" + std::string(kScoreFactorCount, ',') + ",\"skipped: "),
+              std::string::npos)
+        << line;
   }
   ASSERT_EQ(ranked.size(), rows.size());
   for (std::size_t i = 0; i < rows.size(); ++i) {
@@ -141,6 +145,24 @@ TEST_F(DetectCli, WritesResultsBestFirstResumesAndIsDeterministic) {
     EXPECT_TRUE(line.starts_with(fmt::format("{},{},", rows[i].scene_id, rows[i].im_id))) << line;
     EXPECT_NE(line.find(fmt::format(",{:.6f},", rows[i].score)), std::string::npos) << line;
   }
+  // The golden rule of the score (score.hpp): its factors, as details.csv writes them, combine to
+  // the score of every row (up to the six decimals of each cell).
+  std::size_t nonzero = 0;
+  for (const std::string& row : ranked) {
+    std::vector<std::string> cells;
+    std::stringstream cut(row);
+    for (std::string cell; cells.size() < 9 + kScoreFactorCount && std::getline(cut, cell, ',');)
+      cells.push_back(cell);
+    ASSERT_EQ(cells.size(), 9 + kScoreFactorCount) << row;
+    const auto factor = [&](ScoreFactor f) { return cells[9 + f]; };
+    ScoreBreakdown b;
+    for (std::size_t f = 0; f < kScoreFactorCount; ++f)
+      if (!factor(ScoreFactor(f)).empty()) b.factor[f] = std::stod(factor(ScoreFactor(f)));
+    const double score = std::stod(cells[5]);
+    EXPECT_NEAR(b.score(), score, 2e-6 * kScoreFactorCount) << row;
+    nonzero += score > 0;
+  }
+  EXPECT_GT(nonzero, rows.size() / 2);
 
   // A rerun resumes: every scene was done before, the merged CSV is the same bytes.
   r = test::run_binpick(cmd);
@@ -165,7 +187,9 @@ TEST_F(DetectCli, WritesResultsBestFirstResumesAndIsDeterministic) {
                                     model_, (*dir_ / "data").string(), sub.string()));
   ASSERT_EQ(r.status, 0) << r.err;
   EXPECT_NE(r.out.find("scene 2 image 0"), std::string::npos) << r.out;
-  // The ray test is on by default and says what it found per detection.
+  // Each detection's score is shown as its factors (score.hpp), then the evidence behind them.
+  EXPECT_NE(r.out.find(" = agreement 0."), std::string::npos) << r.out;
+  // The ray spread is on by default and says what it found per detection.
   EXPECT_NE(r.out.find("mm spread along the rays beyond the noise"), std::string::npos) << r.out;
   for (const auto& row : bop::read_results_csv(sub)) EXPECT_GE(row.scene_id, 1);
 }

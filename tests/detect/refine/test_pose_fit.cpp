@@ -10,6 +10,7 @@
 #include <span>
 
 #include "host/core/error.hpp"
+#include "host/detect/verify/verify_poses.hpp"
 #include "tests/detect/refine/fit_scene.hpp"
 #include "tests/support/test_device.hpp"
 
@@ -164,7 +165,7 @@ TEST(PoseRefine, ConvergesFromOneBinOff) {
       const Eigen::Vector3d c = s.R * s.geometry.centroid + s.t;
       const Eigen::Vector3d got = refined[k].R * s.geometry.centroid + refined[k].t;
       EXPECT_LT((got - c).norm(), 1.0);
-      EXPECT_GT(refined[k].score, 0.85);
+      EXPECT_GT(refined[k].score(), 0.85);
       EXPECT_TRUE(refined[k].reason.empty()) << refined[k].reason;
     }
   }
@@ -182,8 +183,8 @@ TEST(PoseRefine, ScoreRanksTheRightPoseAboveAMoreVotedWrongOne) {
                                                 off_pose(s, 8, {0, 1, 0}, {1, 1, 0})};
   const auto refined = refine_and_verify(device_sums(s, dev, model, points), s.cam, s.geometry,
                                          model.size, candidates);
-  EXPECT_GT(refined[1].score, 0.85);
-  EXPECT_LT(refined[0].score, refined[1].score - 0.2);
+  EXPECT_GT(refined[1].score(), 0.85);
+  EXPECT_LT(refined[0].score(), refined[1].score() - 0.2);
 }
 
 TEST(PoseRefine, DegenerateCasesScoreZeroWithAReason) {
@@ -204,9 +205,9 @@ TEST(PoseRefine, DegenerateCasesScoreZeroWithAReason) {
                                          s.geometry, model.size, poses);
   EXPECT_NE(refined[0].reason.find("point pairs, fewer than"), std::string::npos)
       << refined[0].reason;
-  EXPECT_LT(refined[0].score, 0.2);
+  EXPECT_LT(refined[0].score(), 0.2);
   for (int k : {1, 2}) {
-    EXPECT_EQ(refined[k].score, 0.0);
+    EXPECT_EQ(refined[k].score(), 0.0);
     EXPECT_EQ(refined[k].reason, "no model surface visible at this pose");
   }
   // No depth at all where the part would be.
@@ -217,18 +218,18 @@ TEST(PoseRefine, DegenerateCasesScoreZeroWithAReason) {
         return pose_fit_sums_reference(empty.image, s.cam, s.model, f);
       },
       s.cam, s.geometry, model.size, {{s.R, s.t}});
-  EXPECT_EQ(none[0].score, 0.0);
+  EXPECT_EQ(none[0].score(), 0.0);
   EXPECT_EQ(none[0].reason, "no depth where the model would be seen");
-  RefineOptions bad;
-  bad.tolerance_ratio = 0;
+  VerifyOptions bad;
+  bad.refine.tolerance_ratio = 0;
   EXPECT_THROW(check(bad), InputError);
 }
 
 TEST(PoseRefine, ToleranceFollowsTheSensorNoise) {
   auto& dev = binpick::test::test_device();
-  RefineOptions adaptive;
+  VerifyOptions adaptive;
   adaptive.noise_factor = 3.5f;
-  const float fixed = adaptive.tolerance_ratio * 54.0f;
+  const float fixed = adaptive.refine.tolerance_ratio * 54.0f;
   for (const double noise : {0.0, 2.5}) {
     const FitScene s = binpick::test::make_fit_scene(noise, 3);
     const DeviceFitModel model = upload_fit_model(dev, s.model);
@@ -239,14 +240,14 @@ TEST(PoseRefine, ToleranceFollowsTheSensorNoise) {
     const auto wide = refine_and_verify(device_sums(s, dev, model, points), s.cam, s.geometry,
                                         model.size, start, adaptive);
     SCOPED_TRACE(testing::Message() << "noise " << noise);
-    EXPECT_FLOAT_EQ(plain[0].tolerance, fixed);
+    EXPECT_FLOAT_EQ(plain[0].evidence.tolerance, fixed);
     if (noise == 0) {
-      EXPECT_FLOAT_EQ(wide[0].tolerance, fixed);  // nothing to follow
-      EXPECT_DOUBLE_EQ(wide[0].score, plain[0].score);
+      EXPECT_FLOAT_EQ(wide[0].evidence.tolerance, fixed);  // nothing to follow
+      EXPECT_DOUBLE_EQ(wide[0].score(), plain[0].score());
     } else {
-      EXPECT_GT(wide[0].tolerance, 1.3f * fixed);  // measured: 3.19 mm against 2.16
-      EXPECT_LE(wide[0].tolerance, 3.0f * fixed);
-      EXPECT_GT(wide[0].score, plain[0].score + 0.05);  // measured: 0.912 against 0.837
+      EXPECT_GT(wide[0].evidence.tolerance, 1.3f * fixed);  // measured: 3.19 mm against 2.16
+      EXPECT_LE(wide[0].evidence.tolerance, 3.0f * fixed);
+      EXPECT_GT(wide[0].score(), plain[0].score() + 0.05);  // measured: 0.912 against 0.837
     }
   }
   adaptive.noise_factor = -1;
@@ -264,7 +265,7 @@ TEST(PoseRefine, MemoOfAFirstRoundGivesTheSameResultsAsRefiningAllAgain) {
   auto& dev = binpick::test::test_device();
   const DeviceFitModel model = upload_fit_model(dev, s.model);
   const ocl::Buffer<float> points(dev, std::span<const float>(s.image.xyzw));
-  RefineOptions ro;
+  VerifyOptions ro;
   ro.noise_factor = 3.5f;
   ro.ray_band_ratio = 0.01f;
   // Refines the poses (with the memo, if one is given) and counts the fits the kernel is asked
@@ -299,12 +300,12 @@ TEST(PoseRefine, MemoOfAFirstRoundGivesTheSameResultsAsRefiningAllAgain) {
     SCOPED_TRACE(testing::Message() << "pose " << k);
     EXPECT_EQ(round2[k].R, fresh[k].R);
     EXPECT_EQ(round2[k].t, fresh[k].t);
-    EXPECT_EQ(round2[k].score, fresh[k].score);
+    EXPECT_EQ(round2[k].score(), fresh[k].score());
     EXPECT_EQ(round2[k].iterations, fresh[k].iterations);
     EXPECT_EQ(round2[k].reason, fresh[k].reason);
-    EXPECT_EQ(round2[k].tolerance, fresh[k].tolerance);
-    EXPECT_EQ(round2[k].inliers, fresh[k].inliers);
-    EXPECT_EQ(round2[k].ray_excess, fresh[k].ray_excess);
+    EXPECT_EQ(round2[k].evidence.tolerance, fresh[k].evidence.tolerance);
+    EXPECT_EQ(round2[k].evidence.inliers, fresh[k].evidence.inliers);
+    EXPECT_EQ(round2[k].evidence.ray_excess, fresh[k].evidence.ray_excess);
   }
   for (std::size_t k = 0; k < first.size(); ++k) EXPECT_EQ(round1[k].R, fresh[k].R) << k;
   // Another first pose: nothing is taken from the memo, and it then holds the new poses.
@@ -335,8 +336,8 @@ TEST(PoseRefine, TheNearGateKeepsWhatLiesOnThePartOutOfICP) {
   const ocl::Buffer<float> points(dev, std::span<const float>(s.image.xyzw));
   const std::vector<PoseToRefine> start = {off_pose(s, 4, {1, 1, 0}, {1, 0, 1}),
                                            off_pose(s, 4, {0, 1, 2}, {0, -1, 1})};
-  RefineOptions on, off;
-  on.near_gate = true;
+  VerifyOptions on, off;
+  on.refine.near_gate = true;
   const auto with = refine_and_verify(device_sums(s, dev, model, points), s.cam, s.geometry,
                                       model.size, start, on);
   const auto without = refine_and_verify(device_sums(s, dev, model, points), s.cam, s.geometry,
@@ -347,8 +348,8 @@ TEST(PoseRefine, TheNearGateKeepsWhatLiesOnThePartOutOfICP) {
     SCOPED_TRACE(testing::Message() << "start " << k);
     EXPECT_LT(e_on, 0.6);   // measured: 0.24 degrees
     EXPECT_GT(e_off, 1.2);  // measured: 1.98 degrees: the test can fail
-    EXPECT_GT(with[k].score, without[k].score);
+    EXPECT_GT(with[k].score(), without[k].score());
   }
-  on.noise = -1;
+  on.refine.noise = -1;
   EXPECT_THROW(check(on), InputError);
 }

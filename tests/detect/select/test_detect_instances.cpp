@@ -29,7 +29,7 @@ namespace {
 Detection pose(double x, double score, std::uint64_t votes, std::uint32_t index) {
   Detection d;
   d.t = Eigen::Vector3d(x, 0, 500);
-  d.score = score;
+  d.breakdown[kAgreement] = score;  // every other factor neutral
   d.votes = votes;
   d.index = index;
   return d;

@@ -10,6 +10,7 @@
 
 #include <span>
 
+#include "host/detect/verify/verify_poses.hpp"
 #include "host/detect/verify/edge_step.hpp"
 #include "host/train/edge_probes.hpp"
 #include "host/train/ppf_model.hpp"
@@ -20,7 +21,7 @@
 using namespace binpick;
 
 TEST(EdgeTest, StepIsTheMeanPlusTwoStandardErrors) {
-  TwinEvidence e;
+  ProbeEvidence e;
   e.mean = 1.5, e.standard_error = 0.25, e.n = 100;
   EXPECT_DOUBLE_EQ(edge_step(e), 2.0);
   e.missing = 400;  // no depth beyond the edges says nothing: the step is that of the 100
@@ -45,31 +46,31 @@ PointCloud tested_probes(const PpfModel& model, bool with_rims = false) {
 
 // The pose at `pose` on `image`, verified (no refinement steps), then edge-tested with the face
 // probes (with_rims: all edge probes).
-RefinedPose edge_tested(const PpfModel& model, const PointImage& image,
+VerifiedPose edge_tested(const PpfModel& model, const PointImage& image,
                         const Eigen::Isometry3d& pose, bool with_rims) {
   auto& dev = test::test_device();
   const bp_camera cam = test::plate_camera();
   const FitGeometry g = test::plate_fit_geometry(model);
   const ocl::Buffer<float> points(dev, std::span<const float>(image.xyzw));
-  TwinProbeModel tm;
+  ProbeModel tm;
   tm.fit_points = static_cast<std::uint32_t>(model.fit_cloud.points.size());
   tm.probes = tested_probes(model, with_rims);
-  tm.twins = 0;
-  tm.probe_twin.assign(tm.probes.points.size(), 0);
+  tm.lookalikes = 0;
+  tm.probe_lookalike.assign(tm.probes.points.size(), 0);
   tm.edge_probes = static_cast<std::uint32_t>(tm.probes.points.size());
   PointCloud all = model.fit_cloud;
   append_cloud(all, tm.probes);
   const DeviceFitModel fit = upload_fit_model(dev, model.fit_cloud);
   const DeviceFitModel with_probes = upload_fit_model(dev, all);
-  RefineOptions ro;
-  ro.iterations = 0;
+  VerifyOptions ro;
+  ro.refine.iterations = 0;
   ro.noise_factor = 3.5f;
-  std::vector<RefinedPose> refined = refine_and_verify(
+  std::vector<VerifiedPose> refined = refine_and_verify(
       [&](const std::vector<bp_pose_fit>& f) { return pose_fit_sums(dev, points, cam, fit, f); },
       cam, g, fit.size, {{pose.linear(), pose.translation()}}, ro);
-  TwinTestOptions to;
+  LookalikeHolesOptions to;
   to.edge_scale = 1.0f;
-  twin_test([&](const std::vector<bp_pose_fit>& f) {
+  lookalike_holes([&](const std::vector<bp_pose_fit>& f) {
               return pose_fit_sums(dev, points, cam, with_probes, f);
             },
             cam, g, tm, refined, to);
@@ -92,74 +93,74 @@ void plate_shifted_on_a_plate(bool holes_without_depth) {
   // The right pose, and the plate shifted 20 mm across (in its plane, along y): its one long
   // edge lies over the right plate, where the surface runs on.
   const std::vector<PoseToRefine> poses = {{R, t}, {R, t + R * Eigen::Vector3d(0, 20, 0)}};
-  RefineOptions ro;
-  ro.iterations = 0;
+  VerifyOptions ro;
+  ro.refine.iterations = 0;
   ro.noise_factor = 3.5f;
-  std::vector<RefinedPose> refined = refine_and_verify(
+  std::vector<VerifiedPose> refined = refine_and_verify(
       [&](const std::vector<bp_pose_fit>& f) { return pose_fit_sums(dev, points, cam, fit, f); },
       cam, g, fit.size, poses, ro);
   // Without the test the shifted plate keeps most of the right one's score (what costs it
   // some is the right plate's holes under its sheet).
-  ASSERT_GT(refined[0].score, 0.5);
-  EXPECT_GT(refined[1].score, 0.7 * refined[0].score);
+  ASSERT_GT(refined[0].score(), 0.5);
+  EXPECT_GT(refined[1].score(), 0.7 * refined[0].score());
 
-  TwinProbeModel tm;
+  ProbeModel tm;
   tm.fit_points = fit.size;
   tm.probes = tested_probes(model);
-  tm.twins = 0;  // edge probes only: their group is the look-alike count
-  tm.probe_twin.assign(tm.probes.points.size(), 0);
+  tm.lookalikes = 0;  // edge probes only: their group is the look-alike count
+  tm.probe_lookalike.assign(tm.probes.points.size(), 0);
   tm.edge_probes = static_cast<std::uint32_t>(tm.probes.points.size());
   PointCloud all = model.fit_cloud;
   append_cloud(all, tm.probes);
   const DeviceFitModel with_probes = upload_fit_model(dev, all);
-  const std::vector<RefinedPose> before = refined;
-  TwinTestOptions to;
+  const std::vector<VerifiedPose> before = refined;
+  LookalikeHolesOptions to;
   to.edge_scale = 1.0f;
   const auto device = [&](const std::vector<bp_pose_fit>& f) {
     return pose_fit_sums(dev, points, cam, with_probes, f);
   };
-  twin_test(device, cam, g, tm, refined, to);
-  ASSERT_TRUE(refined[1].edge_tested);
-  EXPECT_FALSE(refined[0].twin_tested);
-  const double gate = refined[0].tolerance;
+  lookalike_holes(device, cam, g, tm, refined, to);
+  ASSERT_TRUE(refined[1].evidence.edge_tested);
+  EXPECT_FALSE(refined[0].evidence.lookalike_tested);
+  const double gate = refined[0].evidence.tolerance;
   if (holes_without_depth) {
     // No depth anywhere beyond the right pose's edges, which says nothing (edge_step.hpp): too
     // few probes with depth, untested. The shifted pose's edge over the right plate sees it run on.
-    EXPECT_FALSE(refined[0].edge_tested);
-    EXPECT_LT(refined[1].edge_step, 0.3 * gate);
+    EXPECT_FALSE(refined[0].evidence.edge_tested);
+    EXPECT_LT(refined[1].evidence.edge_step, 0.3 * gate);
   } else {
     // The plane beneath: one thickness (1.5 mm), give or take the noise's standard errors.
-    ASSERT_TRUE(refined[0].edge_tested);
-    EXPECT_GT(refined[0].edge_step, 1.2);
-    EXPECT_LT(refined[0].edge_step, 2.2);
-    EXPECT_LT(refined[1].edge_step, 0.7 * refined[0].edge_step);
+    ASSERT_TRUE(refined[0].evidence.edge_tested);
+    EXPECT_GT(refined[0].evidence.edge_step, 1.2);
+    EXPECT_LT(refined[0].evidence.edge_step, 2.2);
+    EXPECT_LT(refined[1].evidence.edge_step, 0.7 * refined[0].evidence.edge_step);
   }
   for (std::size_t k = 0; k < 2; ++k) {
-    const double factor = refined[k].edge_tested ? std::min(1.0, refined[k].edge_step / gate) : 1.0;
-    EXPECT_NEAR(refined[k].score, before[k].score * factor, 1e-9) << k;
+    const double factor = refined[k].evidence.edge_tested ? std::min(1.0, refined[k].evidence.edge_step / gate) : 1.0;
+    EXPECT_NEAR(refined[k].score(), before[k].score() * factor, 1e-9) << k;
   }
-  EXPECT_LT(refined[1].score, 0.75 * refined[0].score * before[1].score / before[0].score);
+  EXPECT_LT(refined[1].score(), 0.75 * refined[0].score() * before[1].score() / before[0].score());
 
   // The C++ reference gives the same steps (the classes are exact, the residuals floats).
-  std::vector<RefinedPose> again = before;
-  twin_test([&](const std::vector<bp_pose_fit>& f) {
+  std::vector<VerifiedPose> again = before;
+  lookalike_holes([&](const std::vector<bp_pose_fit>& f) {
               return pose_fit_sums_reference(image, cam, all, f);
             },
             cam, g, tm, again, to);
-  for (std::size_t k = 0; k < 2; ++k) EXPECT_NEAR(again[k].edge_step, refined[k].edge_step, 1e-3) << k;
+  for (std::size_t k = 0; k < 2; ++k) EXPECT_NEAR(again[k].evidence.edge_step, refined[k].evidence.edge_step, 1e-3) << k;
   // Scale 0, or no edge probes: untouched.
-  std::vector<RefinedPose> off = before;
+  std::vector<VerifiedPose> off = before;
   to.edge_scale = 0;
-  twin_test(device, cam, g, tm, off, to);
+  lookalike_holes(device, cam, g, tm, off, to);
   for (std::size_t k = 0; k < 2; ++k) {
-    EXPECT_EQ(off[k].score, before[k].score);
-    EXPECT_FALSE(off[k].edge_tested);
+    EXPECT_EQ(off[k].score(), before[k].score());
+    EXPECT_FALSE(off[k].evidence.edge_tested);
   }
   to.edge_scale = 1;
   tm.edge_probes = 0;
   off = before;
-  twin_test(device, cam, g, tm, off, to);
-  for (std::size_t k = 0; k < 2; ++k) EXPECT_EQ(off[k].score, before[k].score);
+  lookalike_holes(device, cam, g, tm, off, to);
+  for (std::size_t k = 0; k < 2; ++k) EXPECT_EQ(off[k].score(), before[k].score());
 }
 
 }  // namespace
@@ -180,18 +181,18 @@ TEST(EdgeTest, APoseLaidOnALargerFaceSeenObliquelyShowsNoStepAtItsFaceProbes) {
   pose.linear() = Eigen::AngleAxisd(70.0 * 3.14159265358979 / 180, Eigen::Vector3d::UnitX()) *
                   pose.linear();
   const bp_camera cam = test::plate_camera();
-  const RefinedPose on_face = edge_tested(model, test::plane_of_plate_face(cam, pose), pose, false);
-  const RefinedPose with_rims =
+  const VerifiedPose on_face = edge_tested(model, test::plane_of_plate_face(cam, pose), pose, false);
+  const VerifiedPose with_rims =
       edge_tested(model, test::plane_of_plate_face(cam, pose), pose, true);
-  const RefinedPose right =
+  const VerifiedPose right =
       edge_tested(model, test::plate_over_plane(cam, pose, false), pose, false);
-  ASSERT_TRUE(on_face.edge_tested && with_rims.edge_tested && right.edge_tested);
-  const double gate = on_face.tolerance;
+  ASSERT_TRUE(on_face.evidence.edge_tested && with_rims.evidence.edge_tested && right.evidence.edge_tested);
+  const double gate = on_face.evidence.tolerance;
   // The face runs on beyond the pose's edges: no step at the face probes, a false one at the rims.
-  EXPECT_LT(on_face.edge_step, 0.25 * gate);
-  EXPECT_GT(with_rims.edge_step, 2.0 * on_face.edge_step + 0.1 * gate);
+  EXPECT_LT(on_face.evidence.edge_step, 0.25 * gate);
+  EXPECT_GT(with_rims.evidence.edge_step, 2.0 * on_face.evidence.edge_step + 0.1 * gate);
   // The right plate over the plane beneath steps down by a thickness (1.5 mm along its normal,
   // more along the rays).
-  EXPECT_GT(right.edge_step, 1.2);
-  EXPECT_GT(right.edge_step, 3.0 * on_face.edge_step);
+  EXPECT_GT(right.evidence.edge_step, 1.2);
+  EXPECT_GT(right.evidence.edge_step, 3.0 * on_face.evidence.edge_step);
 }

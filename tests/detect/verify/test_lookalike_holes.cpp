@@ -9,6 +9,7 @@
 #include <cmath>
 #include <span>
 
+#include "host/detect/verify/verify_poses.hpp"
 #include "host/detect/verify/lookalike_holes.hpp"
 #include "host/train/ppf_model.hpp"
 #include "synth/parts/builtin_parts.hpp"
@@ -39,50 +40,50 @@ TEST(TwinTest, EvidenceIsTheMeanDepthExcessAlongTheRays) {
   const std::vector<std::uint8_t> cls(4, BP_FIT_INLIER);
   // r = n . (p - q): -1.5 where the sensor saw 1.5 mm farther (facing the camera: the excess).
   const std::vector<float> r = {-1.0f, -2.0f, -3.0f, -100.0f};
-  const TwinEvidence e =
-      twin_evidence(r, cls, Eigen::Matrix3d::Identity(), kAhead, probes, twin, 0, 10.0);
+  const ProbeEvidence e =
+      probe_evidence(r, cls, Eigen::Matrix3d::Identity(), kAhead, probes, twin, 0, 10.0);
   ASSERT_EQ(e.n, 3u);  // the fourth probe is another look-alike's
   EXPECT_EQ(e.missing, 0u);
   EXPECT_NEAR(e.mean, 2.0, 1e-5);
   EXPECT_NEAR(e.standard_error, 1.0 / std::sqrt(3.0), 1e-5);  // sample sd 1
-  EXPECT_NEAR(twin_excess(e, 3, 0.0, 10.0), 2.0 - 2.0 / std::sqrt(3.0), 1e-5);
+  EXPECT_NEAR(holes_excess(e, 3, 0.0, 10.0), 2.0 - 2.0 / std::sqrt(3.0), 1e-5);
   // The pose's own share m of points without depth comes off in the gate's units, and the
   // spread of one draw of it, sqrt(m (1 - m)) gates, joins the standard error.
-  EXPECT_NEAR(twin_excess(e, 3, 0.001, 10.0),
+  EXPECT_NEAR(holes_excess(e, 3, 0.001, 10.0),
               2.0 - 0.01 - 2.0 * std::sqrt(1.0 / 3.0 + 0.001 * 0.999 * 100.0), 1e-5);
-  EXPECT_EQ(twin_excess(e, 3, 0.05, 10.0), 0.0);
-  EXPECT_EQ(twin_excess(e, 3, 0.5, 10.0), 0.0);
-  EXPECT_EQ(twin_excess(e, 4, 0.0, 10.0), 0.0);  // too few probes: untested
+  EXPECT_EQ(holes_excess(e, 3, 0.05, 10.0), 0.0);
+  EXPECT_EQ(holes_excess(e, 3, 0.5, 10.0), 0.0);
+  EXPECT_EQ(holes_excess(e, 4, 0.0, 10.0), 0.0);  // too few probes: untested
 }
 
 // The case that made the spread term (lookalike_holes.hpp): a look-alike's probes all in one patch of
 // lost depth, 26 of 28 without depth, at a pose that misses 44 % of its own points.
 TEST(TwinTest, OnePatchWithoutDepthIsOneDrawOfThePosesOwnMissingShare) {
-  TwinEvidence e;
+  ProbeEvidence e;
   e.n = 28;
   e.missing = 26;
   const double gate = 6.0;
   e.mean = 26.0 * gate / 28.0;  // the two probes with depth on the surface (excess 0)
   e.standard_error = gate * std::sqrt(26.0 * 2.0 / (28.0 * 27.0)) / std::sqrt(28.0);
-  EXPECT_EQ(twin_excess(e, 10, 0.44, gate), 0.0);
+  EXPECT_EQ(holes_excess(e, 10, 0.44, gate), 0.0);
   // The same probes at a pose that has depth nearly everywhere else: a look-alike's holes
   // whose bottoms the projector cannot light, still evidence.
-  EXPECT_GT(twin_excess(e, 10, 0.02, gate), 0.5 * gate);
-  EXPECT_NEAR(twin_excess(e, 10, 0.0, gate), e.mean - 2.0 * e.standard_error, 1e-9);
+  EXPECT_GT(holes_excess(e, 10, 0.02, gate), 0.5 * gate);
+  EXPECT_NEAR(holes_excess(e, 10, 0.0, gate), e.mean - 2.0 * e.standard_error, 1e-9);
 }
 
 // The probes with depth alone (lookalike_holes.hpp): where the pose's own share without depth is
 // half, the spread of that share outweighs every mean, and only they still tell.
 TEST(TwinTest, ProbesWithDepthTellAlsoWhereHalfThePosesPointsHaveNone) {
   const double gate = 6.0;
-  TwinEvidence all;  // 30 probes: 15 without depth (as the gate), 15 seen through to the gate
+  ProbeEvidence all;  // 30 probes: 15 without depth (as the gate), 15 seen through to the gate
   all.n = 30;
   all.missing = 15;
   all.mean = gate;
-  TwinEvidence seen;  // the 15 with depth
+  ProbeEvidence seen;  // the 15 with depth
   seen.n = 15;
   seen.mean = gate;
-  EXPECT_EQ(twin_excess(all, 10, 0.5, gate), 0.0);
+  EXPECT_EQ(holes_excess(all, 10, 0.5, gate), 0.0);
   EXPECT_DOUBLE_EQ(seen_excess(seen, 10), gate);
   seen.mean = 1.5;  // the sheet beneath, 1.5 mm deeper, less two standard errors
   seen.standard_error = 0.2;
@@ -93,7 +94,7 @@ TEST(TwinTest, ProbesWithDepthTellAlsoWhereHalfThePosesPointsHaveNone) {
   seen.mean = gate;
   seen.n = 9;
   EXPECT_EQ(seen_excess(seen, 10), 0.0);
-  EXPECT_EQ(seen_excess(TwinEvidence{}, 0), 0.0);
+  EXPECT_EQ(seen_excess(ProbeEvidence{}, 0), 0.0);
 }
 
 TEST(TwinTest, SeenThroughAndNoDepthCountAsTheGateInFrontAndHiddenSayNothing) {
@@ -106,12 +107,12 @@ TEST(TwinTest, SeenThroughAndNoDepthCountAsTheGateInFrontAndHiddenSayNothing) {
                                          BP_FIT_HIDDEN,      BP_FIT_SEE_THROUGH, BP_FIT_OCCLUDED,
                                          BP_FIT_INLIER};
   const std::vector<float> r = {nan, nan, nan, nan, -50.0f, 50.0f, 0.0f};
-  const TwinEvidence e = twin_evidence(r, cls, Eigen::Matrix3d::Identity(), kAhead, probes, twin, 0, 5.0);
+  const ProbeEvidence e = probe_evidence(r, cls, Eigen::Matrix3d::Identity(), kAhead, probes, twin, 0, 5.0);
   ASSERT_EQ(e.n, 5u);
   EXPECT_EQ(e.missing, 1u);
   EXPECT_NEAR(e.mean, (5.0 + 5.0 + 5.0 - 5.0 + 0.0) / 5.0, 1e-9);
   // The edge test's reading: no depth says nothing, and is still counted as missing.
-  const TwinEvidence neutral = twin_evidence(r, cls, Eigen::Matrix3d::Identity(), kAhead, probes,
+  const ProbeEvidence neutral = probe_evidence(r, cls, Eigen::Matrix3d::Identity(), kAhead, probes,
                                              twin, 0, 5.0, NoDepth::neutral);
   ASSERT_EQ(neutral.n, 4u);
   EXPECT_EQ(neutral.missing, 1u);
@@ -120,7 +121,7 @@ TEST(TwinTest, SeenThroughAndNoDepthCountAsTheGateInFrontAndHiddenSayNothing) {
   // none on real material.
   PointCloud oblique = facing_probes(1);
   oblique.normals[0] = {0.0f, std::sin(1.22f), -std::cos(1.22f)};
-  EXPECT_EQ(twin_evidence(std::vector<float>{nan}, std::vector<std::uint8_t>{BP_FIT_MISSING},
+  EXPECT_EQ(probe_evidence(std::vector<float>{nan}, std::vector<std::uint8_t>{BP_FIT_MISSING},
                           Eigen::Matrix3d::Identity(), kAhead, oblique,
                           std::vector<std::uint32_t>{0}, 0, 5.0)
                 .n,
@@ -128,18 +129,18 @@ TEST(TwinTest, SeenThroughAndNoDepthCountAsTheGateInFrontAndHiddenSayNothing) {
   // A probe facing away from the camera gives no distance along its ray.
   PointCloud away = facing_probes(1);
   away.normals[0] = {0.0f, 0.0f, 1.0f};
-  EXPECT_EQ(twin_evidence(std::vector<float>{-1.0f}, std::vector<std::uint8_t>{BP_FIT_INLIER},
+  EXPECT_EQ(probe_evidence(std::vector<float>{-1.0f}, std::vector<std::uint8_t>{BP_FIT_INLIER},
                           Eigen::Matrix3d::Identity(), kAhead, away, std::vector<std::uint32_t>{0},
                           0, 5.0)
                 .n,
             0u);
   // No probe: nothing, and the test is off.
-  const TwinEvidence none =
-      twin_evidence({}, {}, Eigen::Matrix3d::Identity(), kAhead, PointCloud{}, {}, 0, 5.0);
+  const ProbeEvidence none =
+      probe_evidence({}, {}, Eigen::Matrix3d::Identity(), kAhead, PointCloud{}, {}, 0, 5.0);
   EXPECT_EQ(none.n, 0u);
-  EXPECT_EQ(twin_excess(none, 1, 0.0, 5.0), 0.0);
+  EXPECT_EQ(holes_excess(none, 1, 0.0, 5.0), 0.0);
   // One residual and class per probe, or a logic error.
-  EXPECT_THROW(twin_evidence(std::vector<float>{0.0f}, cls, Eigen::Matrix3d::Identity(), kAhead,
+  EXPECT_THROW(probe_evidence(std::vector<float>{0.0f}, cls, Eigen::Matrix3d::Identity(), kAhead,
                              probes, twin, 0, 5.0),
                std::logic_error);
 }
@@ -158,7 +159,7 @@ enum class Dropout {
 void plate_and_its_look_alikes(Dropout dropout) {
   auto& dev = test::test_device();
   const PpfModel model = train_ppf_model(make_builtin_part("plate"), PpfTrainParams{}, nullptr, dev);
-  ASSERT_EQ(model.near_symmetries.size(), 3u);
+  ASSERT_EQ(model.lookalikes.size(), 3u);
   const bp_camera cam = test::plate_camera();
   const Eigen::Isometry3d pose = test::plate_pose();
   const Eigen::Matrix3d R = pose.linear();
@@ -170,30 +171,30 @@ void plate_and_its_look_alikes(Dropout dropout) {
   const DeviceFitModel fit = upload_fit_model(dev, model.fit_cloud);
   const ocl::Buffer<float> points(dev, std::span<const float>(image.xyzw));
   std::vector<PoseToRefine> poses = {{R, t}};
-  for (const Eigen::Isometry3d& S : model.near_symmetries)
+  for (const Eigen::Isometry3d& S : model.lookalikes)
     poses.push_back({R * S.linear(), R * S.translation() + t});
-  RefineOptions ro;
-  ro.iterations = 0;  // the poses as given: the look-alikes lie exactly on the outline
+  VerifyOptions ro;
+  ro.refine.iterations = 0;  // the poses as given: the look-alikes lie exactly on the outline
   ro.noise_factor = 3.5f;
-  std::vector<RefinedPose> refined = refine_and_verify(
+  std::vector<VerifiedPose> refined = refine_and_verify(
       [&](const std::vector<bp_pose_fit>& f) { return pose_fit_sums(dev, points, cam, fit, f); },
       cam, g, fit.size, poses, ro);
   // Without the test the look-alikes score within a few hundredths of the right pose.
   for (std::size_t k = 1; k < refined.size(); ++k)
-    EXPECT_GT(refined[k].score, refined[0].score - 0.05) << k;
+    EXPECT_GT(refined[k].score(), refined[0].score() - 0.05) << k;
 
-  TwinProbeModel tm;
+  ProbeModel tm;
   tm.fit_points = fit.size;
-  tm.probes = model.twin_probes;
-  tm.probe_twin = model.probe_twin;
-  tm.twins = 3;
+  tm.probes = model.lookalike_probes;
+  tm.probe_lookalike = model.probe_lookalike;
+  tm.lookalikes = 3;
   PointCloud both = model.fit_cloud;
   append_cloud(both, tm.probes);
   const DeviceFitModel with_probes = upload_fit_model(dev, both);
-  const std::vector<RefinedPose> before = refined;
-  TwinTestOptions to;
+  const std::vector<VerifiedPose> before = refined;
+  LookalikeHolesOptions to;
   to.band_ratio = 0.005f;
-  twin_test(
+  lookalike_holes(
       [&](const std::vector<bp_pose_fit>& f) {
         return pose_fit_sums(dev, points, cam, with_probes, f);
       },
@@ -201,38 +202,38 @@ void plate_and_its_look_alikes(Dropout dropout) {
   const double band = 0.005 * model.diameter;
   if (dropout == Dropout::patches) {
     // Half of every pose's points without depth: the share's spread alone is a gate.
-    for (const RefinedPose& r : refined)
-      EXPECT_GT(double(r.missing) / double(r.visible), 0.3) << r.missing << " of " << r.visible;
+    for (const VerifiedPose& r : refined)
+      EXPECT_GT(double(r.evidence.missing) / double(r.evidence.visible), 0.3) << r.evidence.missing << " of " << r.evidence.visible;
   }
-  ASSERT_TRUE(refined[0].twin_tested);
-  EXPECT_LT(refined[0].twin_excess, band);
-  EXPECT_DOUBLE_EQ(refined[0].score, before[0].score);
+  ASSERT_TRUE(refined[0].evidence.lookalike_tested);
+  EXPECT_LT(refined[0].evidence.lookalike_excess, band);
+  EXPECT_DOUBLE_EQ(refined[0].score(), before[0].score());
   for (std::size_t k = 1; k < refined.size(); ++k) {
-    ASSERT_TRUE(refined[k].twin_tested) << k;
+    ASSERT_TRUE(refined[k].evidence.lookalike_tested) << k;
     // The sheet beneath: about its thickness deeper, less the standard errors; no depth: as
     // far as the gate, less the look-alike's own share of points without depth.
-    EXPECT_GT(refined[k].twin_excess, 1.0) << k;
+    EXPECT_GT(refined[k].evidence.lookalike_excess, 1.0) << k;
     if (dropout != Dropout::holes) {
-      EXPECT_LT(refined[k].twin_excess, 1.6) << k;
+      EXPECT_LT(refined[k].evidence.lookalike_excess, 1.6) << k;
     }
-    EXPECT_NEAR(refined[k].score, before[k].score * band / refined[k].twin_excess, 1e-6) << k;
-    EXPECT_LT(refined[k].score, 0.8 * refined[0].score) << k;
+    EXPECT_NEAR(refined[k].score(), before[k].score() * band / refined[k].evidence.lookalike_excess, 1e-6) << k;
+    EXPECT_LT(refined[k].score(), 0.8 * refined[0].score()) << k;
   }
   // The same pass with the C++ reference gives the same excesses (the classes are exact).
-  std::vector<RefinedPose> again = before;
-  twin_test(
+  std::vector<VerifiedPose> again = before;
+  lookalike_holes(
       [&](const std::vector<bp_pose_fit>& f) {
         return pose_fit_sums_reference(image, cam, both, f);
       },
       cam, g, tm, again, to);
   for (std::size_t k = 0; k < again.size(); ++k)
-    EXPECT_NEAR(again[k].twin_excess, refined[k].twin_excess, 1e-3) << k;
+    EXPECT_NEAR(again[k].evidence.lookalike_excess, refined[k].evidence.lookalike_excess, 1e-3) << k;
   // Band 0, or no probes: the scores are untouched.
-  std::vector<RefinedPose> off = before;
+  std::vector<VerifiedPose> off = before;
   to.band_ratio = 0;
-  twin_test([&](const std::vector<bp_pose_fit>& f) { return pose_fit_sums(dev, points, cam, with_probes, f); },
+  lookalike_holes([&](const std::vector<bp_pose_fit>& f) { return pose_fit_sums(dev, points, cam, with_probes, f); },
             cam, g, tm, off, to);
-  for (std::size_t k = 0; k < off.size(); ++k) EXPECT_EQ(off[k].score, before[k].score);
+  for (std::size_t k = 0; k < off.size(); ++k) EXPECT_EQ(off[k].score(), before[k].score());
 }
 
 }  // namespace

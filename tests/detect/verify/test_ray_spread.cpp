@@ -10,6 +10,7 @@
 #include <random>
 #include <span>
 
+#include "host/detect/verify/verify_poses.hpp"
 #include "host/core/error.hpp"
 #include "host/detect/verify/ray_spread.hpp"
 #include "tests/detect/refine/fit_scene.hpp"
@@ -113,32 +114,32 @@ TEST(RayTest, SimilarObjectWithRidgesLosesScoreTheRightPoseKeepsIt) {
     return pose_fit_sums(dev, points, part.cam, model, fits);
   };
   const std::vector<PoseToRefine> poses = {{part.R, part.t}, {other.R, other.t}};
-  RefineOptions opt;
+  VerifyOptions opt;
   opt.noise_factor = 3.5f;
   const auto without = refine_and_verify(sums, part.cam, g, model.size, poses, opt);
   opt.ray_band_ratio = 0.01f;
   const auto with = refine_and_verify(sums, part.cam, g, model.size, poses, opt);
-  EXPECT_FALSE(without[0].ray_tested);
-  ASSERT_TRUE(with[0].ray_tested);
-  ASSERT_TRUE(with[1].ray_tested);
+  EXPECT_FALSE(without[0].evidence.ray_tested);
+  ASSERT_TRUE(with[0].evidence.ray_tested);
+  ASSERT_TRUE(with[1].evidence.ray_tested);
   // The part: its spread is the image's noise.
-  EXPECT_DOUBLE_EQ(with[0].ray_excess, 0.0);
-  EXPECT_DOUBLE_EQ(with[0].score, without[0].score);
+  EXPECT_DOUBLE_EQ(with[0].evidence.ray_excess, 0.0);
+  EXPECT_DOUBLE_EQ(with[0].score(), without[0].score());
   // The ridges: at most sqrt(2^2 / 2) = 1.4 mm RMS; refinement fits part of them and the
   // significance margin takes some (measured: 0.85 mm), past the band of 0.54 mm.
   const double band = 0.01 * g.diameter;
-  EXPECT_GT(with[1].ray_excess, 1.3 * band);
-  EXPECT_LT(with[1].ray_excess, 1.5);
-  EXPECT_NEAR(with[1].score / (without[1].score * band / with[1].ray_excess), 1.0, 1e-6);
+  EXPECT_GT(with[1].evidence.ray_excess, 1.3 * band);
+  EXPECT_LT(with[1].evidence.ray_excess, 1.5);
+  EXPECT_NEAR(with[1].score() / (without[1].score() * band / with[1].evidence.ray_excess), 1.0, 1e-6);
   // Without the test the similar object scores nearly like the part (measured: 0.885 against
   // 0.930); with it, clearly lower (0.562).
-  EXPECT_GT(without[1].score, 0.9 * without[0].score);
-  EXPECT_LT(with[1].score, 0.7 * with[0].score);
+  EXPECT_GT(without[1].score(), 0.9 * without[0].score());
+  EXPECT_LT(with[1].score(), 0.7 * with[0].score());
   // The band is checked like the other options.
   opt.ray_band_ratio = 2.0f;
   EXPECT_THROW(check(opt), InputError);
   // Without the model's points (a geometry not set up for it) the test does not run.
   opt.ray_band_ratio = 0.01f;
   g.points.clear();
-  EXPECT_FALSE(refine_and_verify(sums, part.cam, g, model.size, poses, opt)[0].ray_tested);
+  EXPECT_FALSE(refine_and_verify(sums, part.cam, g, model.size, poses, opt)[0].evidence.ray_tested);
 }

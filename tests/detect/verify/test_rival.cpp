@@ -12,7 +12,7 @@
 #include <Eigen/Geometry>
 
 #include "host/detect/refine/pose_fit.hpp"
-#include "host/detect/refine/pose_refine.hpp"
+#include "host/detect/verify/verify_poses.hpp"
 #include "host/detect/verify/rival.hpp"
 #include "host/train/surface_sampling.hpp"
 #include "host/train/voxel_subsample.hpp"
@@ -78,20 +78,20 @@ ShaftScene shaft_scene(double noise, unsigned seed) {
 
 // Refines and verifies the poses against the scene (C++ reference sums), keeping their
 // measured points, then runs the rival test.
-std::vector<RefinedPose> refine_and_compare(const ShaftScene& s,
+std::vector<VerifiedPose> refine_and_compare(const ShaftScene& s,
                                             const std::vector<PoseToRefine>& poses,
-                                            const RivalTestOptions& rival) {
-  RefineOptions ro;
+                                            const RivalOptions& rival) {
+  VerifyOptions ro;
   ro.noise_factor = 3.5f;
   ro.keep_measured = true;
   const auto sums = [&](const std::vector<bp_pose_fit>& fits) {
     return pose_fit_sums_reference(s.image, kCam, s.model, fits);
   };
-  std::vector<RefinedPose> refined = refine_and_verify(
+  std::vector<VerifiedPose> refined = refine_and_verify(
       sums, kCam, s.geometry, std::uint32_t(s.model.points.size()), poses, ro);
-  RivalTestOptions opt = rival;
+  RivalOptions opt = rival;
   opt.dead_band_floor = std::pow(kRivalFloorRatio * s.geometry.diameter, 2);  // as detection
-  rival_test(refined, s.geometry.points, s.geometry.normals, s.geometry.voxel_size, kCam,
+  cap_by_rivals(refined, s.geometry.points, s.geometry.normals, s.geometry.voxel_size, kCam,
              s.geometry.centroid, opt);
   return refined;
 }
@@ -303,20 +303,20 @@ TEST(RivalTest, TheShaftTurnedEndForEndCannotOutrankTheRightPose) {
   for (unsigned seed : {1u, 2u, 3u}) {
     const ShaftScene s = shaft_scene(1.8, seed);
     const std::vector<PoseToRefine> poses = {{s.R, s.t}, flipped(s)};
-    RivalTestOptions off;
+    RivalOptions off;
     off.significance = 0;
     const auto alone = refine_and_compare(s, poses, off);
-    ASSERT_GT(alone[0].score, 0.3) << seed;
-    ASSERT_GT(alone[1].score, 0.3) << seed;
+    ASSERT_GT(alone[0].score(), 0.3) << seed;
+    ASSERT_GT(alone[1].score(), 0.3) << seed;
     // Each alone fits within the noise: the other tests leave them close.
-    EXPECT_LT(std::abs(alone[0].score - alone[1].score), 0.15) << seed;
-    const auto compared = refine_and_compare(s, poses, RivalTestOptions{});
-    EXPECT_FALSE(compared[0].rival_out_fitted) << seed;
-    EXPECT_DOUBLE_EQ(compared[0].score, alone[0].score) << seed;
-    EXPECT_TRUE(compared[1].rival_out_fitted) << seed;
-    EXPECT_LT(compared[1].score, compared[0].score) << seed;
-    EXPECT_GT(compared[1].own_ms, compared[1].rival_ms) << seed;
-    EXPECT_GT(compared[1].rival_shared, 200u) << seed;
+    EXPECT_LT(std::abs(alone[0].score() - alone[1].score()), 0.15) << seed;
+    const auto compared = refine_and_compare(s, poses, RivalOptions{});
+    EXPECT_FALSE(compared[0].breakdown[kRivalCap] < INFINITY) << seed;
+    EXPECT_DOUBLE_EQ(compared[0].score(), alone[0].score()) << seed;
+    EXPECT_TRUE(compared[1].breakdown[kRivalCap] < INFINITY) << seed;
+    EXPECT_LT(compared[1].score(), compared[0].score()) << seed;
+    EXPECT_GT(compared[1].evidence.own_ms, compared[1].evidence.rival_ms) << seed;
+    EXPECT_GT(compared[1].evidence.rival_shared, 200u) << seed;
   }
 }
 
@@ -331,30 +331,30 @@ TEST(RivalTest, SymmetricPosesKeepTheirScoresAndPosesApartAreNotCompared) {
       {s.R, s.t},
       {s.R * turn, s.R * (c - turn * c) + s.t},
       {s.R, s.t + s.R * Eigen::Vector3d(0, 0, 30)}};
-  RivalTestOptions off;
+  RivalOptions off;
   off.significance = 0;
   const auto alone = refine_and_compare(s, poses, off);
-  const auto compared = refine_and_compare(s, poses, RivalTestOptions{});
+  const auto compared = refine_and_compare(s, poses, RivalOptions{});
   // Either may fit a little better; neither loses more than a tenth of its score.
   for (std::size_t k = 0; k < 2; ++k) {
-    EXPECT_GT(alone[k].score, 0.5) << k;
-    EXPECT_GE(compared[k].score, 0.9 * alone[k].score) << k;
+    EXPECT_GT(alone[k].score(), 0.5) << k;
+    EXPECT_GE(compared[k].score(), 0.9 * alone[k].score()) << k;
   }
-  EXPECT_FALSE(compared[2].rival_out_fitted);
-  EXPECT_DOUBLE_EQ(compared[2].score, alone[2].score);
+  EXPECT_FALSE(compared[2].breakdown[kRivalCap] < INFINITY);
+  EXPECT_DOUBLE_EQ(compared[2].score(), alone[2].score());
 }
 
 TEST(RivalTest, PosesWithoutMeasuredPointsOrScoreAreNotCompared) {
-  std::vector<RefinedPose> poses(3);
-  poses[0].score = 0.8;  // no measured points
-  poses[1].score = 0.0;
+  std::vector<VerifiedPose> poses(3);
+  poses[0].breakdown[kAgreement] = 0.8;  // no measured points
+  poses[1].breakdown[kAgreement] = 0.0;
   poses[1].measured.assign(100, Eigen::Vector3f(0, 0, 500));
-  poses[2].score = 0.5;
+  poses[2].breakdown[kAgreement] = 0.5;
   const std::vector<Eigen::Vector3f> points(1, Eigen::Vector3f::Zero());
   const std::vector<Eigen::Vector3f> normals(1, -Eigen::Vector3f::UnitZ());
-  rival_test(poses, points, normals, 1.0f, kCam, Eigen::Vector3d::Zero(), RivalTestOptions{});
-  for (const RefinedPose& r : poses) EXPECT_FALSE(r.rival_out_fitted);
-  EXPECT_EQ(poses[0].score, 0.8);
+  cap_by_rivals(poses, points, normals, 1.0f, kCam, Eigen::Vector3d::Zero(), RivalOptions{});
+  for (const VerifiedPose& r : poses) EXPECT_FALSE(r.breakdown[kRivalCap] < INFINITY);
+  EXPECT_EQ(poses[0].score(), 0.8);
   EXPECT_THROW(PosedSurface(Eigen::Matrix3d::Identity(), {0, 0, 500}, points, normals, kCam, 0.0f),
                std::logic_error);
 }

@@ -9,7 +9,7 @@
 
 #include "host/core/error.hpp"
 #include "host/detect/verify/seen_area.hpp"
-#include "host/detect/refine/pose_refine.hpp"
+#include "host/detect/verify/verify_poses.hpp"
 #include "host/train/ppf_model.hpp"
 #include "synth/parts/builtin_parts.hpp"
 #include "tests/support/plate_scene.hpp"
@@ -84,7 +84,7 @@ TEST(AreaTest, SeenAreaWeighsVisiblePointsByTheirCosineAndMissingByHalf) {
   EXPECT_DOUBLE_EQ(area_factor(NAN, 0.8), 0.0);
   EXPECT_DOUBLE_EQ(area_factor(0.1, 0.0), 1.0);  // off
 
-  RefineOptions opt;
+  VerifyOptions opt;
   opt.area_scale = 11;
   EXPECT_THROW(check(opt), InputError);
   opt.area_scale = -0.1f;
@@ -113,8 +113,8 @@ TEST(AreaTest, APlateSeenAt75DegreesLosesItsLeadOverOneFaceUp) {
   const auto verify = [&](const Eigen::Isometry3d& pose, float scale, bool reference) {
     const PointImage image = test::plate_over_floor(cam, pose, 600.0f);
     const ocl::Buffer<float> points(dev, std::span<const float>(image.xyzw));
-    RefineOptions ro;
-    ro.iterations = 0;
+    VerifyOptions ro;
+    ro.refine.iterations = 0;
     ro.area_scale = scale;
     const auto sums = [&](const std::vector<bp_pose_fit>& f) {
       return reference ? pose_fit_sums_reference(image, cam, model.fit_cloud, f)
@@ -122,25 +122,25 @@ TEST(AreaTest, APlateSeenAt75DegreesLosesItsLeadOverOneFaceUp) {
     };
     return refine_and_verify(sums, cam, g, fit.size, {{pose.linear(), pose.translation()}}, ro)[0];
   };
-  const RefinedPose up_off = verify(up, 0, false), up_on = verify(up, 0.8f, false);
-  const RefinedPose steep_off = verify(steep, 0, false), steep_on = verify(steep, 0.8f, false);
-  EXPECT_FALSE(up_off.area_tested);
-  ASSERT_TRUE(up_on.area_tested && steep_on.area_tested);
+  const VerifiedPose up_off = verify(up, 0, false), up_on = verify(up, 0.8f, false);
+  const VerifiedPose steep_off = verify(steep, 0, false), steep_on = verify(steep, 0.8f, false);
+  EXPECT_FALSE(up_off.evidence.area_tested);
+  ASSERT_TRUE(up_on.evidence.area_tested && steep_on.evidence.area_tested);
   // Face up it shows one face squarely: about twice the mean (a quarter of both faces' points).
-  EXPECT_GT(up_on.area_share, 1.6);
-  EXPECT_LT(up_on.area_share, 2.2);
+  EXPECT_GT(up_on.evidence.area_share, 1.6);
+  EXPECT_LT(up_on.evidence.area_share, 2.2);
   // At 75 degrees at most a quarter as much (2 cos 75 = 0.52), less the points the fit's coarse
   // z-buffer counts behind the plate's nearer part (a cell spans several millimetres of depth
   // on so steep a face): the detector measures what it can tell is seen.
-  EXPECT_GT(steep_on.area_share, 0.15);
-  EXPECT_LT(steep_on.area_share, 0.6);
+  EXPECT_GT(steep_on.evidence.area_share, 0.15);
+  EXPECT_LT(steep_on.evidence.area_share, 0.6);
   // Both are right and agree alike without the test; with it the steep plate keeps its share
   // over the scale, the plate face up all of its score.
-  ASSERT_GT(up_off.score, 0.5);
-  EXPECT_GT(steep_off.score, 0.9 * up_off.score);
-  EXPECT_NEAR(up_on.score, up_off.score, 1e-12);
-  EXPECT_NEAR(steep_on.score, steep_off.score * steep_on.area_share / double(0.8f), 1e-12);
-  EXPECT_LT(steep_on.score, 0.8 * up_on.score);
+  ASSERT_GT(up_off.score(), 0.5);
+  EXPECT_GT(steep_off.score(), 0.9 * up_off.score());
+  EXPECT_NEAR(up_on.score(), up_off.score(), 1e-12);
+  EXPECT_NEAR(steep_on.score(), steep_off.score() * steep_on.evidence.area_share / double(0.8f), 1e-12);
+  EXPECT_LT(steep_on.score(), 0.8 * up_on.score());
   // The C++ reference's classes are the device's: the same share.
-  EXPECT_NEAR(verify(steep, 0.8f, true).area_share, steep_on.area_share, 1e-9);
+  EXPECT_NEAR(verify(steep, 0.8f, true).evidence.area_share, steep_on.evidence.area_share, 1e-9);
 }

@@ -6,7 +6,7 @@
 // picks among them.
 //
 // Found on the model's subsampled points: rotations about the principal axes of the points
-// through the centre of their box in the principal frame by 2 pi k / n (n = 2, 3, 4, 6) under which at least kNearMatchRatio of
+// through the centre of their box in the principal frame by 2 pi k / n (n = 2, 3, 4, 6) under which at least kLookalikeMatchRatio of
 // the points land within a voxel of a model point facing the same way (within 30 degrees).
 // Rotations that are exact symmetries (the model's own, or about its continuous axis) are left
 // out: clustering already treats them as one pose.
@@ -21,12 +21,12 @@
 
 namespace binpick {
 
-inline constexpr double kNearMatchRatio = 0.75;
-inline constexpr std::size_t kMaxNearSymmetries = 8;
+inline constexpr double kLookalikeMatchRatio = 0.75;
+inline constexpr std::size_t kMaxLookalikes = 8;
 
 // Model-frame rigid transforms x -> S x (rotations about the points' box centre), in a fixed order;
-// at most kMaxNearSymmetries. Empty for a cloud of fewer than 10 points or without normals.
-std::vector<Eigen::Isometry3d> find_near_symmetries(const PointCloud& model, float voxel_size,
+// at most kMaxLookalikes. Empty for a cloud of fewer than 10 points or without normals.
+std::vector<Eigen::Isometry3d> find_lookalikes(const PointCloud& model, float voxel_size,
                                                     const PartSymmetries& exact);
 
 }  // namespace binpick

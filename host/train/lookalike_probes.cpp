@@ -1,4 +1,4 @@
-#include "host/train/twin_probes.hpp"
+#include "host/train/lookalike_probes.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -27,9 +27,9 @@ bool on_broad_surface(const OrientedPointGrid& fine, const Eigen::Vector3f& p,
 
 }  // namespace
 
-TwinProbes find_twin_probes(const Mesh& mesh, float voxel_size,
+LookalikeProbes find_lookalike_probes(const Mesh& mesh, float voxel_size,
                             const std::vector<Eigen::Isometry3d>& near, ocl::Device& dev) {
-  TwinProbes out;
+  LookalikeProbes out;
   if (near.empty() || !(voxel_size > 0)) return out;
   const ProbeSurface dense = probe_surface(mesh, voxel_size, dev);
   const float probe_voxel = dense.probe_voxel;
@@ -49,7 +49,7 @@ TwinProbes find_twin_probes(const Mesh& mesh, float voxel_size,
         found.push_back(i);
     }
     // Evenly thinned: every k-th in the subsample's order, which is the same on every run.
-    const std::size_t step = (found.size() + kMaxProbesPerTwin - 1) / kMaxProbesPerTwin;
+    const std::size_t step = (found.size() + kMaxProbesPerLookalike - 1) / kMaxProbesPerLookalike;
     for (std::size_t k = 0; k < found.size(); k += std::max<std::size_t>(step, 1)) {
       out.cloud.points.push_back(candidates.points[found[k]]);
       out.cloud.normals.push_back(candidates.normals[found[k]]);

@@ -1,4 +1,4 @@
-#include "host/train/near_symmetry.hpp"
+#include "host/train/lookalikes.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -31,7 +31,7 @@ bool covered(const Eigen::Matrix3d& R, const PartSymmetries& exact) {
 
 }  // namespace
 
-std::vector<Eigen::Isometry3d> find_near_symmetries(const PointCloud& model, float voxel_size,
+std::vector<Eigen::Isometry3d> find_lookalikes(const PointCloud& model, float voxel_size,
                                                     const PartSymmetries& exact) {
   std::vector<Eigen::Isometry3d> out;
   const std::size_t n = model.points.size();
@@ -73,11 +73,11 @@ std::vector<Eigen::Isometry3d> find_near_symmetries(const PointCloud& model, flo
           const Eigen::Vector3d q = R * (model.points[i].cast<double>() - c) + c;
           matched += grid.matches(q.cast<float>(), (R * model.normals[i].cast<double>()).cast<float>());
         }
-        if (double(matched) >= kNearMatchRatio * double(n)) found.push_back(R);
+        if (double(matched) >= kLookalikeMatchRatio * double(n)) found.push_back(R);
       }
   }
   for (const auto& R : found) {
-    if (out.size() == kMaxNearSymmetries) break;
+    if (out.size() == kMaxLookalikes) break;
     Eigen::Isometry3d S = Eigen::Isometry3d::Identity();
     S.linear() = R;
     S.translation() = c - R * c;

@@ -1,10 +1,10 @@
-// Near symmetries (host/train/near_symmetry.hpp): the look-alike poses of a part that voting
+// Near symmetries (host/train/lookalikes.hpp): the look-alike poses of a part that voting
 // confuses and verification must tell apart.
 #include <gtest/gtest.h>
 
 #include <cmath>
 
-#include "host/train/near_symmetry.hpp"
+#include "host/train/lookalikes.hpp"
 #include "host/train/surface_sampling.hpp"
 #include "host/train/symmetry_detect.hpp"
 #include "host/train/voxel_subsample.hpp"
@@ -26,7 +26,7 @@ TEST(NearSymmetry, ThePlateHasThreeLookAlikeHalfTurns) {
   const Mesh plate = make_builtin_part("plate");  // 120 across, holes laid out without symmetry
   const PartSymmetries exact = find_symmetries(plate);
   ASSERT_TRUE(exact.empty());
-  const auto near = find_near_symmetries(model_points(plate, 6.0f), 6.0f, exact);
+  const auto near = find_lookalikes(model_points(plate, 6.0f), 6.0f, exact);
   ASSERT_EQ(near.size(), 3u);
   for (const auto& S : near) {
     EXPECT_NEAR(turn_deg(S), 180.0, 1.0);
@@ -40,25 +40,25 @@ TEST(NearSymmetry, ExactSymmetriesAreNotRepeated) {
   const Mesh b = test::box({80, 40, 20});
   const PartSymmetries exact = find_symmetries(b);
   ASSERT_EQ(exact.discrete.size(), 3u);
-  EXPECT_TRUE(find_near_symmetries(model_points(b, 4.0f), 4.0f, exact).empty());
+  EXPECT_TRUE(find_lookalikes(model_points(b, 4.0f), 4.0f, exact).empty());
   // Without being told, the same half turns are found as look-alikes (and only they).
-  const auto near = find_near_symmetries(model_points(b, 4.0f), 4.0f, {});
+  const auto near = find_lookalikes(model_points(b, 4.0f), 4.0f, {});
   EXPECT_EQ(near.size(), 3u);
 }
 
 TEST(NearSymmetry, AnLBracketHasNone) {
   const Mesh l = test::l_bracket();
-  EXPECT_TRUE(find_near_symmetries(model_points(l, 2.7f), 2.7f, find_symmetries(l)).empty());
+  EXPECT_TRUE(find_lookalikes(model_points(l, 2.7f), 2.7f, find_symmetries(l)).empty());
 }
 
 TEST(NearSymmetry, DegenerateInputsGiveNone) {
   PointCloud few;
   for (int i = 0; i < 5; ++i) few.points.push_back({float(i), 0, 0}), few.normals.push_back({0, 0, 1});
-  EXPECT_TRUE(find_near_symmetries(few, 1.0f, {}).empty());
+  EXPECT_TRUE(find_lookalikes(few, 1.0f, {}).empty());
   PointCloud no_normals = model_points(test::l_bracket(), 2.7f);
   no_normals.normals.clear();
-  EXPECT_TRUE(find_near_symmetries(no_normals, 2.7f, {}).empty());
-  EXPECT_TRUE(find_near_symmetries(model_points(test::l_bracket(), 2.7f), 0.0f, {}).empty());
+  EXPECT_TRUE(find_lookalikes(no_normals, 2.7f, {}).empty());
+  EXPECT_TRUE(find_lookalikes(model_points(test::l_bracket(), 2.7f), 0.0f, {}).empty());
 }
 
 }  // namespace

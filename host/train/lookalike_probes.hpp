@@ -1,4 +1,4 @@
-// The points that tell a pose from its look-alikes (near_symmetry.hpp). A plate turned over lies
+// The points that tell a pose from its look-alikes (lookalikes.hpp). A plate turned over lies
 // on the same outline and faces; only where one of the two has material and the other a hole
 // does the depth image say which it is. Those places are found at training, on a dense sample
 // of the mesh: a probe is a surface point p (normal n) whose image under the look-alike's
@@ -29,16 +29,16 @@
 namespace binpick {
 
 inline constexpr float kProbeMarginVoxels = 1.5f;     // in probe voxels
-inline constexpr std::size_t kMaxProbesPerTwin = 1024;  // evenly thinned beyond this
+inline constexpr std::size_t kMaxProbesPerLookalike = 1024;  // evenly thinned beyond this
 
-struct TwinProbes {
+struct LookalikeProbes {
   PointCloud cloud;                // model frame, unit normals
   std::vector<std::uint32_t> twin;  // per probe: the index of its look-alike in `near`
 };
 
-// The probes of each look-alike in `near`, in its order, at most kMaxProbesPerTwin each
+// The probes of each look-alike in `near`, in its order, at most kMaxProbesPerLookalike each
 // (deterministic). Empty if `near` is. voxel_size > 0: the model's voxel (mm).
-TwinProbes find_twin_probes(const Mesh& mesh, float voxel_size,
+LookalikeProbes find_lookalike_probes(const Mesh& mesh, float voxel_size,
                             const std::vector<Eigen::Isometry3d>& near,
                             ocl::Device& dev = ocl::Device::shared());
 
