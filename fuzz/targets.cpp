@@ -7,8 +7,8 @@
 #include <string>
 
 #include "host/core/error.hpp"
-#include "host/detect/bin/bin_spec.hpp"
-#include "host/detect/batch/detect_params_file.hpp"
+#include "host/detect/params/bin_spec.hpp"
+#include "host/detect/params/params_file.hpp"
 #include "host/formats/bop/bop_files.hpp"
 #include "host/formats/bop/models_info.hpp"
 #include "host/formats/bop/png_image.hpp"

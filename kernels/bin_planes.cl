@@ -1,4 +1,4 @@
-/* RANSAC plane scoring of the bin fit (host/detect/bin_planes.cpp): for each candidate plane,
+/* RANSAC plane scoring of the bin fit (host/detect/bin/bin_planes.cpp): for each candidate plane,
  * the number of sample points within tol of it. One work item per plane scans every point, so
  * the counts are exact integers whatever the scheduling. The points come as three arrays (x, y,
  * z) so that a work item takes eight at a time in vector registers; each lane rounds exactly as
@@ -28,7 +28,7 @@ __kernel void bin_plane_inliers(__global const float* xs, __global const float* 
   inliers[k] = c;
 }
 
-/* The sample grid of the bin fit (sample_points in host/detect/bin_planes.cpp): work item g
+/* The sample grid of the bin fit (sample_points in host/detect/bin/bin_planes.cpp): work item g
  * copies the point of grid cell (g % grid_w, g / grid_w), pixel (stride * that), so that only
  * the grid, not the whole point image, is read back; the host keeps the ones with data, in the
  * grid's row-major order. */

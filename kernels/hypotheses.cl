@@ -118,7 +118,7 @@ __kernel void hyp_exclude_masked(__global const uchar* mask, const uint n,
   excluded[i] = mask[i] ? (uchar)0 : (uchar)1;
 }
 
-/* Rounds on a depth image's points (host/detect/hypotheses.cpp, HypothesisOptions::camera): the
+/* Rounds on a depth image's points (host/detect/hypotheses/hypotheses.cpp, HypothesisOptions::camera): the
  * same choices as the chunk kernels above, with less work after the first round. The image is
  * cut into tiles of tile_w x tile_h pixels; a round excludes only inside the rectangle of the
  * image the exclusion sphere projects into (no pixel outside it has its point within the

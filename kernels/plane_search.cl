@@ -1,4 +1,4 @@
-/* The in-plane search of thin parts (host/detect/plane_search.hpp): the edge step of many poses.
+/* The in-plane search of thin parts (host/detect/refine/plane_search.hpp): the edge step of many poses.
  *
  * point_depths: one work item per pixel: the z of a point image (float4, w = 1 where there is
  * data), 0 where there is none. The search reads only the depth, at random pixels over the

@@ -8,7 +8,7 @@
  * each pose in the axis modes (unused otherwise), `symmetries` the discrete symmetry rotations
  * without the identity. One work item per pose i writes row i of the matrix and score[i] = the
  * votes of all poses compatible with it (itself included). The greedy grouping that uses them
- * runs on the host (host/detect/pose_cluster.cpp). The same float operations in the same order
+ * runs on the host (host/detect/cluster/pose_cluster.cpp). The same float operations in the same order
  * as the reference there, so both give the same matrix bit for bit. */
 #pragma OPENCL FP_CONTRACT OFF
 

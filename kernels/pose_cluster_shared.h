@@ -1,5 +1,5 @@
 /* Pose clustering's rotation test with the part's symmetries (kernels/pose_cluster.cl and its
- * C++ reference, host/detect/pose_cluster.cpp), shared so that both compute the same float
+ * C++ reference, host/detect/cluster/pose_cluster.cpp), shared so that both compute the same float
  * operations in the same order. Valid OpenCL C 1.2 and C++20; include after binpick_shared.h.
  *
  * Poses i and j (unit quaternions q, model to scene) are the same rotation up to a symmetry

@@ -1,5 +1,5 @@
 /* Pose refinement and verification against a depth image (kernels/pose_fit.cl and its C++
- * reference, host/detect/pose_fit.cpp), shared so that both classify every model point the
+ * reference, host/detect/refine/pose_fit.cpp), shared so that both classify every model point the
  * same way. Valid OpenCL C 1.2 and C++20; include after binpick_shared.h.
  *
  * A pose is compared with the measured point image through the model's points: each point is
@@ -25,8 +25,8 @@
  * Residuals (with `residuals` != 0): the point-to-plane residual of every point that gives an
  * ICP term, NaN for the others, and the class of every point (BP_FIT_HIDDEN also for points that
  * face away or fall outside the image or grid), one each per model point (the patch test,
- * host/detect/patch_test.hpp, looks for model regions whose residuals do not average out; the
- * twin test, host/detect/twin_test.hpp, needs to tell no depth from something in front). */
+ * host/detect/verify/patch_bias.hpp, looks for model regions whose residuals do not average out; the
+ * twin test, host/detect/verify/lookalike_holes.hpp, needs to tell no depth from something in front). */
 #ifndef BINPICK_POSE_FIT_SHARED_H
 #define BINPICK_POSE_FIT_SHARED_H
 

@@ -98,7 +98,7 @@ __kernel void lowpass_cols(__global const float2* pairs, __global const float2* 
 
 /* The points moved along their rays to the low-passed depth where it has a value (elsewhere
  * the point as it is): the depth image with the sensor's noise averaged over the box, which the
- * in-plane search of thin parts reads on noisy images (host/detect/scene_lowpass.hpp). */
+ * in-plane search of thin parts reads on noisy images (host/detect/scene/scene_lowpass.hpp). */
 __kernel void lowpass_points(__global const float4* points, __global const float* filtered,
                              const uint n, __global float4* out) {
   const uint i = get_global_id(0);

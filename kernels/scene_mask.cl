@@ -1,4 +1,4 @@
-/* The per-pixel "may be used" mask of a scene (--roi, --bin; host/detect/scene_mask.cpp): one
+/* The per-pixel "may be used" mask of a scene (--roi, --bin; host/detect/bin/scene_mask.cpp): one
  * uchar a pixel, 1 where the pixel has data and its point lies inside every active box of the
  * region. Masked pixels never become highest points, never enter a crop and never vote. */
 #pragma OPENCL FP_CONTRACT OFF

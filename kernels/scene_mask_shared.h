@@ -1,7 +1,7 @@
 /* The "may be used" region of a scene (--roi, --bin): up to two boxes, each in its own frame
  * (a rotation and an origin in the camera frame). A pixel may be used when it has data and its
  * point lies inside every active box. Shared by kernels/scene_mask.cl and its C++ reference
- * (host/detect/scene_mask.cpp) so that both evaluate the same float operations in the same
+ * (host/detect/bin/scene_mask.cpp) so that both evaluate the same float operations in the same
  * order: the masks compare exactly. Valid OpenCL C 1.2 and valid C++20; 4-byte scalars only. */
 #ifndef BINPICK_SCENE_MASK_SHARED_H
 #define BINPICK_SCENE_MASK_SHARED_H
@@ -99,7 +99,7 @@ BP_FN unsigned char bp_region_keeps(const bp_region* g, float x, float y, float 
  * floor's centre, z up): no data; not over the rim (q.z <= lift: the rim, the pile, the floor,
  * the ground); over the rim inside the footprint |q.x| <= reach[0], |q.y| <= reach[1]; or over
  * the rim beyond a side of the footprint the bin fit saw (sides: bit 0 +x, 1 -x, 2 +y, 3 -y),
- * where nothing the bin holds can be. host/detect/over_rim.hpp grows the last class into the
+ * where nothing the bin holds can be. host/detect/bin/over_rim.hpp grows the last class into the
  * pixels over the rim it is joined to. */
 #define BP_OVER_RIM_NO 0u     /* has data, not over the rim */
 #define BP_OVER_RIM_IN 1u     /* over the rim, over the bin's footprint */

@@ -1,6 +1,6 @@
-// The detection options of the verbs that detect (`run`, `tune`'s starting point): --params FILE
-// and one option per detection parameter, with the command line winning over the file, exactly
-// as `binpick detect` takes them.
+// The detection options of the verbs that detect (`detect`, `run`, `tune`'s starting point):
+// --params FILE and one option per row of the parameter table (host/detect/params/
+// param_table.hpp), with the command line winning over the file.
 #pragma once
 
 #include <cstdint>
@@ -8,18 +8,16 @@
 #include <string>
 
 #include "host/core/cli_fwd.hpp"
-
-#include "host/detect/detector.hpp"
+#include "host/detect/params/detect_params.hpp"
 
 namespace binpick::cli {
 
 struct DetectCliOptions {
   std::string params_file;
   DetectParams params;
-  // Wide types, so a negative value reaches the range check with a clear message.
-  std::int64_t hypotheses = 5, more_hypotheses = 5, peaks_per_ref = 3, candidates = 4, refine_iterations = 10,
-               highest_up = 0, through_walls = 0, over_rim = 0, unique_votes = 0, spread_votes = 0,
-               local_peaks = 1, instances = 0;
+  // Whole-number parameters are read wide, so a negative value reaches the range check with a
+  // clear message.
+  std::map<std::string, std::int64_t> counts;
   std::map<std::string, CLI::Option*> options;  // parameter name -> its option
 };
 

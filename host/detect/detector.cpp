@@ -22,7 +22,7 @@
 
 #include "host/core/error.hpp"
 #include "host/detect/bin/bin_region.hpp"
-#include "host/detect/bin/bin_spec.hpp"
+#include "host/detect/params/bin_spec.hpp"
 #include "host/detect/scene/cloud_image.hpp"
 #include "host/detect/scene/depth_noise.hpp"
 #include "host/detect/scene/image_memory.hpp"
@@ -45,7 +45,6 @@ void require(bool ok, const std::string& message) {
   if (!ok) throw InputError(message);
 }
 
-bool in(double v, double lo, double hi) { return std::isfinite(v) && v >= lo && v <= hi; }
 
 double sum_ms(const StageTimings& t, std::size_t from) {
   double ms = 0;
@@ -77,10 +76,6 @@ bool ranks_before(const Detection& a, const Detection& b) {
 
 }  // namespace
 
-std::size_t hypotheses_sought(const DetectParams& p) {
-  if (p.instances > 0) return std::max(p.hypotheses, p.instances);
-  return std::size_t(p.hypotheses) + p.more_hypotheses;
-}
 
 namespace {
 
@@ -143,77 +138,6 @@ std::vector<Detection> Detector::in_rounds(std::size_t found,
   return rank();
 }
 
-std::optional<ParamProblem> find_param_problem(const DetectParams& p) {
-  const std::pair<bool, ParamProblem> rules[] = {
-      {in(p.ref_ratio, 0, 1) && p.ref_ratio > 0, {"ref-ratio", p.ref_ratio, "(0, 1]"}},
-      {p.hypotheses >= 1 && p.hypotheses <= 1000, {"hypotheses", double(p.hypotheses), "[1, 1000]"}},
-      {p.more_hypotheses <= 1000, {"more-hypotheses", double(p.more_hypotheses), "[0, 1000]"}},
-      {in(p.confident, 0, 1), {"confident", p.confident, "[0, 1]"}},
-      {p.highest_up <= 1, {"highest-up", double(p.highest_up), "{0, 1}"}},
-      {p.through_walls <= 1, {"through-walls", double(p.through_walls), "{0, 1}"}},
-      {p.over_rim <= 1, {"over-rim", double(p.over_rim), "{0, 1}"}},
-      {in(p.flat_region, 0, 100) && (p.flat_region == 0 || p.flat_region >= 1),
-       {"flat-region", p.flat_region, "{0} or [1, 100]"}},
-      {in(p.exclusion_ratio, 0, 100), {"exclusion-ratio", p.exclusion_ratio, "[0, 100]"}},
-      {in(p.crop_ratio, 0, 100) && p.crop_ratio > 0, {"crop-ratio", p.crop_ratio, "(0, 100]"}},
-      {in(p.cluster_distance, 0, 100), {"cluster-distance", p.cluster_distance, "[0, 100]"}},
-      {in(p.cluster_angle, 0, 180), {"cluster-angle", p.cluster_angle, "[0, 180] degrees"}},
-      {p.peaks_per_ref >= 1 && p.peaks_per_ref <= 16, {"peaks-per-ref", double(p.peaks_per_ref), "[1, 16]"}},
-      {in(p.peak_ratio, 0, 1), {"peak-ratio", p.peak_ratio, "[0, 1]"}},
-      {in(p.normal_ratio, 0, 10) && p.normal_ratio > 0, {"normal-ratio", p.normal_ratio, "(0, 10]"}},
-      {p.unique_votes <= 1, {"unique-votes", double(p.unique_votes), "{0, 1}"}},
-      {p.spread_votes <= 1, {"spread-votes", double(p.spread_votes), "{0, 1}"}},
-      {p.local_peaks <= 1, {"local-peaks", double(p.local_peaks), "{0, 1}"}},
-      {in(p.bucket_cap, 0, 10000), {"bucket-cap", p.bucket_cap, "[0, 10000]"}},
-      {in(p.noise_voxel, 1, 4), {"noise-voxel", p.noise_voxel, "[1, 4]"}},
-      {p.candidates >= 1 && p.candidates <= 64, {"candidates", double(p.candidates), "[1, 64]"}},
-      {in(p.plane_search, 0, 1), {"plane-search", p.plane_search, "[0, 1]"}},
-      {p.refine_iterations <= 100, {"refine-iterations", double(p.refine_iterations), "[0, 100]"}},
-      {in(p.verify_tolerance, 0, 1) && p.verify_tolerance > 0, {"verify-tolerance", p.verify_tolerance, "(0, 1]"}},
-      {in(p.verify_noise_factor, 0, 100), {"verify-noise-factor", p.verify_noise_factor, "[0, 100]"}},
-      {in(p.verify_patch, 0, 1), {"verify-patch", p.verify_patch, "[0, 1]"}},
-      {in(p.verify_ray, 0, 1), {"verify-ray", p.verify_ray, "[0, 1]"}},
-      {in(p.verify_through, 0, 100), {"verify-through", p.verify_through, "[0, 100]"}},
-      {in(p.verify_twin, 0, 1), {"verify-twin", p.verify_twin, "[0, 1]"}},
-      {in(p.verify_edge, 0, 10), {"verify-edge", p.verify_edge, "[0, 10]"}},
-      {in(p.verify_lookalike, 0, 1), {"verify-lookalike", p.verify_lookalike, "[0, 1]"}},
-      {in(p.verify_area, 0, 10), {"verify-area", p.verify_area, "[0, 10]"}},
-      {in(p.verify_rival, 0, 100), {"verify-rival", p.verify_rival, "[0, 100]"}},
-      {in(p.bin_margin, 0, 10), {"bin-margin", p.bin_margin, "[0, 10]"}},
-      {p.instances <= 1000, {"instances", double(p.instances), "[0, 1000]"}},
-  };
-  for (const auto& [ok, problem] : rules)
-    if (!ok) return problem;
-  std::optional<RoiSpec> roi;
-  try {
-    roi = parse_roi(p.roi);
-  } catch (const InputError& e) {
-    return ParamProblem{"roi", 0, "", e.what()};
-  }
-  BinSpec bin;
-  try {
-    bin = parse_bin(p.bin);
-  } catch (const InputError& e) {
-    return ParamProblem{"bin", 0, "", e.what()};
-  }
-  if (roi && roi->frame == RoiSpec::Frame::bin && bin.mode == BinSpec::Mode::none)
-    return ParamProblem{"roi", 0, "",
-                        fmt::format("'{}' is in the bin's frame: it needs --bin auto or --bin "
-                                    "W,D,H",
-                                    p.roi)};
-  return std::nullopt;
-}
-
-std::string describe(const ParamProblem& bad) {
-  if (!bad.message.empty()) return bad.message;
-  return fmt::format("{} must be in {}", bad.value, bad.range);
-}
-
-void check(const DetectParams& p) {
-  if (const auto bad = find_param_problem(p))
-    throw InputError(fmt::format("detection parameter {} {}", bad->name, describe(*bad)));
-}
-
 DetectTimes& DetectTimes::operator+=(const DetectTimes& o) {
   prepare_ms += o.prepare_ms;
   vote_ms += o.vote_ms;
@@ -258,7 +182,7 @@ Detector::Detector(const PpfModel& model, const DetectParams& params, ocl::Devic
   // outline factor), the edge probes that continue its faces (edge step; edge_probes.hpp says
   // why not its rims').
   probes_.lookalikes = static_cast<std::uint32_t>(model_.lookalikes.size());
-  if (params_.verify_twin > 0) {
+  if (params_.verify_lookalike_holes > 0) {
     probes_.probes = model_.lookalike_probes;
     probes_.probe_lookalike = model_.probe_lookalike;
   }
@@ -288,7 +212,7 @@ Detector::Detector(const PpfModel& model, const DetectParams& params, ocl::Devic
   vo.ray_band_ratio = float(params_.verify_ray);
   vo.through_weight = float(params_.verify_through);
   vo.area_scale = float(params_.verify_area);
-  verify_options_.holes_band = float(params_.verify_twin);
+  verify_options_.holes_band = float(params_.verify_lookalike_holes);
   verify_options_.edge_scale = float(params_.verify_edge);
   verify_options_.rival_significance = params_.verify_rival;
   verify_options_.lookalike_weight = params_.verify_lookalike;
@@ -306,9 +230,9 @@ std::vector<PoseCluster> Detector::vote_and_cluster(const PointCloud& subsampled
   VoteOptions vo;
   vo.peaks_per_ref = params_.peaks_per_ref;
   vo.peak_ratio = float(params_.peak_ratio);
-  vo.unique_votes = params_.unique_votes != 0;
-  vo.spread_alpha = params_.spread_votes != 0;
-  vo.local_max = params_.local_peaks != 0;
+  vo.unique_votes = params_.unique_votes;
+  vo.spread_alpha = params_.spread_votes;
+  vo.local_max = params_.local_peaks;
   const std::size_t before = t.stages.size();
   const std::vector<VotePeak> peaks =
       vote_peaks(dev, device_model_, subsampled, refs, vo, &t.stages);
@@ -523,8 +447,8 @@ std::vector<Detection> Detector::detect(const DepthImage& depth, const bp_camera
   region.min_height = 0.5 * model_.diameter;  // a tray shallower than half a part holds none
   region.min_side = model_.diameter;          // nor one narrower than a part
   region.floor_clearance_cap = 0.5 * thinnest_extent_;
-  region.keep_through_walls = params_.through_walls != 0;
-  region.keep_over_rim = params_.over_rim != 0;
+  region.keep_through_walls = params_.through_walls;
+  region.keep_over_rim = params_.over_rim;
   region.over_rim_gap = 0.25 * model_.diameter;  // a hole in the depth of an arm's face
   const BinFit* known_bin = shared ? shared->bin(params_.bin, model_.diameter) : nullptr;
   const SceneRegionMask masked =

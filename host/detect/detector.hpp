@@ -17,6 +17,7 @@
 #include <Eigen/Geometry>
 
 #include "host/detect/hypotheses/hypotheses.hpp"
+#include "host/detect/params/detect_params.hpp"
 #include "host/detect/select/detection.hpp"
 #include "host/detect/vote/ppf_vote.hpp"
 #include "host/detect/cluster/pose_cluster.hpp"
@@ -34,123 +35,6 @@ namespace binpick {
 
 struct BinFit;
 class SharedScene;
-
-// Every parameter of detection; the paper's values are the defaults (docs/parameters.md).
-// Ratios are fractions of the model's diameter.
-struct DetectParams {
-  double ref_ratio = 0.2;          // reference points / subsampled scene points (2 %: fast)
-  std::uint32_t hypotheses = 5;    // highest points tried
-  // Beyond the paper: when no pose of those scores `confident` or more, this many more highest
-  // points are tried, and all are ranked together (0: never). A bin full of parts with others
-  // mixed in puts the highest points of the low-passed image on the larger parts; a pose
-  // scoring 0.7 or more is seldom wrong (docs/pipeline.md, "More hypotheses").
-  std::uint32_t more_hypotheses = 5;
-  // Flat-region test (0: off; flat_region.hpp): a highest point on a flat patch this many times
-  // larger than the part's widest flat region is skipped and the next one taken (an image's
-  // hypotheses on other, flatter parts). Measured in docs/pipeline.md, step 3.
-  // 1: with a bin found (--bin), "highest" is along the bin's up rather than nearest the camera
-  // (the same for a camera looking straight down; for a tilted one the nearest points are on the
-  // bin's near side). 0: nearest the camera, the paper's. Measured in docs/pipeline.md, step 2:
-  // off, since keeping out what is seen through the walls (through_walls) did better.
-  std::uint32_t highest_up = 0;
-  // 1: points the sensor sees through a wall of the bin found (between a wire-mesh basket's bars)
-  // may hold highest points and crops; 0: they are kept out, as the walls are (bin_region.hpp).
-  std::uint32_t through_walls = 0;
-  // 1: what reaches into the bin over its rim from outside (a robot arm over the rim: over the
-  // rim and joined to what stands over it beyond a side of the rim seen, over_rim.hpp) may hold
-  // highest points and crops; 0: it is kept out, as the rim is. Measured in docs/pipeline.md,
-  // step 1.
-  std::uint32_t over_rim = 0;
-  double flat_region = 1.25;
-  double confident = 0.7;
-  double exclusion_ratio = 1.2;    // radius excluded around a highest point
-  double crop_ratio = 1.0;         // radius of the neighbourhood voted on
-  double cluster_distance = 0.144; // translation threshold of pose clustering
-  double cluster_angle = 20.0;     // rotation threshold of pose clustering, degrees
-  std::uint32_t peaks_per_ref = 3; // accumulator peaks per reference point
-  double peak_ratio = 0.9;         // ... with at least this fraction of its best votes
-  std::uint32_t unique_votes = 0;  // 1: equal scene pairs of a reference point vote once
-  std::uint32_t spread_votes = 0;  // 1: each vote also goes to the nearer neighbouring alpha bin
-  std::uint32_t local_peaks = 1;   // 1: peaks must be local maxima along alpha
-  // A feature key votes for at most this many model pairs per model point (evenly spaced;
-  // ppf_bucket_cap.hpp); 0: all of them (Drost). Off: measured in docs/parameters.md, it makes
-  // flat parts vote faster but costs a few hypotheses.
-  double bucket_cap = 0.0;
-  double normal_ratio = 0.08;      // scene normals: radius of the plane fitted (fraction)
-  // At depth noise of 0.6 voxels and more (estimated in each image, depth_noise.hpp), the
-  // scene's voxels are up to this many times longer along the camera's axis (1: cubic, as the
-  // model's). Measured in docs/parameters.md: twice as fast voting at 3 and 5 % noise, as many
-  // right poses.
-  double noise_voxel = 2.0;
-  std::uint32_t candidates = 4;    // best pose clusters per hypothesis refined and verified
-  // Thin parts (plane_search.hpp): each candidate is also searched for over the sheet's plane,
-  // shifts within this fraction of the diameter and the whole turn (0: off). Measured in
-  // docs/pipeline.md, step 9.
-  double plane_search = 0.15;
-  std::uint32_t refine_iterations = 10;  // ICP steps per candidate (0: verify the voted pose)
-  double verify_tolerance = 0.04;  // depth agreement of a verified model point (fraction)
-  double verify_noise_factor = 3.5;  // tolerance widens to this x the noise seen (0: fixed)
-  double verify_patch = 0.2;       // patch test's cell side (fraction; 0: no patch test)
-  // Ray test's dead band (fraction; 0: off, ray_spread.hpp): a spread along the rays wider than
-  // the image's best pose's by more than this costs score. 0.01 d, the patch test's dead band
-  // (a right pose's leftover error); measured in docs/pipeline.md, step 9.
-  double verify_ray = 0.01;
-  // See-through cost (0: off, pose_refine.hpp): each visible model point where the sensor sees
-  // past the part counts against the pose as much as this many agreeing points count for it;
-  // measured in docs/pipeline.md, step 9.
-  double verify_through = 1.0;
-  // Twin test's dead band (fraction; 0: off, lookalike_holes.hpp): a pose whose surface the sensor
-  // sees through where a look-alike of it has a hole, by more than this on average, costs
-  // score. Measured in docs/pipeline.md, step 9.
-  double verify_twin = 0.005;
-  // Edge test's scale (0: off; lookalike_holes.hpp, edge_step.hpp), for thin parts only: the score is
-  // multiplied by the depth the sensor sees the part's edges step down by (an upper bound) over
-  // this many verification tolerances, at most 1. Measured in docs/pipeline.md, step 9.
-  double verify_edge = 1.0;
-  // Seen-area test's scale (0: off; seen_area.hpp): the score is multiplied by the area the
-  // pose shows the sensor over this many times the part's mean projected area, at most 1.
-  // Off by default: measured in docs/pipeline.md, step 9, it costs as many right poses seen
-  // obliquely as it gains where steep wrong poses (a robot arm's side face) win.
-  double verify_area = 0.0;
-  // Rival test's significance (standard errors; 0: off; rival.hpp): a pose that fits the
-  // measured points it shares with another pose worse by more than this cannot outrank it.
-  // Measured in docs/pipeline.md, step 9.
-  double verify_rival = 2.0;
-  // Look-alike share's weight (0: off; lookalike_share.hpp): a pose's score is multiplied by
-  // s / (s + w a), a the best score of the same candidate's poses turned another way round at
-  // its place. Measured in docs/pipeline.md, step 9.
-  double verify_lookalike = 1.0;
-  // Where hypotheses and crops may be (bin_spec.hpp, docs/cli.md): "" (anywhere),
-  // "camera:x0,y0,z0,x1,y1,z1" or "bin:..." (mm).
-  std::string roi;
-  std::string bin = "auto";        // none, auto or the interior size "W,D,H" (mm)
-  double bin_margin = 0.1;         // the bin's walls and rim are kept out by this (fraction)
-  // 0: one detection per hypothesis, each its best candidate (the paper's). N > 0: the N best
-  // verified poses of different parts (instance_select.hpp), from max(hypotheses, N) highest
-  // points and every candidate of each; poses with score 0 are left out.
-  std::uint32_t instances = 0;
-};
-// The first parameter out of its range: its name (as in a --params file, docs/cli.md), its value
-// and the range allowed ("(0, 1]"). The caller that knows where the value came from (an option,
-// a file) names that in its message.
-struct ParamProblem {
-  ParamProblem(std::string name_, double value_, std::string range_, std::string message_ = {})
-      : name(std::move(name_)), value(value_), range(std::move(range_)),
-        message(std::move(message_)) {}
-  std::string name;
-  double value = 0;
-  std::string range;
-  std::string message;  // a text parameter's complaint ("'x': expected ..."); then no value/range
-};
-std::optional<ParamProblem> find_param_problem(const DetectParams& params);
-
-// Highest points sought in an image: hypotheses + more_hypotheses, or max(hypotheses,
-// instances) with instances.
-std::size_t hypotheses_sought(const DetectParams& params);
-// The complaint after the parameter's name: "V must be in RANGE", or a text parameter's message.
-std::string describe(const ParamProblem& problem);
-// InputError naming the parameter ("detection parameter ref-ratio ...") for a value out of range.
-void check(const DetectParams& params);
 
 // Time per stage over the work done (ms), for the summary line and the benchmark.
 struct DetectTimes {

@@ -7,7 +7,7 @@
 
 #include "host/core/error.hpp"
 #include "host/core/progress.hpp"
-#include "host/detect/batch/detect_params_file.hpp"
+#include "host/detect/params/params_file.hpp"
 #include "host/eval/metrics/eval_dataset.hpp"
 #include "host/core/atomic_file.hpp"
 #include "host/core/read_file.hpp"

@@ -2,7 +2,7 @@
 
 #include <fmt/format.h>
 
-#include "host/detect/batch/detect_params_file.hpp"
+#include "host/detect/params/params_file.hpp"
 
 namespace binpick {
 namespace {

@@ -4,7 +4,7 @@
 // the option's name in the message); check(model) repeats the checks that involve two options.
 #pragma once
 
-#include "host/app/cli_fwd.hpp"
+#include "host/core/cli_fwd.hpp"
 #include <nlohmann/json.hpp>
 
 #include "synth/sensor/sensor_model.hpp"

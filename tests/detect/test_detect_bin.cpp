@@ -228,7 +228,7 @@ bool behind_near_wall(const BinScene& scene, const BinSceneSpec& s, const Eigen:
 }  // namespace
 
 // A bin whose near wall is bars, seen by a camera tilted 35 degrees beyond it: the parts lying
-// along that wall are nearest the camera, seen between the bars. Kept in (--through-walls 1)
+// along that wall are nearest the camera, seen between the bars. Kept in (--through-walls)
 // they draw the first hypotheses; by default none lies behind the wall.
 TEST(DetectBin, NoHypothesisBehindAMeshWall) {
   BinSceneSpec s;
@@ -255,7 +255,7 @@ TEST(DetectBin, NoHypothesisBehindAMeshWall) {
   for (const Detection& d : det.skipped())
     EXPECT_FALSE(behind_near_wall(scene, s, d.hypothesis.point.cast<double>()));
   EXPECT_EQ(det.region_report().find("highest along"), std::string::npos);
-  // Highest along the bin's up (--highest-up 1): said in the report, and still none behind.
+  // Highest along the bin's up (--highest-up): said in the report, and still none behind.
   p.highest_up = 1;
   Detector up(bracket(), p);
   const auto along = up.detect(scene.depth, scene.cam);

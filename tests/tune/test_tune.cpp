@@ -13,7 +13,7 @@
 #include <fmt/format.h>
 
 #include "host/core/error.hpp"
-#include "host/detect/batch/detect_params_file.hpp"
+#include "host/detect/params/params_file.hpp"
 #include "host/train/ppf_model_file.hpp"
 #include "host/tune/tune_search.hpp"
 #include "tests/support/cli_run.hpp"

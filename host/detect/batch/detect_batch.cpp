@@ -13,7 +13,7 @@
 #include "host/formats/bop/png_image.hpp"
 #include "host/core/error.hpp"
 #include "host/core/progress.hpp"
-#include "host/detect/batch/detect_params_file.hpp"
+#include "host/detect/params/params_file.hpp"
 #include "host/detect/batch/detect_parts.hpp"
 #include "host/detect/shared_scene.hpp"
 #include "host/shards/shard_record.hpp"

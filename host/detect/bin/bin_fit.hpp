@@ -25,7 +25,7 @@
 #include <Eigen/Core>
 
 #include "host/detect/bin/bin_planes.hpp"
-#include "host/detect/bin/bin_spec.hpp"
+#include "host/detect/params/bin_spec.hpp"
 #include "host/detect/bin/scene_mask.hpp"
 #include "host/runtime/cl/cl_buffer.hpp"
 

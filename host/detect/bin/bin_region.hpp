@@ -12,7 +12,7 @@
 
 #include "host/core/timing.hpp"
 #include "host/detect/bin/bin_fit.hpp"
-#include "host/detect/bin/bin_spec.hpp"
+#include "host/detect/params/bin_spec.hpp"
 #include "host/detect/bin/scene_mask.hpp"
 #include "host/detect/scene/scene_prepare.hpp"
 

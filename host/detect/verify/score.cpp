@@ -20,7 +20,7 @@ constexpr std::array<ScoreFactorInfo, kScoreFactorCount> kFactors = {{
      "the area the pose shows the sensor against the part's mean"},
     {"ray_spread", "verify-ray", FactorScope::poses, FactorCombine::multiply,
      "spread along the rays beyond the image's noise (its best pose's)"},
-    {"lookalike_holes", "verify-twin", FactorScope::pose, FactorCombine::multiply,
+    {"lookalike_holes", "verify-lookalike-holes", FactorScope::pose, FactorCombine::multiply,
      "the sensor sees through the pose where a look-alike of it has a hole"},
     {"edge_step", "verify-edge", FactorScope::pose, FactorCombine::multiply,
      "a thin part's edges step down to what lies beneath"},

@@ -230,16 +230,19 @@ TEST_F(DetectCli, ParamsFileAppliesAndCommandLineWins) {
   };
   refused_in_file(R"({"verify_ray": 2})", "verify-ray 2 must be in [0, 1]");
   refused_in_file(R"({"verify_through": -1})", "verify-through -1 must be in [0, 100]");
-  refused_in_file(R"({"verify_twin": 1.5})", "verify-twin 1.5 must be in [0, 1]");
-  refused_as_option("--verify-twin -0.1", "verify-twin -0.1 must be in [0, 1]");
+  // A parameter's older name is still read from a file, and named by its name now.
+  refused_in_file(R"({"verify_twin": 1.5})", "verify-lookalike-holes 1.5 must be in [0, 1]");
+  refused_as_option("--verify-lookalike-holes -0.1",
+                    "verify-lookalike-holes -0.1 must be in [0, 1]");
   refused_in_file(R"({"verify_edge": 11})", "verify-edge 11 must be in [0, 10]");
   refused_in_file(R"({"flat_region": 0.5})", "flat-region 0.5 must be in {0} or [1, 100]");
   refused_as_option("--flat-region 101", "flat-region 101 must be in {0} or [1, 100]");
-  refused_in_file(R"({"highest-up": 2})", "highest-up 2 must be in {0, 1}");
-  refused_as_option("--through-walls 3", "through-walls 3 must be in {0, 1}");
-  refused_as_option("--over-rim 2", "over-rim 2 must be in {0, 1}");
-  refused_in_file(R"({"over-rim": 5})", "over-rim 5 must be in {0, 1}");
-  refused_as_option("--highest-up -1", "highest-up");
+  // On/off parameters are flags (--over-rim, --no-over-rim); files may hold true/false or 1/0.
+  refused_in_file(R"({"highest-up": 2})", "'highest-up' must be true or false (or 1 or 0)");
+  refused_in_file(R"({"over-rim": "yes"})", "'over-rim' must be true or false (or 1 or 0)");
+  refused_as_option("--through-walls 3", "not expected: 3");
+  refused_as_option("--over-rim 2", "not expected: 2");
+  refused_as_option("--highest-up -1", "-1");
   refused_as_option("--verify-edge nan", "verify-edge");
   refused_in_file(R"({"verify_lookalike": 1.5})", "verify-lookalike 1.5 must be in [0, 1]");
   refused_as_option("--verify-lookalike -1", "verify-lookalike");

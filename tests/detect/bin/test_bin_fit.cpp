@@ -13,7 +13,7 @@
 #include "host/detect/bin/bin_fit.hpp"
 #include "host/detect/bin/bin_region.hpp"
 #include "host/detect/bin/bin_rim.hpp"
-#include "host/detect/bin/bin_spec.hpp"
+#include "host/detect/params/bin_spec.hpp"
 #include "host/detect/scene/depth_noise.hpp"
 #include "host/detect/hypotheses/hypotheses.hpp"
 #include "host/detect/scene/scene_prepare.hpp"

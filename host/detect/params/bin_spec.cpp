@@ -1,4 +1,4 @@
-#include "host/detect/bin/bin_spec.hpp"
+#include "host/detect/params/bin_spec.hpp"
 
 #include <charconv>
 #include <cmath>
