@@ -62,6 +62,18 @@ double ScoreBreakdown::fit() const {
 
 double ScoreBreakdown::score() const { return fit() * factor[kLookalikeShare]; }
 
+std::string score_table_markdown() {
+  std::string out = "| # | factor | parameter | scope | combines | what it measures |\n";
+  out += "| --- | --- | --- | --- | --- | --- |\n";
+  for (std::size_t f = 0; f < kScoreFactorCount; ++f) {
+    const ScoreFactorInfo& i = kFactors[f];
+    out += fmt::format("| {} | `{}` | {} | {} | {} | {} |\n", f + 1, i.name,
+                       *i.parameter ? fmt::format("`--{}`", i.parameter) : std::string("–"),
+                       scope_name(i.scope), combine_name(i.combine), i.meaning);
+  }
+  return out;
+}
+
 std::string describe_factors(const ScoreBreakdown& b) {
   std::string text = fmt::format("{} {:.3f}", kFactors[kAgreement].name, b[kAgreement]);
   for (std::size_t f = kAgreement + 1; f < kScoreFactorCount; ++f) {

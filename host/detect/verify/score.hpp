@@ -65,6 +65,9 @@ struct ScoreBreakdown {
   double score() const;
 };
 
+// The table of docs/detect/verify.md ("The score"), one row a factor in order.
+std::string score_table_markdown();
+
 // "agreement 0.912 x patch_bias 0.750 x lookalike_share 0.500": the factors that are not neutral,
 // in order ("below_floor 0" and "rival_cap 0.310" where they apply).
 std::string describe_factors(const ScoreBreakdown& breakdown);

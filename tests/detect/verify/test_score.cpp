@@ -4,6 +4,9 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <set>
 #include <string>
 
@@ -98,6 +101,32 @@ TEST(ScoreBreakdown, DescribesAndWritesItsFactors) {
                    "1.000000,0.310000,1.000000");
   b[kRivalCap] = INFINITY;  // no cap: an empty cell
   EXPECT_TRUE(factor_columns(b).ends_with(",1.000000,,1.000000")) << factor_columns(b);
+}
+
+}  // namespace
+}  // namespace binpick
+
+namespace binpick {
+namespace {
+
+// docs/detect/verify.md holds the score's table between two markers; when it differs from the
+// code's, the code's is written to the build directory, to copy in.
+TEST(ScoreFactors, TheDocsTableIsTheTable) {
+  const std::filesystem::path docs =
+      std::filesystem::path(BINPICK_SOURCE_DIR) / "docs" / "detect" / "verify.md";
+  std::ifstream in(docs);
+  ASSERT_TRUE(in) << docs;
+  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const std::string begin = "<!-- score-table: begin -->\n", end = "<!-- score-table: end -->";
+  const auto a = text.find(begin), b = text.find(end);
+  ASSERT_NE(a, std::string::npos) << docs << " has no " << begin;
+  ASSERT_NE(b, std::string::npos) << docs << " has no " << end;
+  if (text.substr(a + begin.size(), b - a - begin.size()) != score_table_markdown()) {
+    const auto wanted = std::filesystem::current_path() / "score_table.md";
+    std::ofstream(wanted) << score_table_markdown();
+    FAIL() << docs << "'s score table differs from the code's: the code's is in " << wanted
+           << "; copy it between the markers";
+  }
 }
 
 }  // namespace
