@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Runs the BOP toolkit's own scripts (github.com/thodan/bop_toolkit, not vendored) on `binpick run`
-# output and compares their numbers with binpick's (docs/parameters.md, "BOP's scores"):
+# output and compares their numbers with binpick's (docs/parameters.md, "BOP's scores, next to the paper's"):
 #   scripts/check_results_bop19.py  on every results CSV;
 #   scripts/eval_bop19_pose.py      VSD (the toolkit's vispy renderer), MSSD, MSPD;
 #   scripts/calc_gt_info.py         on a copy of every dataset, against binpick's scene_gt_info.json.

@@ -4,6 +4,8 @@
 #include "host/detect/hypotheses/flat_region.hpp"
 #include "host/detect/bin/bin_fit.hpp"
 #include "host/detect/select/instance_select.hpp"
+#include "host/detect/select/select_detections.hpp"
+#include "host/detect/refine/candidate_poses.hpp"
 #include "host/detect/verify/lookalike_share.hpp"
 #include "host/detect/verify/outline.hpp"
 #include "host/detect/scene/scene_lowpass.hpp"
@@ -68,11 +70,6 @@ Detection detection_for(const std::vector<Hypothesis>& hyps, std::size_t k) {
   return d;
 }
 
-// The order of the results: the verified score, ties to the more voted.
-bool ranks_before(const Detection& a, const Detection& b) {
-  if (a.score() != b.score()) return a.score() > b.score();
-  return a.votes > b.votes;
-}
 
 }  // namespace
 
@@ -262,88 +259,36 @@ std::vector<PoseCluster> Detector::vote_and_cluster(const PointCloud& subsampled
   return clusters;
 }
 
-namespace {
-
-// A detection becomes the verified pose of one of its candidates (or a look-alike > 0).
-void take_pose(Detection& d, const VerifiedPose& v, std::uint64_t votes, std::uint32_t candidate,
-               std::uint32_t lookalike) {
-  d.R = v.R;
-  d.t = v.t;
-  d.votes = votes;
-  d.candidate = candidate;
-  d.lookalike = lookalike;
-  d.evidence = v.evidence;
-  d.breakdown = v.breakdown;
-  d.reason = v.reason;
-}
-
-}  // namespace
-
 std::vector<Detection> Detector::refine_and_rank(
     std::vector<Detection> detections, const std::vector<std::vector<PoseCluster>>& candidates,
     const ocl::Buffer<float>& points, const bp_camera& cam, DetectTimes& t, bool sensor,
-    const BinFit* bin, PlaneSearchMemo* searched, RefineMemo* refined_before,
+    const BinFit* bin, PlaneSearchMemo* searched_before, RefineMemo* refined_before,
     const ocl::Buffer<float>* search_points) {
   Stopwatch clock;
-  std::vector<PoseToRefine> poses;
-  struct Owner {
-    std::size_t detection;
-    std::uint32_t candidate, lookalike;
-  };
-  std::vector<Owner> owner;
-  const auto add_pose = [&](const Eigen::Matrix3d& R, const Eigen::Vector3d& t, std::size_t k,
-                            std::uint32_t c) {
-    poses.push_back({R, t});
-    owner.push_back({k, c, 0});
-    // The pose's look-alikes: model x -> S x, then the pose.
-    for (std::uint32_t s = 0; s < model_.lookalikes.size(); ++s) {
-      const Eigen::Isometry3d& S = model_.lookalikes[s];
-      poses.push_back({R * S.linear(), R * S.translation() + t});
-      owner.push_back({k, c, s + 1});
-    }
-  };
   // Thin parts on a depth image: each candidate's in-plane search (plane_search.hpp) adds the
   // pose found, if its edges step down more than the voted pose's. All candidates are searched
   // in one batch (one launch a stage), on the depth image the search reads.
   const bool search = sensor && plane_search_model_.probes > 0;
-  const double tolerance = params_.verify_tolerance * model_.diameter;
-  std::vector<Eigen::Isometry3d> starts;
-  for (const std::vector<PoseCluster>& clusters : candidates)
-    for (const PoseCluster& c : clusters) {
-      Eigen::Isometry3d start = Eigen::Isometry3d::Identity();
-      start.linear() = c.q.toRotationMatrix();
-      start.translation() = c.t;
-      starts.push_back(start);
+  std::vector<std::optional<Eigen::Isometry3d>> searched(0);
+  if (search) {
+    const std::vector<Eigen::Isometry3d> starts = cluster_poses_in_order(candidates);
+    searched.resize(starts.size());
+    if (!starts.empty()) {
+      PlaneSearchMemo none;
+      const std::vector<PlaneSearchResult> found = plane_search(
+          searched_before ? *searched_before : none, dev_,
+          point_depths(dev_, search_points ? *search_points : points, cam), cam,
+          plane_search_model_, starts, params_.plane_search * model_.diameter,
+          float(params_.verify_tolerance * model_.diameter));
+      for (std::size_t i = 0; i < found.size(); ++i)
+        if (found[i].score > found[i].start_score) searched[i] = found[i].pose;
     }
-  std::vector<PlaneSearchResult> found;
-  if (search && !starts.empty()) {
-    const double span = params_.plane_search * model_.diameter;
-    PlaneSearchMemo none;
-    found = plane_search(searched ? *searched : none, dev_,
-                         point_depths(dev_, search_points ? *search_points : points, cam), cam,
-                         plane_search_model_, starts, span, float(tolerance));
-  }
-  std::size_t next = 0;
-  for (std::size_t k = 0; k < candidates.size(); ++k)
-    for (std::uint32_t c = 0; c < candidates[k].size(); ++c, ++next) {
-      add_pose(starts[next].linear(), starts[next].translation(), k, c);
-      if (search && found[next].score > found[next].start_score)
-        add_pose(found[next].pose.linear(), found[next].pose.translation(), k, c);
-    }
-  if (search) {  // part of refinement in the summary
-    const double ms = clock.lap();
+    const double ms = clock.lap();  // part of refinement in the summary
     t.refine_ms += ms;
     t.stages.push_back({"plane search", ms});
   }
-  // One group a candidate: its voted pose, its in-plane search's, and their look-alikes.
-  std::vector<std::size_t> group(owner.size());
-  {
-    std::vector<std::size_t> first(candidates.size() + 1, 0);
-    for (std::size_t k = 0; k < candidates.size(); ++k)
-      first[k + 1] = first[k] + candidates[k].size();
-    for (std::size_t i = 0; i < owner.size(); ++i)
-      group[i] = first[owner[i].detection] + owner[i].candidate;
-  }
+  const CandidatePoses expanded = expand_candidates(candidates, model_.lookalikes, searched);
+
   VerifyScene scene;
   scene.fit_sums = [&](const std::vector<bp_pose_fit>& fits) {
     return pose_fit_sums(dev_, points, cam, fit_model_, fits);
@@ -358,40 +303,18 @@ std::vector<Detection> Detector::refine_and_rank(
   if (bin && bin->found) scene.floor = Floor{bin->axes.col(2), bin->floor_d()};
   const VerifyModel model{fit_geometry_, fit_model_.size, probes_, model_.cloud,
                           model_.voxel_size / kFitVoxelDivisor};
-  const std::vector<VerifiedPose> refined =
-      verify_candidates(scene, model, verify_options_, poses, group, refined_before);
-  if (params_.instances > 0) {
-    // Every refined pose competes (instance_select.hpp), not only each hypothesis' best.
-    std::vector<Detection> poses;
-    poses.reserve(refined.size());
-    for (std::size_t i = 0; i < refined.size(); ++i) {
-      const auto [k, c, lookalike] = owner[i];
-      Detection d = detections[k];
-      take_pose(d, refined[i], candidates[k][c].votes, c, lookalike);
-      poses.push_back(std::move(d));
-    }
-    const double ms = clock.lap();
-    t.refine_ms += ms;
-    t.stages.push_back({"refine+verify", ms});
-    return select_instances(std::move(poses), fit_geometry_.centroid,
-                            kDuplicateRatio * model_.diameter, params_.instances);
-  }
-  std::vector<bool> taken(detections.size(), false);
-  for (std::size_t i = 0; i < refined.size(); ++i) {
-    const auto [k, c, lookalike] = owner[i];
-    Detection& d = detections[k];
-    const VerifiedPose& v = refined[i];
-    // The best score; ties go to the more voted cluster, which comes first.
-    if (taken[k] && v.score() <= d.score()) continue;
-    taken[k] = true;
-    take_pose(d, v, candidates[k][c].votes, c, lookalike);
-  }
+  const std::vector<VerifiedPose> verified = verify_candidates(
+      scene, model, verify_options_, expanded.poses, expanded.group, refined_before);
   const double ms = clock.lap();
   t.refine_ms += ms;
   t.stages.push_back({"refine+verify", ms});
-  std::erase_if(detections, [](const Detection& d) { return d.votes == 0; });
-  std::stable_sort(detections.begin(), detections.end(), ranks_before);
-  return detections;
+  // Every verified pose competes for the instance budget (instance_select.hpp); else each
+  // hypothesis keeps its best.
+  if (params_.instances > 0)
+    return select_instances(every_pose(detections, verified, expanded.origin),
+                            fit_geometry_.centroid, kDuplicateRatio * model_.diameter,
+                            params_.instances);
+  return best_per_hypothesis(std::move(detections), verified, expanded.origin);
 }
 
 Detection Detector::detect_subsampled(const PointCloud& subsampled, DetectTimes* times) {

@@ -120,7 +120,7 @@ class Detector {
                                          const std::vector<std::vector<PoseCluster>>& candidates,
                                          const ocl::Buffer<float>& points, const bp_camera& cam,
                                          DetectTimes& t, bool sensor, const BinFit* bin = nullptr,
-                                         PlaneSearchMemo* searched = nullptr,
+                                         PlaneSearchMemo* searched_before = nullptr,
                                          RefineMemo* refined = nullptr,
                                          const ocl::Buffer<float>* search_points = nullptr);
 
