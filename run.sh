@@ -162,12 +162,14 @@ case "$cmd" in
       status=$(cat "$log.status")
       cpu=$(awk '{printf "%.0f", $1 + $2}' "$log.cpu")
       cpu_total=$((cpu_total + cpu))
-      runs=$(sed -n 's/^stat::number_of_executed_units: *//p' "$log" | tail -1)
-      cov=$(grep -Eo 'cov: [0-9]+ ft: [0-9]+' "$log" | tail -1)
+      # A target that crashed on its first inputs printed no coverage line: say "?" rather than
+      # let the failed grep end the script before it names the crash.
+      runs=$(sed -n 's/^stat::number_of_executed_units: *//p' "$log" | tail -1 || true)
+      cov=$(grep -Eo 'cov: [0-9]+ ft: [0-9]+' "$log" | tail -1 || true)
       if [ "$status" -ne 0 ]; then
         failed+=("$name")
         echo "   $name: CRASH (exit $status); log: $log; input: $(ls "build-fuzz/crashes/$name" | head -1)"
-        grep -E '^(==[0-9]+==ERROR|SUMMARY|.*runtime error)' "$log" | head -3 | sed 's/^/   /'
+        grep -E '^(==[0-9]+==ERROR|SUMMARY|.*runtime error)' "$log" | head -3 | sed 's/^/   /' || true
       fi
       summary+=$(printf '%-15s %12s executions %6s CPU s  %s\n' "$name" "${runs:-?}" "$cpu" "${cov:-cov: ?}")$'\n'
     done

@@ -51,7 +51,7 @@ SETS=(
   "washer_sl|--model @washer --bins 4 --objects 100 --seed 110 --distractors builtin:bolt,builtin:bracket --sensor-model structured-light --specular-cone 8 --dropout-share 0.5"
 )
 # Tilted cameras (20-40 degrees): solid bins, where the near side is nearest the camera, and
-# baskets, where it is seen through the near wall (docs/pipeline.md, "seen through a wall").
+# baskets, where it is seen through the near wall (docs/detect/bin.md, "Seen through a wall").
 TILTED=(
   "tee_t30|--model builtin:tee --bins 4 --objects 100 --seed 301 --distractors builtin:bolt,builtin:plate --sensor-model structured-light --noise 0.02 --camera-tilt 30 --camera-height 1400"
   "shaft_t35|--model builtin:shaft --bins 4 --objects 100 --seed 302 --distractors builtin:bracket --sensor-model structured-light --camera-tilt 35 --camera-height 1400"
@@ -64,8 +64,8 @@ TILTED=(
   "anglebar_basket_t30|--model @anglebar --bins 4 --objects 60 --seed 403 --distractors builtin:bracket,builtin:plate --sensor-model structured-light --noise 0.02 --bin-mesh @basket --width 2064 --height 1544 --camera-height 2400 --camera-tilt 30"
 )
 # Farther off: baskets seen through a wider lens (the focal length about half the default's,
-# which shows just the interior), so that the ground shows all around them (docs/pipeline.md,
-# "the ground all around").
+# which shows just the interior), so that the ground shows all around them
+# (docs/detect/bin.md, "The ground all around").
 FAR=(
   "plate_basket_far|--model builtin:plate --diameter 150 --bins 4 --objects 60 --seed 501 --distractors builtin:bracket,builtin:bolt,builtin:tee --sensor-model structured-light --specular-cone 8 --dropout-share 0.55 --bin-mesh @basket --width 2064 --height 1544 --camera-height 2400 --camera-tilt 25 --intrinsics 3000,3000,1031.5,771.5"
   "bracket_basket_far|--model builtin:bracket --bins 4 --objects 60 --seed 502 --distractors builtin:plate,builtin:bolt --sensor-model structured-light --specular-cone 8 --dropout-share 0.5 --bin-mesh @basket_arm --width 2064 --height 1544 --camera-height 2200 --intrinsics 3200,3200,1031.5,771.5"

@@ -19,11 +19,9 @@
  * its edges stepped down (also at least BP_EDGE_SEARCH_MIN_PROBES of them, or -1). No depth under
  * the part's own surface counts half a tolerance, as missing depth counts half in verification:
  * it may be the void beside a pile (the pose hangs over nothing) or the sensor's loss on real
- * surface, which on shiny sheet metal comes in patches (measured on plates under 29 %-valid
- * blob-shaped depth: as a full tolerance the search drew poses off the patches that have depth,
- * top-ranked right 16 of 32 images, strict 10; half: 19, strict 15, and paper bins of plates
- * one fewer of 28; none: 19, strict 15, but four fewer in the paper bins). Written out
- * identically in edge_step_scores_reference. */
+ * surface, which on shiny sheet metal comes in patches: as a full tolerance it drew the search
+ * off a plate's patches with depth (docs/decisions/2026-11-25-plane-search-no-depth-half.md).
+ * Written out identically in edge_step_scores_reference. */
 #pragma OPENCL FP_CONTRACT OFF
 #include "binpick_shared.h"
 

@@ -24,9 +24,9 @@
  *
  * Residuals (with `residuals` != 0): the point-to-plane residual of every point that gives an
  * ICP term, NaN for the others, and the class of every point (BP_FIT_HIDDEN also for points that
- * face away or fall outside the image or grid), one each per model point (the patch test,
+ * face away or fall outside the image or grid), one each per model point (the patch bias,
  * host/detect/verify/patch_bias.hpp, looks for model regions whose residuals do not average out; the
- * twin test, host/detect/verify/lookalike_holes.hpp, needs to tell no depth from something in front). */
+ * look-alike holes, host/detect/verify/lookalike_holes.hpp, need to tell no depth from something in front). */
 #ifndef BINPICK_POSE_FIT_SHARED_H
 #define BINPICK_POSE_FIT_SHARED_H
 
@@ -62,7 +62,7 @@ typedef struct {
   float u0, v0;     /* pixel coordinates of the z-buffer grid's corner */
   float cell;       /* z-buffer cell side, pixels */
   bp_u32 dim;       /* cells per side, <= BP_FIT_MAX_DIM; 0: nothing can be visible */
-  float outline;    /* mm: the outline test's depth tolerance; 0: no outline test */
+  float outline;    /* mm: the outline's depth tolerance; 0: no outline */
   bp_u32 residuals; /* != 0: write each model point's residual (NaN where it gives no term) and
                      * class */
   float near_gate;  /* mm, > 0: a measured point nearer the camera than the model's surface by
@@ -122,7 +122,8 @@ BP_FN int bp_fit_project(const bp_pose_fit* f, const bp_camera* cam, float mx, f
  * surface (the measured point may come from anywhere in it, the model point is at one place),
  * which moves r by up to half the pixel's width times the sine. So |r| may reach
  * tolerance x c + pixel / 2 x sine: the same share of a right pose's points agrees whichever
- * way its faces turn. */
+ * way its faces turn (docs/detect/verify.md, "Agreement";
+ * docs/decisions/2026-11-28-inliers-along-the-ray.md). */
 BP_FN bp_u32 bp_fit_classify(const bp_pose_fit* f, const bp_camera* cam, const float* q,
                              const float* nq, float zmin, float px, float py, float pz, float pw,
                              float* agreement) {

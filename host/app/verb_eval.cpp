@@ -1,7 +1,7 @@
 // `binpick eval`: compares detection results (BOP results CSV) with a dataset's ground truth and
 // writes a report directory: report.html, report.json, curves.csv, score_curves.csv,
 // hypotheses.csv, the precision and score threshold figures and pictures of the first scenes
-// (docs/pipeline.md).
+// (docs/pipeline.md, "eval: errors and precision (paper III-D)").
 #include <CLI/CLI.hpp>
 #include <filesystem>
 #include <iostream>

@@ -1,4 +1,4 @@
-// `binpick synth`: synthetic bins as a BOP dataset (docs/pipeline.md, docs/formats.md). A model
+// `binpick synth`: synthetic bins as a BOP dataset (docs/synthesis.md, docs/formats.md). A model
 // file gets the symmetries found on its mesh in models_info.json, a built-in part its stated ones;
 // distractors likewise, as obj_ids 2, 3, ...
 #include <CLI/CLI.hpp>

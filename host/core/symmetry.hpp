@@ -8,7 +8,7 @@
 namespace binpick {
 
 // Two rotations within this many degrees of each other are one (symmetry detection's group,
-// near symmetries against the exact ones).
+// look-alikes against the exact ones).
 inline constexpr double kSameRotationDeg = 5.0;
 
 // The part is unchanged by any rotation about this axis through this point (mm).

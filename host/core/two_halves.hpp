@@ -1,5 +1,5 @@
 // Independent host work split over two threads. The detector's host stages (bin fit, the
-// rival test) run while the OpenCL device idles, on machines with a few cores; a second thread
+// rival cap) run while the OpenCL device idles, on machines with a few cores; a second thread
 // halves them. Each half must write only its own outputs, so that the result is the same as one
 // thread's.
 #pragma once

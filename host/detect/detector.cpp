@@ -96,7 +96,7 @@ std::string Detector::flat_skip_reason(const PointCloud& sample, const Hypothesi
                                        double noise, double voxel_factor) const {
   // Not for thin parts (sheets; outline.hpp): sheets stacked flat join their neighbours'
   // faces within the tolerance, and a sheet's face is its widest flat region, so the test
-  // skipped right hypotheses (measured: 350-plate paper bins at 2 % noise lost 11 of 40).
+  // skipped right hypotheses (docs/decisions/2026-12-02-flat-region-thin-parts.md).
   if (params_.flat_region <= 0 || outline_ratio_ == 0 || sample.points.empty()) return {};
   int step = 0;
   FlatRegionOptions o = flat_options(model_, noise, &step);
@@ -129,8 +129,8 @@ std::vector<Detection> Detector::in_rounds(std::size_t found,
   });
   if (first == found || confident) return out;
   // The second round's candidates are refined and ranked with the first's, as if all had been
-  // tried at once: the rival test compares poses of neighbouring hypotheses (measured: ranking
-  // the rounds apart lost the right plate of one image that one batch kept).
+  // tried at once: the rival cap compares poses of neighbouring hypotheses
+  // (docs/decisions/2026-11-25-more-hypotheses.md).
   vote(first, found);
   return rank();
 }
@@ -244,8 +244,8 @@ std::vector<PoseCluster> Detector::vote_and_cluster(const PointCloud& subsampled
   co.max_angle_deg = float(params_.cluster_angle);
   co.centre = fit_geometry_.centroid.cast<float>();
   // Poses equal up to a turn about the part's axis are one pose. Discrete symmetries stay out:
-  // measured on 30 bins of 150 bolts at 4 % noise they cost strict precision (96.7 -> 76.7 %
-  // top-ranked), since the candidates then become different poses instead of copies of the best.
+  // the candidates then become different poses instead of copies of the best, which cost strict
+  // precision (docs/decisions/2026-11-24-cluster-discrete-symmetries.md).
   if (!model_.symmetries.continuous.empty()) co.symmetries = model_.symmetries;
   std::vector<PoseCluster> clusters = cluster_poses(dev, poses, co, &t.stages);
   t.cluster_ms += t.stages[t.stages.size() - 2].ms + t.stages.back().ms;
@@ -418,8 +418,8 @@ std::vector<Detection> Detector::detect(const DepthImage& depth, const bp_camera
   t.stages.push_back({"hypotheses", hyp_clock.lap()});
   // Highest points to stand in for those the flat-region test skips, found when needed: the
   // rounds again with as many more as were skipped (the same rounds give the same first ones),
-  // at most twice those sought (shafts under 120 mm plates had 8 of their 10 highest points
-  // on plates).
+  // at most twice those sought (plates lying on a bin of shafts took most of its highest points:
+  // docs/decisions/2026-12-02-flat-region.md).
   std::size_t flat_skipped = 0;
   const auto find_more = [&] {
     const std::size_t want = std::min(2 * hypotheses_sought(params_), hyps.size() + flat_skipped);

@@ -106,9 +106,10 @@ class Detector {
   // that sinks the part into its floor scores 0 (below_floor.hpp). sensor: the points are a
   // sensor's depth image. Not for a cloud seen through a virtual camera (scene_cloud.hpp),
   // whose empty pixels are only gaps between points and whose depths are the nearest point's
-  // in a pixel, not the surface along the ray: the twin test (lookalike_holes.hpp), which weighs
-  // millimetres of depth at a few hundred points, runs only on a sensor's image (measured: on
-  // the shaft's cloud it turned a right pose end for end).
+  // in a pixel, not the surface along the ray: the look-alike holes (lookalike_holes.hpp), which
+  // weigh millimetres of depth at a few hundred points, run only on a sensor's image (on a
+  // shaft's cloud they turned a right pose end for end:
+  // docs/decisions/2026-11-25-lookalike-holes.md).
   // vote(from, to) votes on the hypotheses [from, to) and keeps them; rank() refines,
   // verifies and ranks all kept so far. The first `hypotheses` of the `found`, then, if no pose
   // scores `confident` or more, the rest as well, all ranked together. With `instances`, all
@@ -143,7 +144,7 @@ class Detector {
   ProbeModel probes_;
   VerifyCandidatesOptions verify_options_;  // from params_
   FitGeometry fit_geometry_;
-  float outline_ratio_ = 0;  // the verification's outline test, 0 for thin parts (outline.hpp)
+  float outline_ratio_ = 0;  // the verification's outline, 0 for thin parts (outline.hpp)
   double thinnest_extent_ = 0;  // mm, the model's extent along its least-variance axis
   // The flat-region test (flat_region.hpp) on a crop's subsample about hypothesis h: the reason
   // to skip it, or empty. noise: the image's depth noise (mm), voxel_factor: the scene voxels'

@@ -1,8 +1,10 @@
-// The points just beyond a part's edges, for the edge test of verification
-// (host/detect/verify/lookalike_holes.hpp, docs/pipeline.md step 9).
+// The points just beyond a part's edges, for the edge step of verification
+// (host/detect/verify/edge_step.hpp, read in the probe pass of lookalike_holes.hpp;
+// docs/detect/verify.md, "Edge step") and the in-plane search (docs/detect/refine.md,
+// "The in-plane score").
 //
 // A sheet (a plate 1.5 mm thick) lying on another steps down at its edges by one thickness,
-// less than the verification's tolerance: the outline test, which asks each outline cell whether
+// less than the verification's tolerance: the outline, which asks each outline cell whether
 // the surface runs on within the tolerance, cannot tell that from a sheet surface that runs on,
 // and is off for thin parts. A pose shifted or turned on a stack of sheets lies on surface
 // everywhere, and only its edges are wrong: where the pose says the part ends, the sensor sees
@@ -15,18 +17,16 @@
 // Deduplicated a probe voxel apart, evenly thinned to kMaxEdgeProbes. On a sheet that gives
 // probes in the planes of its faces, around the outline and inside the holes, and probes that
 // continue its rim walls above and below the faces (seen when the sheet is seen obliquely;
-// measured: without them, top-ranked right fell from 37 to 34 of 40 plate images).
+// without them fewer plates came out right: docs/decisions/2026-11-25-edge-step.md).
 //
 // Each probe has its kind: a *face probe* continues a surface that runs on for a whole margin
 // behind p, a *rim probe* one narrower than that (a sheet's rim wall; the probe voxel a probe
-// is kept from gives its kind). Only face probes go into the edge test. A rim probe hangs in
+// is kept from gives its kind). Only face probes go into the edge step. A rim probe hangs in
 // the air a margin above the face, so where the face simply ran on it would still see the face
 // behind it, h / cos farther along the ray (h >= 0.75 margin, cos between the face's normal and
-// the ray): it reports a step wherever a face is seen obliquely, part edge or not. On the
-// refined poses of a basket with a robot arm (plate_mesh_armhi), plate poses laid on the arm's
-// face (seen at 72 degrees from its normal) had rim probes stepping down by the whole
-// tolerance and face probes by 0.1-2 mm, right poses' face probes by 4-5 mm (docs/pipeline.md,
-// step 9). The in-plane search still uses both kinds, as before.
+// the ray): it reports a step wherever a face is seen obliquely, part edge or not, and plate
+// poses laid on a robot arm's face won (docs/decisions/2026-12-02-edge-step-face-probes.md).
+// The in-plane search uses both kinds.
 #pragma once
 
 #include <cstddef>

@@ -1,9 +1,9 @@
-// Near symmetries of a part: rotations that map most of its surface onto itself, but not all of
+// Look-alikes of a part: rotations that map most of its surface onto itself, but not all of
 // it. A plate's rectangular outline looks the same after a half turn about any of its three axes;
 // only its holes tell the four poses apart. Voting sees mostly the outline and faces, so it often
 // returns one of the look-alike poses; detection therefore also refines and verifies each
 // candidate's look-alikes, and the verified score (which sees the holes against the depth image)
-// picks among them.
+// picks among them (docs/detect/refine.md, "Look-alikes").
 //
 // Found on the model's subsampled points: rotations about the principal axes of the points
 // through the centre of their box in the principal frame by 2 pi k / n (n = 2, 3, 4, 6) under which at least kLookalikeMatchRatio of

@@ -14,7 +14,7 @@
 
 namespace binpick {
 
-// "Facing the same way" for the model's grids (near symmetries, twin and edge probes): normals
+// "Facing the same way" for the model's grids (look-alikes, look-alike and edge probes): normals
 // within 30 degrees, cos 30.
 inline constexpr float kSameFacingCos = 0.8660254037844386f;
 

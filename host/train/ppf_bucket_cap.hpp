@@ -1,13 +1,12 @@
 // A cap on the PPF table's buckets for voting (DetectParams::bucket_cap).
 //
 // Why: a flat face makes most of a part's pairs coplanar, and coplanar pairs of one distance
-// share one key. On the built-in plate (318 points) a scene pair hits 2,770 table entries on
-// average (the bolt's 312, the shaft's 143), and a flush stack of plates makes nearly every scene
-// pair such a pair: voting took 200-500 ms a hypothesis. Those entries say little about where
+// share one key, so on a flush stack of plates a scene pair hits thousands of table entries and
+// voting is slow. Those entries say little about where
 // the part is in its plane, while the rarer keys of its rim and holes do. A bucket with more
 // entries than the cap keeps the cap's worth, evenly spaced: every reference point of the
 // bucket keeps its share, and the common keys weigh less against the rare ones. Off by default:
-// measured in docs/parameters.md, it is faster on flat parts but lost a few hypotheses.
+// it is faster on flat parts but lost a few hypotheses (docs/decisions/2026-11-25-bucket-cap.md).
 #pragma once
 
 #include <cstddef>

@@ -33,12 +33,12 @@ struct PpfModel {
   // look-alikes too. Found on `cloud`, also when reading a file before version 4.
   std::vector<Eigen::Isometry3d> lookalikes;
   // The points that tell a pose from each look-alike (lookalike_probes.hpp); probe_lookalike[i] indexes
-  // lookalikes. Empty in files before version 4: detection then has no twin test.
+  // lookalikes. Empty in files before version 4: detection then has no look-alike holes.
   PointCloud lookalike_probes;
   std::vector<std::uint32_t> probe_lookalike;
-  // Points just beyond the part's edges (edge_probes.hpp), for the edge test of thin parts (its
+  // Points just beyond the part's edges (edge_probes.hpp), for the edge step of thin parts (its
   // face probes) and the in-plane search (all). edge_probe_rim[i] is 1 for a rim probe, 0 for a
-  // face probe. Empty in files before version 5: detection then has no edge test; the kinds are
+  // face probe. Empty in files before version 5: detection then has no edge step; the kinds are
   // empty in version 5 files, where every probe counts as a face probe.
   PointCloud edge_probes;
   std::vector<std::uint8_t> edge_probe_rim;

@@ -1,6 +1,5 @@
-// A mesh simplified for HACD. HACD's time grows much faster than the triangle count (measured,
-// one core: spheres of 288, 528 and 960 triangles 2, 3 and 6 s in all of `synth`; a 1920-triangle
-// flange 100 s; a 3584-triangle geared shaft had not finished after 40 minutes), while CAD
+// A mesh simplified for HACD. HACD's time grows much faster than the triangle count (a few
+// thousand triangles can take hours: docs/decisions/2026-11-28-hacd-simplify.md), while CAD
 // exports often have tens of thousands. The hulls only give the physics its shape, and they are
 // grown afterwards to cover every vertex of the original mesh (hull_cover.hpp), so HACD may see
 // a coarser mesh: quadric edge collapse (meshoptimizer's meshopt_simplify, which keeps the

@@ -7,12 +7,10 @@
 // and may have to give way under it. A wake-up spreads further only as far as parts are
 // pushed.
 //
-// Touching, not within a part diameter of the hit part as before (static parts share no
-// contacts, so nearness stood in for touch): a pile shallower than a part is wide lies within
-// a diameter of the whole landing wave. A wave of 35 flat plates (120 mm) on plates made all
-// the plates below it dynamic at once: the 350-plate bin took 73 s of CPU time against 32 s.
-// Waking only the parts hit was faster still (24 s) but let the tests' piles sag more when
-// released (twice as many parts moved over 1 mm); touching ones moved as many as before.
+// Touching, not within a part diameter of the hit part: a pile shallower than a part is wide
+// lies within a diameter of the whole landing wave, which then woke all of it. Not only the
+// parts hit: the piles then sag more when released
+// (docs/decisions/2026-11-24-pile-freezer-touching.md).
 #pragma once
 
 #include "synth/physics/bin_world.hpp"

@@ -4,19 +4,16 @@
 //
 // Displacement, not velocity. Parts resting on each other jitter: Bullet's contact solver kicks
 // a resting part back and forth from step to step, its speed spiking over any useful threshold
-// while it goes nowhere (measured: 3 mm/s and 0.1 rad/s for a bracket that moved 0.2 mm in
-// 1.5 s). And in a deep pile the solver does not converge in its iterations: a part keeps a
-// velocity into its supports that the solver's position correction (split impulse) undoes
-// every step, so the velocity says it sinks while it stays put. Flat sheet-metal plates
-// stacked eight deep read 3 mm/s on average, 15 to 20 of 105 over 5 mm/s for seconds on end,
-// almost all of it downward, while none of them moved 5 mm in a second; every wave of a
-// 350-plate bin ran into its time limit. The pose itself shows only what the part did.
+// while it goes nowhere. And in a deep pile the solver does not converge in its iterations: a
+// part keeps a velocity into its supports that the solver's position correction (split
+// impulse) undoes every step, so the velocity says it sinks while it stays put, and a deep
+// pile of plates never came to rest. The pose itself shows only what the part did.
 //
 // A plain sliding window (the displacement over the window, over its length), not an
-// exponential average: a part that lands at 3 m/s and stops reads as stopped one window later,
-// where an exponential average still read it as moving (and pushing its neighbours awake,
-// pile_freezer.hpp) for over a second. Measured on the 350-part torus bin: about a fifth less
-// time. Magnitudes of the displacement and of the turn, so that motion in any direction counts.
+// exponential average: a part that lands and stops reads as stopped one window later, where an
+// exponential average still read it as moving (and pushing its neighbours awake,
+// pile_freezer.hpp) for over a second. Magnitudes of the displacement and of the turn, so that
+// motion in any direction counts. Figures: docs/decisions/2026-11-24-rest-by-displacement.md.
 #pragma once
 
 #include <LinearMath/btTransform.h>

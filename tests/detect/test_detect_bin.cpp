@@ -209,7 +209,7 @@ TEST(DetectBin, SheetsLyingOnTheFloorStayInTheRegion) {
     for (const Eigen::Vector2d& want : centres)
       nearest = std::min(nearest, (c - Eigen::Vector3d(want.x(), want.y(), 0.75)).norm());
     EXPECT_LT(nearest, 0.1 * sheet.diameter) << c.transpose();
-    // The edge test scales it by the step down at the edges: 1.5 mm of a 5.8 mm tolerance.
+    // The edge step scales it by the step down at the edges: 1.5 mm of a 5.8 mm tolerance.
     EXPECT_GT(d.score(), 0.15);
   }
 }

@@ -154,4 +154,30 @@ TEST(DocLinks, CitationsInCodeAndDocsNameFilesAndHeadingsThatExist) {
   EXPECT_GT(checked, 20u);
 }
 
+// The reference stays a reference: the overview short, the detect pages together under a
+// thousand lines (measurements and histories go to docs/decisions/), and every decision listed
+// in its index.
+TEST(DocLinks, TheReferenceStaysShortAndEveryDecisionIsListed) {
+  const auto lines = [](const fs::path& p) {
+    const std::string t = slurp(p);
+    return std::size_t(std::count(t.begin(), t.end(), '\n'));
+  };
+  EXPECT_LE(lines(root / "docs" / "pipeline.md"), 300u);
+  std::size_t detect = 0;
+  for (const fs::path& p : files_under({"docs/detect"}, {".md"})) detect += lines(p);
+  EXPECT_LT(detect, 1000u) << "docs/detect/ has " << detect << " lines";
+  const std::string index = slurp(root / "docs" / "decisions" / "README.md");
+  std::size_t entries = 0;
+  for (const fs::path& p : files_under({"docs/decisions"}, {".md"})) {
+    if (p.filename() == "README.md") continue;
+    ++entries;
+    EXPECT_NE(index.find("(" + p.filename().string() + ")"), std::string::npos)
+        << p.filename() << " is not listed in docs/decisions/README.md";
+    const std::string text = slurp(p);
+    for (const char* section : {"\n## Decision", "\n## Alternatives", "\n## Evidence", "\n## Command"})
+      EXPECT_NE(text.find(section), std::string::npos) << p.filename() << " lacks" << section;
+  }
+  EXPECT_GT(entries, 50u);
+}
+
 }  // namespace

@@ -1,4 +1,4 @@
-// Near symmetries (host/train/lookalikes.hpp): the look-alike poses of a part that voting
+// Look-alikes (host/train/lookalikes.hpp): the look-alike poses of a part that voting
 // confuses and verification must tell apart.
 #include <gtest/gtest.h>
 
@@ -22,7 +22,7 @@ double turn_deg(const Eigen::Isometry3d& S) {
   return Eigen::AngleAxisd(S.linear()).angle() * 180.0 / 3.14159265358979323846;
 }
 
-TEST(NearSymmetry, ThePlateHasThreeLookAlikeHalfTurns) {
+TEST(Lookalikes, ThePlateHasThreeLookAlikeHalfTurns) {
   const Mesh plate = make_builtin_part("plate");  // 120 across, holes laid out without symmetry
   const PartSymmetries exact = find_symmetries(plate);
   ASSERT_TRUE(exact.empty());
@@ -35,7 +35,7 @@ TEST(NearSymmetry, ThePlateHasThreeLookAlikeHalfTurns) {
   }
 }
 
-TEST(NearSymmetry, ExactSymmetriesAreNotRepeated) {
+TEST(Lookalikes, ExactSymmetriesAreNotRepeated) {
   // A box has exact half turns about its three axes: clustering already merges those poses.
   const Mesh b = test::box({80, 40, 20});
   const PartSymmetries exact = find_symmetries(b);
@@ -46,12 +46,12 @@ TEST(NearSymmetry, ExactSymmetriesAreNotRepeated) {
   EXPECT_EQ(near.size(), 3u);
 }
 
-TEST(NearSymmetry, AnLBracketHasNone) {
+TEST(Lookalikes, AnLBracketHasNone) {
   const Mesh l = test::l_bracket();
   EXPECT_TRUE(find_lookalikes(model_points(l, 2.7f), 2.7f, find_symmetries(l)).empty());
 }
 
-TEST(NearSymmetry, DegenerateInputsGiveNone) {
+TEST(Lookalikes, DegenerateInputsGiveNone) {
   PointCloud few;
   for (int i = 0; i < 5; ++i) few.points.push_back({float(i), 0, 0}), few.normals.push_back({0, 0, 1});
   EXPECT_TRUE(find_lookalikes(few, 1.0f, {}).empty());

@@ -66,8 +66,8 @@ double farthest_below_rim(const PlaneSamples& s, const Eigen::Vector3d& up,
   // Through a wall one can see through (a wire-mesh basket) the farthest points are the ground
   // beyond it: where what lies past the last point in the upper 30 % below the rim (the top of a
   // wall, or parts heaped high) is the lowest level seen (90 % of it within 3 tol; the rest the
-  // foot of the wall), the interior ends at that last high point (measured: the interior 38-117
-  // mm too long on that side in 5 of 16 images of wire-mesh baskets, 6-13 mm after).
+  // foot of the wall), the interior ends at that last high point
+  // (docs/decisions/2026-11-25-bin-mesh-side-last-high-point.md).
   const double low = quantile(heights, 0.01), high_cut = rim_height - 0.3 * (rim_height - low);
   std::vector<double> high;
   for (std::size_t i = 0; i < beyond.size(); ++i)
@@ -110,17 +110,14 @@ double side_beyond(const PlaneSamples& s, const Eigen::Vector3d& up, const Eigen
 // most this share of the rim's own count may stand above it (beyond 2 tol and 4 sigma of the
 // image's noise). Cut through a heap of parts with no bin (the paper's scenes), a direction a
 // few degrees off makes a slice of the heap one "height" along three sides; the heap's parts
-// above the slice give it away (measured: 0.15-0.98 of the slice's count on 44 such images, 0
-// on the 152 images of bins, docs/pipeline.md).
+// above the slice give it away (docs/decisions/2026-11-25-bin-nothing-above-rim.md).
 // One image side may be covered by something above the rim, as the rim itself may be covered along
-// one (bin_rim.hpp): a robot arm over the rim's side, out to the image's border (wire-mesh baskets
-// with an arm 150 mm above the rim: 0.2-2.5 times the rim's count; the bin was not found in 3 of 8
-// images and a wrong frame in the other 5). So where the frame has two sides or more seen and a
-// level floor under it (floor_under), the samples above on the image side holding the most of them
-// are not counted. A slice through a heap has no floor under it (the paper's scenes show none),
-// and the heap's parts above it may lie mostly on one side: without the floor's condition 15 of
-// the 108 paper images got a "bin"; without the two sides, a slice 24 degrees off in a test heap
-// (BinFit.ASliceThroughAHeapIsNoRim).
+// one (bin_rim.hpp): a robot arm over the rim's side, out to the image's border. So where the
+// frame has two sides or more seen and a level floor under it (floor_under), the samples above
+// on the image side holding the most of them are not counted. A slice through a heap has no
+// floor under it (the paper's scenes show none), and the heap's parts above it may lie mostly
+// on one side, so both conditions are needed (BinFit.ASliceThroughAHeapIsNoRim;
+// docs/decisions/2026-11-25-bin-covered-image-side.md).
 constexpr double kMaxAboveRim = 0.1;
 
 // The frame's first axis, a1 = cos(angle) e1 + sin(angle) e2 (bin_rim.hpp).
@@ -197,8 +194,8 @@ BinFit fit_bin_in(ocl::Device& dev, const PlaneSamples& s, const BinFitOptions& 
   // inside the border band, where fit_rim looks for it, or not in it at all (bin_ground.hpp):
   // the rim is then looked for along the border of the window of what stands above the ground.
   // Only there: along the image's border, the ground all around it, a heap of parts on the
-  // ground with no bin gave a "frame" 900 x 110 mm along a searched up 14 degrees off
-  // (BinFit.AHeapOnTheGroundIsNoBin).
+  // ground with no bin gave a "frame" (BinFit.AHeapOnTheGroundIsNoBin;
+  // docs/detect/bin.md, "The ground all around"; docs/decisions/2026-12-02-bin-ground-window.md).
   if (!found_planes) {
     GroundOptions go;
     go.tol = bin.tol;
@@ -215,7 +212,7 @@ BinFit fit_bin_in(ocl::Device& dev, const PlaneSamples& s, const BinFitOptions& 
   // and the largest such plane is a layer of the pile, along which some "rim" is found too. So
   // each of the kUpCandidates largest is tried, and up is the one whose rim holds the most
   // samples: the true rim runs along the whole frame at one height only along the true up
-  // (measured: docs/pipeline.md, "Finding the bin").
+  // (docs/detect/bin.md, "Up"; docs/decisions/2026-11-25-bin-up-best-rim-of-planes.md).
   std::vector<const FoundPlane*> candidates;
   for (const FoundPlane& p : planes)
     if (p.normal.z() <= -std::cos(60 * kDeg) && image_span(s, p) >= 0.25) candidates.push_back(&p);
@@ -249,12 +246,12 @@ BinFit fit_bin_in(ocl::Device& dev, const PlaneSamples& s, const BinFitOptions& 
       // Then the direction along which the rim holds the most samples (bin_up.hpp): in a bin
       // full of bulky parts seen tilted, none of the planes may be level. Not when a plane's up
       // gave a frame over a level floor already: the searched up could replace it only with half
-      // as many rim samples again and a level floor of its own (below), which it never had on
-      // 65 images of baskets, bins and heaps (tilts 0-30 degrees, arms, paper heaps; it won on
-      // none of them), and the search is a third of the fit's time. Nor when a plane's up gave
-      // a frame seen on all four sides (a full bin straight down: the floor hidden, the rim whole):
-      // on 95 images of 25 datasets (docs/pipeline.md) the search ran after such a frame on 7 and
-      // replaced it on none; the frames it did replace were slices through heaps (below).
+      // as many rim samples again and a level floor of its own (below), which it never had, and
+      // the search is a third of the fit's time
+      // (docs/decisions/2026-12-01-bin-up-search-skipped-over-floor.md). Nor when a plane's up
+      // gave a frame seen on all four sides (a full bin straight down: the floor hidden, the rim
+      // whole): it replaced none of those; the frames it did replace were slices through heaps
+      // (below; docs/decisions/2026-12-04-bin-up-search-skipped-full-frame.md).
       if (best.rim.found &&
           (best.on_floor || std::count(best.rim.seen.begin(), best.rim.seen.end(), true) == 4))
         break;
@@ -278,8 +275,9 @@ BinFit fit_bin_in(ocl::Device& dev, const PlaneSamples& s, const BinFitOptions& 
       rim = fit_rim(s, up, e1, e2, ro);
       if (c == 0 && pass == 0 && !rim.found) bin.why = rim.why;  // the largest plane's reason
       // A frame found at a level up is the answer; a frame found at the first up is levelled
-      // once, as before (samples spread over 10 tolerances both ways); a structure that is no
-      // frame yet is levelled from samples spread over 5 (one side and slivers of two others).
+      // once (samples spread over 10 tolerances both ways); a structure that is no frame yet is
+      // levelled from samples spread over 5 (one side and slivers of two others;
+      // docs/decisions/2026-11-25-bin-near-rim-only.md).
       if (pass + 1 == kRimPasses || (rim.found && pass > 0)) break;
       const std::optional<Eigen::Vector3d> level =
           rim_normal(s, rim, up, bin.tol, rim.found ? 10.0 : 5.0);
@@ -303,9 +301,9 @@ BinFit fit_bin_in(ocl::Device& dev, const PlaneSamples& s, const BinFitOptions& 
         forgiven = true;
       }
       // Checked here as well as at the end, so that the next candidate can win: two edges of
-      // a robot arm's face beside the bin, with the ends of the rim's near side, made a
-      // "frame" 5-65 mm wide along a searched up turned 40 degrees from the true one (a
-      // wire-mesh basket, whose thin rim holds few samples).
+      // a robot arm's face beside the bin, with the ends of the rim's near side, made a narrow
+      // "frame" along a wrong searched up (a wire-mesh basket, whose thin rim holds few
+      // samples; docs/decisions/2026-11-25-bin-width-per-candidate.md).
       if (!(seen_widths(rim).minCoeff() >= opt.min_side)) {
         rim.found = false;
         rim.why = fmt::format("the frame found is only {:.1f} mm across (a bin needs {:.1f})",
@@ -325,16 +323,15 @@ BinFit fit_bin_in(ocl::Device& dev, const PlaneSamples& s, const BinFitOptions& 
     // The searched up must hold half as many rim samples again as the planes' best: where
     // only the near side of the rim stands out, the turn about that side is free, and a
     // searched up turned some degrees about it gathers a few more samples off the wall's outer
-    // face (measured 7-9 % more), while a wrong plane's rim holds 3-20 times fewer samples.
+    // face, while a wrong plane's rim holds several times fewer
+    // (docs/decisions/2026-11-25-bin-searched-up-margin.md).
     const double need = c < from_planes ? 1.0 : kSearchedUpMargin;
     if (!rim.found || (best.rim.found && !(double(rim.points) > need * double(best.rim.points))))
       continue;
     // A frame seen on one side only cannot replace one seen on two or more: more samples at one
-    // height along one side is weaker evidence of a frame than two sides meeting. With the
-    // camera tilted 35 degrees over a wire-mesh basket, the near wall's outer face was a level
-    // plane along whose normal the wall's horizontal bars made a one-sided "frame" with twice the
-    // true rim's samples (seen on two sides), and the bin was lost (plate_basket_t35 of
-    // bench/realistic_sets.sh: 2 of 4 images).
+    // height along one side is weaker evidence of a frame than two sides meeting: a mesh wall's
+    // horizontal bars, seen steeply, made a one-sided "frame" with more samples than the true
+    // rim (docs/decisions/2026-12-02-bin-one-sided-frame-no-replace.md).
     const auto sides = [](const RimFit& r) {
       return std::count(r.seen.begin(), r.seen.end(), true);
     };
@@ -342,23 +339,21 @@ BinFit fit_bin_in(ocl::Device& dev, const PlaneSamples& s, const BinFitOptions& 
     // A frame with a level floor under it (the plane up came from, or one parallel, with nothing
     // below it) is a bin, not a slice of a pile: a later candidate (another plane's up, or the one
     // searched along the rim) must have one too to replace it. A thin rim holds few samples, and a
-    // face at one "height" with a few of them (a robot arm's beside a wire-mesh basket, seen from
-    // 2.4 m tilted 30 degrees) held 4 times as many, along an up 22 degrees off. A frame found
-    // only with one image side's samples above not counted has no such hold: along a layer of
-    // parts leaning 19 degrees in a bin, the layer was a level floor under a 310 x 75 mm "frame",
-    // and the rim's high side above it one image side (BinFit.UpFromTheRimWhenNoPlaneIsLevel).
+    // face at one "height" with a few of them (a robot arm's beside a wire-mesh basket) held more
+    // (docs/decisions/2026-11-25-bin-frame-over-floor-holds.md). A frame found only with one
+    // image side's samples above not counted has no such hold: a leaning layer of parts can be a
+    // level floor under a small "frame", with the rim's high side above it one image side
+    // (BinFit.UpFromTheRimWhenNoPlaneIsLevel).
     const bool on_floor =
         !forgiven &&
         floor_under(s, planes, up, b1, b2, open, rim.height, bin.tol, opt.noise).plane.has_value();
     if (best.on_floor && !on_floor) continue;
     // A frame with no level floor under it must be seen on two sides or more. Cut through a
     // heap of parts with no bin (the paper's scenes), the searched up made a slice of the heap
-    // one "height" along the border, a "frame" seen on one side only, in 3 of 23 images of heaps
-    // (tilted 11-22 degrees; the parts outside it were masked out), and 4 of the 120 heaps of
-    // BinFit.ASliceThroughAHeapIsNoRim got one; of the 72 frames found in bins (95 images of
-    // 25 datasets, docs/pipeline.md) none was seen on one side only. Two sides are not asked
-    // for three: 2 more of those heaps showed two, but so may a wire-mesh basket whose floor
-    // the sensor barely sees, with an arm over one side and the far side out of view.
+    // one "height" along the border, a "frame" seen on one side only, while no frame found in a
+    // bin was (BinFit.ASliceThroughAHeapIsNoRim). Not three sides: a wire-mesh basket whose
+    // floor the sensor barely sees, with an arm over one side and the far side out of view,
+    // shows two (docs/decisions/2026-12-02-bin-one-side-needs-floor.md).
     // (A frame found with one image side not counted has a level floor under it, though
     // on_floor leaves it out.)
     if (!on_floor && !forgiven && std::count(rim.seen.begin(), rim.seen.end(), true) < 2) {
@@ -540,7 +535,8 @@ BinWalls bin_walls(const BinFit& bin) {
   BinWalls w;
   // Moved out by the fit's tolerance and down from the rim by as much: a fitted wall a few mm
   // inside the true one would otherwise take the points seen just over a solid wall's top (a
-  // ray over the rim crosses a plane further in lower down) for points seen through it.
+  // ray over the rim crosses a plane further in lower down) for points seen through it
+  // (docs/decisions/2026-12-02-bin-walls-moved-out.md).
   w.reach = (0.5 * bin.interior.head<2>() + Eigen::Vector2d::Constant(bin.tol)).cast<float>();
   w.height = float(bin.interior.z() - bin.tol);
   w.sides = 15u & ~bin.unseen_walls;  // a wall not seen is not where the interior ends

@@ -6,13 +6,13 @@
 // to the camera's right (x . camera x >= 0). The interior is
 // [-W/2, W/2] x [-D/2, D/2] x [0, H], H the rim's height above the floor.
 //
-// How (docs/pipeline.md): a sparse sample of the points; dominant planes by RANSAC scored on the
-// device (bin_planes.hpp); "up" = the normal of the best-supported plane that faces the camera
-// (within 60 degrees of the optical axis) and spans at least a quarter of the image both ways
-// (the floor, or the rim's plane), else the optical axis; the rim = the highest structure at one
-// height along the image border, and the interior = the rectangle inside its frame (bin_rim.hpp;
-// a side out of view ends at the nearest wall plane beyond the side seen, or at the given size,
-// or, with neither rim nor wall seen there, at the farthest point seen below the rim);
+// How (docs/detect/bin.md, "Finding the bin"): a sparse sample of the points; dominant planes by
+// RANSAC scored on the device (bin_planes.hpp); "up" = the normal of the best-supported plane that
+// faces the camera (within 60 degrees of the optical axis) and spans at least a quarter of the
+// image both ways (the floor, or the rim's plane), else the optical axis; the rim = the highest
+// structure at one height along the image border, and the interior = the rectangle inside its frame
+// (bin_rim.hpp; a side out of view ends at the nearest wall plane beyond the side seen, or at the
+// given size, or, with neither rim nor wall seen there, at the farthest point seen below the rim);
 // the floor = the plane parallel to up with the most points inside that rectangle, below the rim
 // (else the lowest points inside it). With a given size, the rim and its rectangle's centre and
 // orientation are found the same way and the floor is the rim minus H.

@@ -21,8 +21,8 @@ struct FloorUnder {
 // seen): the level plane (within 5 degrees of up) with the most inliers inside (at least 50),
 // more than 3 tol below the rim, that has nothing under it. A level layer of parts is no floor:
 // in a full bin the most supported level plane inside is a layer of flat parts some centimetres
-// up (measured: 22-45 mm in every full bin of 350 parts), and parts seen below it through the
-// gaps would be "below the floor" (below_floor.hpp) and masked out. "Under" is beyond the depth
+// up, and parts seen below it through the gaps would be "below the floor" (below_floor.hpp) and
+// masked out (docs/decisions/2026-11-25-bin-floor-nothing-under.md). "Under" is beyond the depth
 // noise: at most max(20, 0.2 %) of the samples inside lie more than max(3 tol, 4 noise) below it
 // (at 3 % noise a floor's own samples reach 3 tol below it; a layer's gaps show parts and floor
 // centimetres below). noise: the image's depth noise, sigma in mm (depth_noise.hpp).

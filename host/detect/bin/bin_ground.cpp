@@ -42,10 +42,9 @@ bool is_ground(const PlaneSamples& s, const FoundPlane& p, const GroundOptions& 
 // across: their 5-95 % range in `across` (within [across_lo, across_hi]) under narrow_share of
 // the bands' typical width (their 75 % quantile). A robot arm reaching out of a bin to the
 // image's border stands above the ground too, and the window ran along it to the border, where
-// the rim's side is not (bracket_basket_far of bench/realistic_sets.sh: the arm's rows are a
-// third of the bin's width). The bin's own rows span it, wall to wall, and stop the walk. Only at
+// the rim's side is not. The bin's own rows span it, wall to wall, and stop the walk. Only at
 // the border: elsewhere the ends are a bin's walls, and a thin wall's column of samples, sparse
-// under holes, is narrow too (a 4 mm mesh wall from 1.8 m with half the depth lost). Unchanged
+// under holes, is narrow too (docs/decisions/2026-12-02-bin-ground-arm-trim.md). Unchanged
 // when less than min_kept of the range would be left.
 void trim_narrow_ends(const std::vector<double>& along, const std::vector<double>& across,
                       double across_lo, double across_hi, double size, double& lo, double& hi,

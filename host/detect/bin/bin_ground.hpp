@@ -31,11 +31,10 @@ struct GroundOptions {
 // margin), if one of the planes is a ground: the lowest level (at most
 // max_below of the samples under it by 2 tol), holding ring_share of the ring's samples on
 // every side of the image with depth in its ring (10 samples), and there are three such sides
-// or more, with the window small enough. Every side: with a side whose ring is something else
-// let pass (three of four asked for), a robot arm 300 mm wide reaching from over the rim to
-// beside the camera (1.4 m off) made "frames" 355-870 mm wide along the window's border, and a
-// heap on the ground one too. A side without depth there (a tilted camera looking past the
-// ground's end) says nothing.
+// or more, with the window small enough. Every side, not three of four: a robot arm reaching
+// from over the rim to beside the camera, or a heap on the ground, made "frames" along the
+// window's border (docs/decisions/2026-12-02-bin-ground-window.md). A side without depth there
+// (a tilted camera looking past the ground's end) says nothing.
 std::optional<PixelWindow> window_above_ground(const PlaneSamples& samples,
                                                const std::vector<FoundPlane>& planes,
                                                const GroundOptions& opt);

@@ -76,7 +76,8 @@ RimFit fit_rim(const PlaneSamples& samples, const Eigen::Vector3d& up, const Eig
 // frame, not a line (the in-plane spread both ways over min_spread tol), RMS distance within
 // tol, within 10 degrees of up. The rim is
 // level by construction, while the plane "up" was first taken from (the floor with flat parts
-// on it, or a layer of parts) may lean: measured 1.7-2.8 degrees on plate-filled bins.
+// on it, or a layer of parts) may lean by a few degrees
+// (docs/decisions/2026-11-24-bin-up-levelled-from-rim.md).
 std::optional<Eigen::Vector3d> rim_normal(const PlaneSamples& samples, const RimFit& rim,
                                           const Eigen::Vector3d& up, double tol,
                                           double min_spread = 10.0);

@@ -1,11 +1,9 @@
 // A side of the bin that the border band and the plane search miss (bin_fit.hpp). The rim is
 // looked for along the image's border (bin_rim.hpp) and a side out of view ends at a wall plane
 // found by RANSAC (bin_planes.hpp); failing both, the interior ran to the farthest point seen
-// below the rim. In wire-mesh baskets seen from 2.4 m tilted 30 degrees that took in too much:
-// - the rim's side along the image's left edge held too few samples in the band, and the
-//   interior took in the wall's top beyond it (5 mm: every hypothesis of one image landed there);
-// - the far wall, a sparse mesh seen from inside, was no RANSAC plane, and the interior ran on
-//   through it to the ground beyond (557 mm deep instead of 400).
+// below the rim, which in wire-mesh baskets seen tilted took in too much: the wall's top beyond
+// a side the band held too few samples of, or, through a far mesh wall that is no RANSAC plane,
+// the ground beyond (docs/decisions/2026-11-29-bin-side-search.md).
 // So two searches among all samples beyond the edge known, each a histogram along the axis in
 // windows of two bins as wide as the rim fit's, whose nearest window that stands out (3 times
 // the median window, empty ones included: a bin filled to the brim is a level sheet, not a

@@ -44,8 +44,8 @@ std::size_t rim_support(const BorderBand& band, const Eigen::Vector3d& up, doubl
 // count heights in bins as wide as a direction half a step off spreads the band's samples, so
 // that the rim is not missed between grid points. Not beyond 40 degrees by default: a wall's
 // inner face seen from a camera tilted 30 degrees faces it at 60 and would be one "height"
-// along the border too. Nothing if no direction has a rim. 20-30 ms on 2 cores for 35000
-// samples.
+// along the border too. Nothing if no direction has a rim
+// (docs/decisions/2026-11-25-bin-up-searched-along-rim.md).
 std::optional<RimUp> search_rim_up(const PlaneSamples& samples, const RimUpSearch& opt);
 
 }  // namespace binpick

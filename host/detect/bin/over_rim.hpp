@@ -1,9 +1,9 @@
 // What reaches into the bin over its rim from outside: a robot arm, a hose, a part hanging over
 // the rim. Standing higher than the rim, such a thing is the highest thing over the bin's
-// interior and took the highest points, though nothing on it is in the bin (measured in
-// docs/pipeline.md, detect step 1). It is told from a pile heaped over the rim by where it goes:
-// it crosses a side of the rim the bin fit saw and goes on beyond it, while what the bin holds
-// stays over the bin's footprint.
+// interior and took the highest points, though nothing on it is in the bin (docs/detect/bin.md,
+// "Reaching in over the rim"; docs/decisions/2026-12-04-bin-over-rim.md). It is told from a
+// pile heaped over the rim by where it goes: it crosses a side of the rim the bin fit saw and
+// goes on beyond it, while what the bin holds stays over the bin's footprint.
 //
 // The pixels over the rim (kernels/scene_mask_shared.h, bp_over_rim_class) beyond a side seen
 // are grown, over neighbouring pixels that are over the rim too and within max_step of each

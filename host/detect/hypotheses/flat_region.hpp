@@ -1,8 +1,8 @@
 // The flat-region test on a hypothesis (the highest-point heuristic's blind spot): a highest
-// point on a flat patch wider than any flat region of the part is not on the part. Measured in
-// docs/pipeline.md (detect, step 3.5): shafts with 120 mm plates lying on top had 8 of the 10
-// highest points on plates and no hypothesis on a shaft; such a point is skipped with its
-// reason and the next highest point is taken instead.
+// point on a flat patch wider than any flat region of the part is not on the part (plates lying
+// on a bin of shafts took most of the highest points); such a point is skipped with its reason
+// and the next highest point is taken instead (docs/detect/hypotheses.md, "The flat region";
+// docs/decisions/2026-12-02-flat-region.md).
 //
 // A flat region is what grows from a seed point over neighbouring points (within `link` of a
 // point already in) that lie on the seed's tangent plane (within `tolerance`), with a normal

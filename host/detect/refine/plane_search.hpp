@@ -1,8 +1,9 @@
-// The in-plane search of thin parts (DetectParams::plane_search; kernels/plane_search.cl).
+// The in-plane search of thin parts (DetectParams::plane_search; kernels/plane_search.cl;
+// docs/detect/refine.md, "The in-plane search").
 //
 // Why: sheet metal lying on sheet metal is a plane with steps of one thickness. Voting on
 // surface features finds the plane but not where the part lies in it (a pose shifted or turned
-// in the plane fits the surface as well), and the edge test (edge_step.hpp) can only rank the
+// in the plane fits the surface as well), and the edge step (edge_step.hpp) can only rank the
 // candidates voting gives. The search moves each candidate over the plane, turns it about the
 // sheet's normal through the whole turn, and keeps the pose whose edges the sensor sees step
 // down most (the mean clamped excess depth at the edge probes, edge_step_scores). Coarse first
@@ -58,7 +59,7 @@ std::vector<float> point_depths_reference(const std::vector<float>& points);
 // widest box whose half-width is less than the edge probes' margin beyond the edges (at the
 // pixel size of the farthest part searched), so that no probe's box reaches the sheet's own
 // depth. noise: the image's depth noise (sigma, mm; depth_noise.hpp); thickness: the sheet's
-// (the model's thinnest extent). Measured: docs/pipeline.md, step 9.
+// (the model's thinnest extent). Figures: docs/decisions/2026-12-01-plane-search-lowpass.md.
 bool search_reads_lowpass(double noise, double thickness);
 // The box's radius in pixels for an edge-probe margin and a pixel width (mm); 0: no box (a
 // pixel as wide as the margin), at most 64.
@@ -100,7 +101,7 @@ std::vector<PlaneSearchResult> plane_search(ocl::Device& dev, const ocl::Buffer<
 // The searches done on one image so far. With a second round of hypotheses, the candidates are
 // refined and ranked again with the first round's in front (detector.cpp, in_rounds), and a
 // start's search depends only on the start and the image: the first round's are not redone
-// (a third of the search time of an image that takes two rounds).
+// (docs/decisions/2026-11-28-plane-search-memo.md).
 struct PlaneSearchMemo {
   std::vector<Eigen::Isometry3d> starts;
   std::vector<PlaneSearchResult> found;

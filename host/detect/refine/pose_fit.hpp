@@ -52,16 +52,16 @@ struct FitSums {
 struct FitGeometry {
   float diameter = 0, voxel_size = 0;  // mm
   Eigen::Vector3d centroid = Eigen::Vector3d::Zero();  // model frame
-  ModelPatches patches;  // of the fit model's points; none (count 0): no patch test
-  // The fit model's points and normals (model frame) for the ray, rival and seen-area tests;
+  ModelPatches patches;  // of the fit model's points; none (count 0): no patch bias
+  // The fit model's points and normals (model frame) for the ray spread, rival and seen area;
   // empty: none of them.
   std::vector<Eigen::Vector3f> points, normals;
-  double mean_area = 0;  // the seen-area test's unit (seen_area.hpp); 0: no test
+  double mean_area = 0;  // the seen area's unit (seen_area.hpp); 0: off
 };
 struct FitThresholds {
   float gate = 0, tolerance = 0, slack = 0;  // mm
-  float outline = 0;  // mm, the outline test's tolerance; 0: no outline test
-  bool residuals = false;  // read back each model point's residual (the patch test)
+  float outline = 0;  // mm, the outline's tolerance; 0: no outline
+  bool residuals = false;  // read back each model point's residual (the patch bias)
   float near_gate = 0;     // mm, pose_fit_shared.h (bp_near_gate); 0: off
 };
 // The cosine between a posed model point's normal nq and the ray from the point q (camera

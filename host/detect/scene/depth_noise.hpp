@@ -3,12 +3,11 @@
 // Why: the scene is subsampled with the model's voxel so that densities, and so votes, match
 // (paper section III-C). Depth noise thickens every surface along the rays: at a sigma of 0.6
 // voxel and more (3 % of the diameter at the default voxel), a surface fills two or three
-// voxel layers instead of one, the crops keep two to three times the points, and the pairs
-// (which grow with their square) make voting two to three times slower, with no more right
-// poses found. Scene voxels longer along the camera's axis (the rays, near enough) at such
-// noise keep about the points of a clean surface, and the same resolution across, which narrow
-// parts need (cubic voxels 1.4 times larger lost a shaft's poses); measured in
-// docs/parameters.md.
+// voxel layers instead of one, and the pairs (which grow with the square of the points) make
+// voting slower with no more right poses found. Scene voxels longer along the camera's axis
+// (the rays, near enough) at such noise keep about the points of a clean surface, and the same
+// resolution across, which narrow parts need (larger cubic voxels lost a shaft's poses)
+// (docs/detect/scene.md, "The scene voxel"; docs/decisions/2026-11-25-noise-voxel.md).
 #pragma once
 
 #include "host/detect/scene/depth_to_points.hpp"

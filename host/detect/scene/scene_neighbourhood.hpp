@@ -1,6 +1,7 @@
 // The subsampled neighbourhood of one hypothesis, with normals computed only where they are
-// needed (measured: normals over the whole 1.4 M-pixel image cost ~120 ms an image, while voting
-// uses only the ~1-2 thousand points left after cropping and subsampling a hypothesis).
+// needed: voting uses only the thousand or two points left after cropping and subsampling a
+// hypothesis, and normals over the whole image cost far more (docs/detect/scene.md, "Normals";
+// docs/decisions/2026-11-28-lazy-normals.md).
 //
 // The result is exactly voxel_subsample(crop_sphere(scene with normals everywhere)) -- the
 // crop's points that have a valid normal, subsampled -- but the normals are computed lazily:

@@ -2,7 +2,7 @@
 // part, an image's detections are its N best verified poses of different parts rather than one
 // per hypothesis. Every refined candidate of every hypothesis competes; a pose whose part
 // centroid lies within a quarter of the diameter of a better one is the same part found twice
-// (two hypotheses on one part, or a candidate and its near-symmetric twin) and is dropped.
+// (two hypotheses on one part, or a candidate and its look-alike) and is dropped.
 #pragma once
 
 #include <cstddef>
@@ -18,7 +18,7 @@ namespace binpick {
 // part.
 inline constexpr double kDuplicateRatio = 0.25;
 
-// Of `poses` (in hypothesis, candidate, twin order): those with a score above 0, best first
+// Of `poses` (in hypothesis, candidate, look-alike order): those with a score above 0, best first
 // (score, then votes, then that order), each kept only if its posed centroid (R c + t, c in the
 // model frame) lies at least `min_distance` from every pose kept before it; at most `budget`.
 std::vector<Detection> select_instances(std::vector<Detection> poses,

@@ -1,8 +1,9 @@
-// The edge test of verification, for thin parts (docs/pipeline.md, step 9; the points it reads
-// are host/train/edge_probes.hpp's, measured in the look-alike holes' probe pass, lookalike_holes.hpp).
+// The edge step of verification, for thin parts (docs/detect/verify.md, "Edge step"; the points
+// it reads are host/train/edge_probes.hpp's, measured in the look-alike holes' probe pass,
+// lookalike_holes.hpp).
 //
 // A sheet lying on a sheet steps down at its edges by one thickness, less than the
-// verification's tolerance, so the outline test is off for thin parts (outline.hpp), and
+// verification's tolerance, so the outline is off for thin parts (outline.hpp), and
 // a pose shifted in its plane or turned on a stack of sheets agrees with the depth image
 // everywhere but at its edges, where the sensor sees the sheet run on. Beyond a right pose's
 // edges the sensor sees a step down: at least the part's thickness, often much more (a part
@@ -14,14 +15,11 @@
 // over `scale` tolerances, at most 1: a pose whose edges show no step keeps little, one whose
 // edges drop by a tolerance keeps all.
 //
-// No depth beyond an edge says nothing (NoDepth::neutral). It once counted as a step of the
-// whole tolerance, with the pose's own share of missing depth taken off the mean; but a sensor
-// that loses depth in patches (shiny sheet metal) loses it beyond some edges and not others,
-// and the pose whose edges happened to lie in the patches won. Measured: docs/pipeline.md.
-//
-// Measured before building it (a prototype on the refined poses of 34 structured-light images
-// of 120 mm and 150 mm plates among other parts, ranks recomputed): top-ranked right 17 -> 28
-// of 34; this implementation, on those and 6 more: 19 -> 37 of 40 (docs/pipeline.md).
+// No depth beyond an edge says nothing (NoDepth::neutral): a sensor that loses depth in patches
+// (shiny sheet metal) loses it beyond some edges and not others, and counted as a step, it let
+// the pose whose edges lay in the patches win
+// (docs/decisions/2026-11-25-edge-step-no-depth-neutral.md). Figures:
+// docs/decisions/2026-11-25-edge-step.md.
 #pragma once
 
 #include "host/detect/verify/lookalike_holes.hpp"
@@ -31,7 +29,7 @@ namespace binpick {
 // max(0, mean + 2 standard errors) of the edge probes' evidence (mm).
 double edge_step(const ProbeEvidence& e);
 
-// min(1, step / (scale x gate)); 1 for scale <= 0 or gate <= 0 (no test).
+// min(1, step / (scale x gate)); 1 for scale <= 0 or gate <= 0 (off).
 double edge_factor(double step, double scale, double gate);
 
 }  // namespace binpick

@@ -1,5 +1,6 @@
 // The look-alike holes factor of verification: is the pose the part, or one of its look-alikes?
-// (docs/pipeline.md, step 9; host/train/lookalike_probes.hpp says what a probe is.)
+// (docs/detect/verify.md, "Look-alike holes"; host/train/lookalike_probes.hpp says what a probe
+// is.)
 //
 // A plate turned over lies on the same outline and faces as the right pose: every other score
 // term agrees with both. Only where one of the two has material and the other a hole does the
@@ -10,7 +11,7 @@
 // there (depth excess about 0); if P S is right, it sees through P's surface (a positive
 // excess: the sheet beneath, or beyond the gate). Per look-alike, the mean excess along the
 // rays, less two standard errors, is the pose's evidence against it; the largest over its
-// look-alikes, past a dead band, multiplies its score by band / excess (as the ray test).
+// look-alikes, past a dead band, multiplies its score by band / excess (as the ray spread).
 //
 // A hole often shows no depth at all: a structured-light sensor's projector cannot light the
 // bottom of a hole its camera looks into. So a probe without depth that faces the camera
@@ -22,16 +23,16 @@
 // look-alike lie together, in a hole or two of the part, and a sensor that loses depth in
 // patches (shiny sheet metal; docs/sensor_model.md) loses them together: their share without
 // depth is one draw of m, not one per probe. So the spread of that one draw, sqrt(m (1 - m))
-// gates, joins the standard error. A right pose in a basket whose sensor lost 44 % of its
-// points, with one look-alike's 28 visible probes in one 20 mm patch of lost depth (26 of them
-// without depth), was blamed 1.8-2.4 mm of excess before, more than its flips; now nothing. In
-// a paper bin (m near 0) the test is as it was. But where the sensor lost half the pose's own
-// points, the spread alone (a gate) outweighs any mean, and the test never fires: on such a
-// plate the probes of a flip that did get depth saw through the holes by the whole gate, and
-// were not counted. So the probes with depth are also taken alone (no depth saying nothing, as
-// in the edge test): their mean less two standard errors, with at least min_probes of them, is
-// evidence too, and the pose's excess against the look-alike is the larger of the two. With no
-// probe missing the two are the same; a right pose's probes with depth lie on its surface.
+// gates, joins the standard error: a right pose whose look-alike's probes lie in one patch of
+// lost depth is not blamed for it; with m near 0 (a paper bin) the term vanishes
+// (docs/decisions/2026-12-02-lookalike-holes-patchy-depth.md). But where the sensor lost about
+// half the pose's own points, the spread alone (a gate) outweighs any mean and the factor never
+// fires, though a flip's probes with depth see through the holes by the whole gate. So the
+// probes with depth are also taken alone (no depth saying nothing, as in the edge step): their
+// mean less two standard errors, with at least min_probes of them, is evidence too, and the
+// pose's excess against the look-alike is the larger of the two
+// (docs/decisions/2026-12-02-lookalike-holes-probes-with-depth.md). With no probe missing the
+// two are the same; a right pose's probes with depth lie on its surface.
 // Probes where something lies in front (nearer than the gate), facing away or hidden say
 // nothing. The excess of a probe is clamped to the gate (the verification tolerance), and one
 // beyond it on the far side counts as the gate: one probe over an empty bin does not outweigh a
@@ -64,7 +65,7 @@ struct ProbeEvidence {
 // How a probe that faces the camera but has no depth counts.
 enum class NoDepth {
   seen_through,  // as the gate (look-alike holes: a hole's bottom the projector cannot light)
-  neutral,       // not at all, only in `missing` (the edge test)
+  neutral,       // not at all, only in `missing` (the edge step)
 };
 
 // The evidence about look-alike `which` from a probe pass (pose_fit_shared.h: one residual,
@@ -102,7 +103,7 @@ struct ProbeModel {
 
 struct LookalikeHolesOptions {
   float band_ratio = 0;          // the factor's dead band, fraction of the diameter; 0: no test
-  float edge_scale = 0;          // edge test's scale, in tolerances (edge_step.hpp); 0: no test
+  float edge_scale = 0;          // edge step's scale, in tolerances (edge_step.hpp); 0: off
   std::size_t min_probes = 10;   // fewer visible probes with depth: untested
   bool near_gate = false;        // the probe pass's near gate (RefineOptions::near_gate)
   float noise = 0;               // mm, the image's depth noise, for it

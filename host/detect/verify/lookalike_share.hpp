@@ -1,19 +1,18 @@
 // The look-alike share of verification: a pose is trusted only as far as it beats its own
-// look-alike.
+// look-alike (docs/detect/verify.md, "Look-alike share").
 //
 // A part with look-alikes (a plate turned over, whose holes alone tell it from the plate the
 // right way up) is refined and verified as each candidate and as each candidate's look-alikes
-// (detector.cpp). Where the tests cannot tell the two apart (the holes covered by another part,
-// seen edge on, or lost in noise), both score alike and the better by chance is the detection:
-// on 350-plate paper bins at noise 0, a flipped plate won at 0.778 against its right pose's
-// 0.776. Such a score says how well the pose fits, not how sure the pose is; ranked by it,
-// an ambiguous plate comes before an unambiguous one. So each pose's score s is multiplied by
-// its share of the pair, s / (s + w a): a the best score among the poses refined from the same
-// candidate (itself and its look-alikes, the in-plane search's pose and its look-alikes) whose
-// centroid lies within `max_distance` of its own and which are turned from it by more than
-// `min_turn_deg`, that is the same part another way round. A tie halves the score; a
-// look-alike scoring nothing leaves it. Poses of other candidates are not counted: two
-// candidates may be two parts side by side. Measured in docs/pipeline.md, step 9.
+// (refine/candidate_poses.hpp). Where the factors cannot tell the two apart (the holes covered
+// by another part, seen edge on, or lost in noise), both score alike and the better by chance is
+// the detection. Such a score says how well the pose fits, not how sure the pose is; ranked by
+// it, an ambiguous plate comes before an unambiguous one. So each pose's score s is multiplied
+// by its share of the pair, s / (s + w a): a the best score among the poses refined from the
+// same candidate (itself and its look-alikes, the in-plane search's pose and its look-alikes)
+// whose centroid lies within `max_distance` of its own and which are turned from it by more than
+// `min_turn_deg`, that is the same part another way round. A tie halves the score; a look-alike
+// scoring nothing leaves it. Poses of other candidates are not counted: two candidates may be
+// two parts side by side. Figures: docs/decisions/2026-12-02-lookalike-share.md.
 #pragma once
 
 #include <cstddef>
@@ -26,7 +25,7 @@
 namespace binpick {
 
 // Look-alikes lie within this fraction of the diameter of each other: the same part, at the
-// loose criterion's translation error (docs/parameters.md).
+// loose criterion's translation error (docs/parameters.md, "Evaluation").
 inline constexpr double kLookalikeRatio = 0.1;
 
 struct LookalikeOptions {

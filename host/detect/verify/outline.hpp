@@ -1,11 +1,11 @@
-// Whether a part gets the verification's outline test (pose_fit_shared.h, RefineOptions::
-// outline_ratio). A right pose's outline is a depth step down to what the part lies on, about as
-// deep as the part is thick there; a thin sheet lying on another shows a step of one sheet
-// thickness, which the test's tolerance cannot tell from a surface running on. Measured on flat
-// stacks of the 1.5 mm built-in plate, the test turned right top-ranked poses down (7 -> 5 of 8
-// images), while on the bracket, bolt, tee and shaft it raised them (56 -> 64 of 84 images with
-// distractors in view, docs/pipeline.md). So the test runs only for parts whose thinnest extent
-// is at least twice its tolerance.
+// Whether a part gets the verification's outline (pose_fit_shared.h, RefineOptions::
+// outline_ratio; docs/detect/verify.md, "Outline"). A right pose's outline is a depth step down
+// to what the part lies on, about as deep as the part is thick there; a thin sheet lying on
+// another shows a step of one sheet thickness, which the outline's tolerance cannot tell from a
+// surface running on: on flat stacks of plates the outline turned right poses down
+// (docs/decisions/2026-11-24-outline-not-for-thin-parts.md). So the outline runs only for parts
+// whose thinnest extent is at least twice its tolerance; the edge step (edge_step.hpp) takes its
+// place on thin parts.
 #pragma once
 
 #include "host/core/mesh.hpp"

@@ -1,5 +1,5 @@
-// The patch test of verification: does the posed model's surface agree with the measured depth
-// everywhere, or only on average? (docs/pipeline.md, "Refinement and the verified score")
+// The patch bias of verification: does the posed model's surface agree with the measured depth
+// everywhere, or only on average? (docs/detect/verify.md, "Patch bias")
 //
 // ICP leaves a right pose's residuals as sensor noise: zero on average in every region of the
 // part. A pose laid on a similar but different object (a bolt on the arm of a tee, a shaft on a
@@ -10,11 +10,7 @@
 // its mean residual lies farther from zero than a dead band (small errors of a right pose, the
 // model's own tessellation), by more than three standard errors (the noise seen in the pose's
 // residuals over the square root of the patch's points). The score is multiplied by the share
-// of tested patches that are not biased.
-//
-// Measured before building it (a prototype on the returned poses of 84 realistic images with
-// distractors, ranks recomputed): right poses' patches mostly pass, wrong poses on another
-// object fail 5-80 % of theirs; top-ranked right 63 -> 71 of 84.
+// of tested patches that are not biased. Figures: docs/decisions/2026-11-24-patch-bias.md.
 #pragma once
 
 #include <cstdint>

@@ -1,12 +1,12 @@
-// The ray test of verification: does the posed model's surface lie where the sensor saw it,
-// along the rays, as closely as the sensor's noise allows? (docs/pipeline.md, step 9)
+// The ray spread of verification: does the posed model's surface lie where the sensor saw it,
+// along the rays, as closely as the sensor's noise allows? (docs/detect/verify.md, "Ray spread")
 //
 // A depth sensor's noise is along its rays. A model point's ICP residual r (point-to-plane)
 // divided by the cosine between its normal and the viewing ray is the distance from the model's
 // tangent plane to the measured point along the ray: at a right pose, the sensor's noise
 // whatever the slope of the surface. A pose laid on a similar but different object (a shaft on
 // a bolt's shank or a tee's arm, of another radius) leaves a systematic error spread over the
-// whole part: no region's mean is off, so the patch test sees nothing, and the widened
+// whole part: no region's mean is off, so the patch bias sees nothing, and the widened
 // tolerance takes it as inliers, but the spread along the rays is wider than the noise.
 //
 // Per pose: the mean square of the along-ray residuals. The image's noise is the least of these
@@ -14,10 +14,9 @@
 // excess is the RMS beyond that noise, after two standard errors of the difference of the two
 // estimates; past a dead band the score is multiplied by band / excess.
 //
-// Measured (docs/pipeline.md): counting the floor's own uncertainty (not only the pose's) is
-// what kept right brackets from losing; a trimmed mean square (the largest 10 % dropped) gained
-// nothing on the shafts and lost two images elsewhere: a wrong pose's evidence is in its larger
-// residuals.
+// Both estimates' uncertainty counts: with the pose's alone, right poses lost against a floor
+// that lay low by chance. The mean square is not trimmed: a wrong pose's evidence is in its
+// larger residuals (docs/decisions/2026-11-25-ray-spread.md).
 #pragma once
 
 #include <cstddef>

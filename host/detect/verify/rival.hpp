@@ -1,8 +1,9 @@
-// The rival test of verification (docs/pipeline.md, step 9): two poses that lie on the same
-// measured points are two answers to one question, and the points can say which fits better.
+// The rival cap of verification (docs/detect/verify.md, "Rival cap"; figures:
+// docs/decisions/2026-11-25-rival.md): two poses that lie on the same measured points are two
+// answers to one question, and the points can say which fits better.
 //
 // A part turned end for end (a stepped shaft whose ends differ by a millimetre of radius) lies
-// on the same points as the right pose. Every other test asks a pose alone whether it fits
+// on the same points as the right pose. Every other factor asks a pose alone whether it fits
 // within the noise, and at 3 % noise (1.8 mm on the shaft) both do: the wrong pose's extra
 // millimetre lies inside the widened tolerance, and its spread along the rays is inside two
 // standard errors of the image's noise. Compared with each other on the same measured points,

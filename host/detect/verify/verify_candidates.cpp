@@ -26,8 +26,8 @@ std::vector<VerifiedPose> verify_candidates(const VerifyScene& scene, const Veri
   std::vector<VerifiedPose> out = refine_and_verify(scene.fit_sums, scene.cam, g,
                                                     model.fit_points, poses, vo, memo);
   // Phase 2: the probe pass's factors. A cloud seen through a virtual camera has no depth along
-  // the rays to weigh millimetres at a few hundred probes (measured: on the shaft's cloud the
-  // holes turned a right pose end for end).
+  // the rays to weigh millimetres at a few hundred probes: on a shaft's cloud the look-alike
+  // holes turned a right pose end for end (docs/decisions/2026-11-25-lookalike-holes.md).
   if (scene.sensor && scene.probe_sums && !model.probes.probes.points.empty()) {
     LookalikeHolesOptions ho;
     ho.band_ratio = opt.holes_band;
@@ -44,8 +44,8 @@ std::vector<VerifiedPose> verify_candidates(const VerifyScene& scene, const Veri
     ro.significance = opt.rival_significance;
     ro.max_centre_distance = kRivalCentreRatio * g.diameter;
     // An RMS difference of 0.005 d, look-alike holes' band: a noise-free right pose's leftover
-    // error is of that size (the tee: 0.5 mm, one pose fitting the model's sampling 0.03 mm^2
-    // better than another).
+    // error is of that size, the model's sampling fitting one pose a little better than another
+    // (docs/decisions/2026-11-25-rival.md).
     ro.dead_band_floor = std::pow(kRivalFloorRatio * g.diameter, 2);
     // A thin part's neighbours beyond its outline are sheets of itself a thickness lower, which
     // any pose shifted over them explains as well as the right one does its own surface: there

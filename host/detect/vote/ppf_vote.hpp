@@ -43,13 +43,15 @@ struct VoteOptions {
   std::uint32_t peaks_per_ref = 3;  // accumulator peaks kept per reference point, in [1, 16]
   float peak_ratio = 0.9f;          // a peak needs at least this fraction of the best's votes
   // Scene pairs of one reference point with the same key and alpha_s bin vote once (the first
-  // in row order; kernels/ppf_vote.cl says why). Off by default: measured on 60-part bins
-  // (docs/parameters.md) it cost the bracket and the shaft more than it gained the tee.
+  // in row order; kernels/ppf_vote.cl says why). Off by default: it cost the bracket and the
+  // shaft more than it gained the tee (docs/decisions/2026-11-24-unique-votes.md).
   bool unique_votes = false;
   // Every vote also goes to the alpha bin next to its own on the nearer side (kernels/ppf_vote.cl).
+  // Off by default: voting becomes several times slower (docs/decisions/2026-11-24-spread-votes.md).
   bool spread_alpha = false;
   // Peaks must be local maxima along alpha (kernels/ppf_vote.cl alpha_local_max). The detector
-  // turns it on (DetectParams::local_peaks); the routine's default keeps Drost's best cells.
+  // turns it on (DetectParams::local_peaks; docs/decisions/2026-11-24-local-peaks.md); the
+  // routine's default keeps Drost's best cells.
   bool local_max = false;
   // Accumulator counters (and duplicate sets, counted in the same 4-byte units) allocated at
   // once; reference points vote in batches that fit.

@@ -388,7 +388,8 @@ TEST(BinFit, NoBinIsSaidNotGuessed) {
 // rim is the highest thing there. Without this rule (kMaxAboveRim) a "bin" is found in 6 of the
 // 10 heaps straight down (11 of 20 seeds). And a slice seen as one side of a frame, with no
 // floor under it, is no rim either: of 120 heaps (seeds 1-30 at tilts 0, 10, 15 and 20 degrees)
-// 4 got such a "bin" before (the last four cases here; docs/pipeline.md).
+// 4 got such a "bin" before (the last four cases here;
+// docs/decisions/2026-12-02-bin-one-side-needs-floor.md).
 TEST(BinFit, ASliceThroughAHeapIsNoRim) {
   std::vector<std::pair<double, unsigned>> heaps;
   for (unsigned seed = 1; seed <= 10; ++seed) heaps.push_back({0.0, seed});
@@ -412,7 +413,7 @@ TEST(BinFit, ASliceThroughAHeapIsNoRim) {
 // A bin narrower than a part holds none: a frame under min_side across is no bin (a slice
 // through a heap once gave one 590 x 2.4 mm, which masked out the whole image). Checked for each
 // candidate up, so that the next can win: a robot arm's face beside a wire-mesh basket made
-// such a frame along a searched up (docs/pipeline.md).
+// such a frame along a searched up (docs/decisions/2026-11-25-bin-width-per-candidate.md).
 TEST(BinFit, AnInteriorNarrowerThanAPartIsNoBin) {
   const BinSceneSpec s;  // 400 x 300
   const BinScene scene = make_bin_scene(s);

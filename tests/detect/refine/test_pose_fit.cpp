@@ -59,7 +59,7 @@ TEST(PoseFit, KernelMatchesReferenceOnRandomPoses) {
   for (int k = 0; k < 40; ++k) {
     const PoseToRefine p = off_pose(s, 15 * std::fabs(N(rng)), {N(rng), N(rng), N(rng)},
                                     4.0 * Eigen::Vector3d(N(rng), N(rng), N(rng)));
-    // The outline test on three poses of four, with tolerances from 1 to 5 mm.
+    // The outline on three poses of four, with tolerances from 1 to 5 mm.
     const float outline = k % 4 == 3 ? 0.0f : 1.0f + float(k % 5);
     // Residuals read back on every other pose.
     // A near gate (pose_fit_shared.h) of 0.5 to 2 mm on two poses of three.
@@ -319,10 +319,11 @@ TEST(PoseRefine, MemoOfAFirstRoundGivesTheSameResultsAsRefiningAllAgain) {
   EXPECT_EQ(memo.inputs[0].R, other[0].R);
 }
 
-// Something lying on part of the part (a plate partly covered by another: docs/pipeline.md,
-// step 8): the measured surface 3 mm nearer over one end of the bracket, inside ICP's last gate
-// (2 tolerances, 4.3 mm), pulls the pose toward itself; with the near gate (bp_near_gate: 1.1
-// mm here, half a tolerance) those points give no term and the pose stays on the bracket.
+// Something lying on part of the part (a plate partly covered by another: docs/detect/refine.md,
+// "The near gate"): the measured surface 3 mm nearer over one end of the bracket, inside ICP's
+// last gate (2 tolerances, 4.3 mm), pulls the pose toward itself; with the near gate
+// (bp_near_gate: 1.1 mm here, half a tolerance) those points give no term and the pose stays
+// on the bracket.
 TEST(PoseRefine, TheNearGateKeepsWhatLiesOnThePartOutOfICP) {
   auto& dev = binpick::test::test_device();
   const FitScene clean = binpick::test::make_fit_scene();

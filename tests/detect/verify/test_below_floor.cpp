@@ -17,7 +17,7 @@ PointCloud column() {
   return c;
 }
 
-TEST(FloorCheck, CountsThePointsBelowTheFloorBeyondTheMargin) {
+TEST(BelowFloor, CountsThePointsBelowTheFloorBeyondTheMargin) {
   // Camera looking down: the floor 1000 mm away, up = (0, 0, -1): up . p + 1000 = 0.
   const Eigen::Vector3d up(0, 0, -1);
   const double d = 1000;
@@ -40,7 +40,7 @@ TEST(FloorCheck, CountsThePointsBelowTheFloorBeyondTheMargin) {
   EXPECT_DOUBLE_EQ(fraction_below_floor(PointCloud{}, R, {0, 0, 0}, up, d, 0.0), 0.0);
 }
 
-TEST(FloorCheck, TheInteriorBoxStartsAboveTheFloorWhenAsked) {
+TEST(BelowFloor, TheInteriorBoxStartsAboveTheFloorWhenAsked) {
   BinFit bin;
   bin.found = true;
   bin.interior = Eigen::Vector3d(600, 400, 300);

@@ -1,9 +1,9 @@
-// The edge test of verification (host/detect/verify/edge_step.hpp): its arithmetic, and on an image of
+// The edge step of verification (host/detect/verify/edge_step.hpp): its arithmetic, and on an image of
 // the built-in plate lying on a plane one sheet thickness beneath it (a plate on a plate), the
 // right pose against the same plate shifted 20 mm across, in its plane: both lie on surface nearly
 // everywhere and score alike; beyond the right pose's edges the sensor sees the step down to
 // the plane, beyond the shifted pose's edges on one side it sees the plate run on, and the edge
-// test keeps the right pose's lead. And a plate pose laid on a larger flat face seen obliquely
+// step keeps the right pose's lead. And a plate pose laid on a larger flat face seen obliquely
 // (a robot arm's): the probes continuing its faces see the face run on, those continuing its rims
 // see it a margin behind them, which is why only the face probes are tested.
 #include <gtest/gtest.h>
@@ -20,7 +20,7 @@
 
 using namespace binpick;
 
-TEST(EdgeTest, StepIsTheMeanPlusTwoStandardErrors) {
+TEST(EdgeStep, StepIsTheMeanPlusTwoStandardErrors) {
   ProbeEvidence e;
   e.mean = 1.5, e.standard_error = 0.25, e.n = 100;
   EXPECT_DOUBLE_EQ(edge_step(e), 2.0);
@@ -165,14 +165,14 @@ void plate_shifted_on_a_plate(bool holes_without_depth) {
 
 }  // namespace
 
-TEST(EdgeTest, ThePlateShiftedOnAPlateLosesToTheRightPose) { plate_shifted_on_a_plate(false); }
+TEST(EdgeStep, ThePlateShiftedOnAPlateLosesToTheRightPose) { plate_shifted_on_a_plate(false); }
 
-TEST(EdgeTest, ThePlateShiftedLosesAlsoWhereNothingBeyondItHasDepth) {
+TEST(EdgeStep, ThePlateShiftedLosesAlsoWhereNothingBeyondItHasDepth) {
   plate_shifted_on_a_plate(true);
 }
 
 // The plate turned 70 degrees from the camera (a robot arm's face in a basket was seen at 72).
-TEST(EdgeTest, APoseLaidOnALargerFaceSeenObliquelyShowsNoStepAtItsFaceProbes) {
+TEST(EdgeStep, APoseLaidOnALargerFaceSeenObliquelyShowsNoStepAtItsFaceProbes) {
   const PpfModel model =
       train_ppf_model(make_builtin_part("plate"), PpfTrainParams{}, nullptr, test::test_device());
   ASSERT_GT(model.edge_face_probes(), 300u);

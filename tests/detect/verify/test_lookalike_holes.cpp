@@ -1,9 +1,9 @@
-// The twin test of verification (host/detect/verify/lookalike_holes.hpp): the evidence of a look-alike's
+// The look-alike holes of verification (host/detect/verify/lookalike_holes.hpp): the evidence of a look-alike's
 // probes from a probe pass's residuals (mean and standard error of the depth excess along the
 // rays, the clamp, the infinite residuals of probes beyond the gate, probes that say nothing),
 // and, on an image of the built-in plate lying on a surface one sheet thickness below it (a
 // plate on a plate), the right pose and its three turned look-alikes: every other score term
-// finds them alike, the twin test costs the look-alikes and leaves the right pose alone.
+// finds them alike, the look-alike holes cost the look-alikes and leave the right pose alone.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -34,7 +34,7 @@ const Eigen::Vector3d kAhead(0, 0, 500);
 
 }  // namespace
 
-TEST(TwinTest, EvidenceIsTheMeanDepthExcessAlongTheRays) {
+TEST(LookalikeHoles, EvidenceIsTheMeanDepthExcessAlongTheRays) {
   const PointCloud probes = facing_probes(4);
   const std::vector<std::uint32_t> twin = {0, 0, 0, 1};
   const std::vector<std::uint8_t> cls(4, BP_FIT_INLIER);
@@ -58,7 +58,7 @@ TEST(TwinTest, EvidenceIsTheMeanDepthExcessAlongTheRays) {
 
 // The case that made the spread term (lookalike_holes.hpp): a look-alike's probes all in one patch of
 // lost depth, 26 of 28 without depth, at a pose that misses 44 % of its own points.
-TEST(TwinTest, OnePatchWithoutDepthIsOneDrawOfThePosesOwnMissingShare) {
+TEST(LookalikeHoles, OnePatchWithoutDepthIsOneDrawOfThePosesOwnMissingShare) {
   ProbeEvidence e;
   e.n = 28;
   e.missing = 26;
@@ -74,7 +74,7 @@ TEST(TwinTest, OnePatchWithoutDepthIsOneDrawOfThePosesOwnMissingShare) {
 
 // The probes with depth alone (lookalike_holes.hpp): where the pose's own share without depth is
 // half, the spread of that share outweighs every mean, and only they still tell.
-TEST(TwinTest, ProbesWithDepthTellAlsoWhereHalfThePosesPointsHaveNone) {
+TEST(LookalikeHoles, ProbesWithDepthTellAlsoWhereHalfThePosesPointsHaveNone) {
   const double gate = 6.0;
   ProbeEvidence all;  // 30 probes: 15 without depth (as the gate), 15 seen through to the gate
   all.n = 30;
@@ -97,7 +97,7 @@ TEST(TwinTest, ProbesWithDepthTellAlsoWhereHalfThePosesPointsHaveNone) {
   EXPECT_EQ(seen_excess(ProbeEvidence{}, 0), 0.0);
 }
 
-TEST(TwinTest, SeenThroughAndNoDepthCountAsTheGateInFrontAndHiddenSayNothing) {
+TEST(LookalikeHoles, SeenThroughAndNoDepthCountAsTheGateInFrontAndHiddenSayNothing) {
   const PointCloud probes = facing_probes(7);
   const std::vector<std::uint32_t> twin(7, 0);
   const float nan = std::numeric_limits<float>::quiet_NaN();
@@ -111,7 +111,7 @@ TEST(TwinTest, SeenThroughAndNoDepthCountAsTheGateInFrontAndHiddenSayNothing) {
   ASSERT_EQ(e.n, 5u);
   EXPECT_EQ(e.missing, 1u);
   EXPECT_NEAR(e.mean, (5.0 + 5.0 + 5.0 - 5.0 + 0.0) / 5.0, 1e-9);
-  // The edge test's reading: no depth says nothing, and is still counted as missing.
+  // The edge step's reading: no depth says nothing, and is still counted as missing.
   const ProbeEvidence neutral = probe_evidence(r, cls, Eigen::Matrix3d::Identity(), kAhead, probes,
                                              twin, 0, 5.0, NoDepth::neutral);
   ASSERT_EQ(neutral.n, 4u);
@@ -238,15 +238,15 @@ void plate_and_its_look_alikes(Dropout dropout) {
 
 }  // namespace
 
-TEST(TwinTest, ThePlateTurnedOverLosesToTheRightPoseOnAPlateBeneath) {
+TEST(LookalikeHoles, ThePlateTurnedOverLosesToTheRightPoseOnAPlateBeneath) {
   plate_and_its_look_alikes(Dropout::none);
 }
 
-TEST(TwinTest, ThePlateTurnedOverLosesToTheRightPoseOverHolesWithoutDepth) {
+TEST(LookalikeHoles, ThePlateTurnedOverLosesToTheRightPoseOverHolesWithoutDepth) {
   plate_and_its_look_alikes(Dropout::holes);
 }
 
 // Fails with the share without depth alone: every look-alike's excess is 0 there.
-TEST(TwinTest, ThePlateTurnedOverLosesToTheRightPoseWhereDepthIsLostInPatches) {
+TEST(LookalikeHoles, ThePlateTurnedOverLosesToTheRightPoseWhereDepthIsLostInPatches) {
   plate_and_its_look_alikes(Dropout::patches);
 }

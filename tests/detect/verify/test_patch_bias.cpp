@@ -1,4 +1,4 @@
-// The verification's patch test (host/detect/verify/patch_bias.hpp): patches of the model, the bias
+// The verification's patch bias (host/detect/verify/patch_bias.hpp): patches of the model, the bias
 // decision on made-up residuals (noise alone passes, an offset beyond the dead band by more
 // than three standard errors fails, NaN is no residual), and through refinement: a right pose
 // on the part passes, the same pose on a similar object with a raised region fails although

@@ -1,4 +1,4 @@
-// The verification's ray test (host/detect/verify/ray_spread.hpp): a residual along the ray is the
+// The verification's ray spread (host/detect/verify/ray_spread.hpp): a residual along the ray is the
 // point-to-plane one over the cosine; on made-up residuals, noise alone has no excess and a
 // spread beyond it is the excess; the image's noise comes from a well-sampled pose; and through
 // refinement: of two objects in one image, the part keeps its score and a similar object whose
@@ -30,7 +30,7 @@ std::vector<double> gaussian(std::size_t n, double sigma, unsigned seed) {
 
 }  // namespace
 
-TEST(RayTest, ResidualAlongTheRayIsThePointToPlaneOneOverTheCosine) {
+TEST(RaySpread, ResidualAlongTheRayIsThePointToPlaneOneOverTheCosine) {
   // Model points at the origin, posed 500 mm straight ahead: the ray is +z.
   const float nan = std::numeric_limits<float>::quiet_NaN();
   const double s60 = std::sqrt(3.0) / 2;
@@ -55,7 +55,7 @@ TEST(RayTest, ResidualAlongTheRayIsThePointToPlaneOneOverTheCosine) {
                std::logic_error);
 }
 
-TEST(RayTest, NoiseAloneHasNoExcessASpreadBeyondItIs) {
+TEST(RaySpread, NoiseAloneHasNoExcessASpreadBeyondItIs) {
   // The image's noise: 2 mm along the rays, seen by a pose of 400 residuals.
   const RaySpread noise = ray_spread(gaussian(400, 2.0, 1));
   EXPECT_EQ(noise.n, 400u);
@@ -78,7 +78,7 @@ TEST(RayTest, NoiseAloneHasNoExcessASpreadBeyondItIs) {
   EXPECT_EQ(ray_spread(std::vector<double>{}).n, 0u);
 }
 
-TEST(RayTest, TheImagesNoiseIsTheLeastOfTheWellSampledPoses) {
+TEST(RaySpread, TheImagesNoiseIsTheLeastOfTheWellSampledPoses) {
   // A pose with 20 residuals lies low by chance more easily than one with 100.
   const std::vector<RaySpread> poses = {{4.0, 400}, {1.0, 20}, {3.0, 100}, {0.0, 0}};
   EXPECT_DOUBLE_EQ(ray_floor(poses).mean_square, 3.0);
@@ -88,7 +88,7 @@ TEST(RayTest, TheImagesNoiseIsTheLeastOfTheWellSampledPoses) {
   EXPECT_EQ(ray_floor(std::vector<RaySpread>{}).n, 0u);
 }
 
-TEST(RayTest, SimilarObjectWithRidgesLosesScoreTheRightPoseKeepsIt) {
+TEST(RaySpread, SimilarObjectWithRidgesLosesScoreTheRightPoseKeepsIt) {
   // One image: the bracket on the left; on the right an object that differs from it by +-2 mm
   // everywhere, in ridges 5 mm apart. Noise 1 mm: the tolerance widens to about 3.5 mm, so the
   // ridges are mostly inliers; patches (0.2 d, 10.8 mm) average them out.

@@ -1,4 +1,4 @@
-// The verification's rival test (host/detect/verify/rival.hpp): the measured points behind a
+// The verification's rival cap (host/detect/verify/rival.hpp): the measured points behind a
 // pose's residuals, a posed model's residual along the ray at a measured point, and through
 // refinement: the stepped shaft at 3 % noise against itself turned end for end, which fits the
 // same points within the tolerance but worse, and must not outrank the right pose.
@@ -77,7 +77,7 @@ ShaftScene shaft_scene(double noise, unsigned seed) {
 }
 
 // Refines and verifies the poses against the scene (C++ reference sums), keeping their
-// measured points, then runs the rival test.
+// measured points, then runs the rival cap.
 std::vector<VerifiedPose> refine_and_compare(const ShaftScene& s,
                                             const std::vector<PoseToRefine>& poses,
                                             const RivalOptions& rival) {
@@ -105,7 +105,7 @@ PoseToRefine flipped(const ShaftScene& s) {
 
 }  // namespace
 
-TEST(RivalTest, MeasuredPointsComeBackFromTheResiduals) {
+TEST(Rival, MeasuredPointsComeBackFromTheResiduals) {
   // Random model points posed ahead, each with a measured point on its pixel's ray: the
   // residual nq . (p - q) gives p back.
   std::mt19937 rng(5);
@@ -153,7 +153,7 @@ static void square_of_points(std::vector<Eigen::Vector3f>& points,
     }
 }
 
-TEST(RivalTest, ResidualAlongTheRayFromThePosedSurfaceAtThePixel) {
+TEST(Rival, ResidualAlongTheRayFromThePosedSurfaceAtThePixel) {
   // A square of model points 1 mm apart, normal +z, turned to face the camera: the plane
   // z = 500.
   std::vector<Eigen::Vector3f> points, normals;
@@ -227,7 +227,7 @@ static double along_ray_by_splat(const Eigen::Matrix3d& R, const Eigen::Vector3d
   return double(n.dot(m - a) / std::max(-n.dot(m.normalized()), 0.17f));
 }
 
-TEST(RivalTest, ThePointAtAPixelIsTheOneASplatOfDiscsLeaves) {
+TEST(Rival, ThePointAtAPixelIsTheOneASplatOfDiscsLeaves) {
   // Two overlapping layers of random points (a sheet and one behind it, nearer than the band
   // at places and beyond it at others), random normals, some facing away; and a pile of many
   // points on one spot, more than a pixel's usual few.
@@ -268,7 +268,7 @@ TEST(RivalTest, ThePointAtAPixelIsTheOneASplatOfDiscsLeaves) {
   }
 }
 
-TEST(RivalTest, APointJustInFrontOfTheCameraDoesNotBlowUpTheSurface) {
+TEST(Rival, APointJustInFrontOfTheCameraDoesNotBlowUpTheSurface) {
   // A square of points 1 mm apart facing the camera 500 mm ahead, and one more point posed a
   // tenth of a micrometre in front of the camera, 100 mm aside and up: it projects 10^9 pixels
   // out both ways. The surface is built (a window reaching it does not fit in memory: before,
@@ -297,7 +297,7 @@ TEST(RivalTest, APointJustInFrontOfTheCameraDoesNotBlowUpTheSurface) {
   EXPECT_GT(found, 500u);  // the square covers about 80 x 80 pixels, every third of them asked
 }
 
-TEST(RivalTest, TheShaftTurnedEndForEndCannotOutrankTheRightPose) {
+TEST(Rival, TheShaftTurnedEndForEndCannotOutrankTheRightPose) {
   // 3 % of the diameter: 1.8 mm of noise, more than the millimetre by which the shaft's ends
   // differ in radius. Seeds: the test is not one lucky draw.
   for (unsigned seed : {1u, 2u, 3u}) {
@@ -320,7 +320,7 @@ TEST(RivalTest, TheShaftTurnedEndForEndCannotOutrankTheRightPose) {
   }
 }
 
-TEST(RivalTest, SymmetricPosesKeepTheirScoresAndPosesApartAreNotCompared) {
+TEST(Rival, SymmetricPosesKeepTheirScoresAndPosesApartAreNotCompared) {
   const ShaftScene s = shaft_scene(1.8, 4);
   // The right pose, the same turned a third of a turn about the shaft's axis (its symmetry:
   // both right, refined to slightly different fits), and the right pose shifted half a length
@@ -344,7 +344,7 @@ TEST(RivalTest, SymmetricPosesKeepTheirScoresAndPosesApartAreNotCompared) {
   EXPECT_DOUBLE_EQ(compared[2].score(), alone[2].score());
 }
 
-TEST(RivalTest, PosesWithoutMeasuredPointsOrScoreAreNotCompared) {
+TEST(Rival, PosesWithoutMeasuredPointsOrScoreAreNotCompared) {
   std::vector<VerifiedPose> poses(3);
   poses[0].breakdown[kAgreement] = 0.8;  // no measured points
   poses[1].breakdown[kAgreement] = 0.0;
@@ -359,7 +359,7 @@ TEST(RivalTest, PosesWithoutMeasuredPointsOrScoreAreNotCompared) {
                std::logic_error);
 }
 
-TEST(RivalTest, APoseShowingLessLeavesTheRestUnexplained) {
+TEST(Rival, APoseShowingLessLeavesTheRestUnexplained) {
   // Two poses of a flat part facing the camera 500 mm ahead: A's model is the whole 40 x 40 mm
   // square, B's only its left half (a pose that turns a protruding feature out of view). The
   // measured surface is the whole square, 0.2 mm behind the model.

@@ -1,4 +1,4 @@
-// The seen-area test of verification (host/detect/verify/seen_area.hpp): its arithmetic, and on images
+// The seen area of verification (host/detect/verify/seen_area.hpp): its arithmetic, and on images
 // of the built-in plate, face up and seen at 75 degrees, that the first keeps its score and the
 // second loses its lead in proportion to the area it shows.
 #include <gtest/gtest.h>
@@ -43,7 +43,7 @@ void square(int n, std::vector<Eigen::Vector3f>& points, std::vector<Eigen::Vect
 
 }  // namespace
 
-TEST(AreaTest, MeanAreaIsAQuarterOfAClosedSurfacesPoints) {
+TEST(SeenArea, MeanAreaIsAQuarterOfAClosedSurfacesPoints) {
   // Any closed surface's projected area is a quarter of its area on average over directions;
   // sampled evenly, a quarter of its points: a sphere, and a plate's two faces.
   const std::vector<Eigen::Vector3f> sphere = sphere_normals(3000);
@@ -54,7 +54,7 @@ TEST(AreaTest, MeanAreaIsAQuarterOfAClosedSurfacesPoints) {
   EXPECT_EQ(mean_projected_area({}), 0.0);
 }
 
-TEST(AreaTest, SeenAreaWeighsVisiblePointsByTheirCosineAndMissingByHalf) {
+TEST(SeenArea, SeenAreaWeighsVisiblePointsByTheirCosineAndMissingByHalf) {
   std::vector<Eigen::Vector3f> points, normals;
   square(21, points, normals);
   const std::size_t n = points.size();
@@ -93,7 +93,7 @@ TEST(AreaTest, SeenAreaWeighsVisiblePointsByTheirCosineAndMissingByHalf) {
   EXPECT_NO_THROW(check(opt));
 }
 
-TEST(AreaTest, APlateSeenAt75DegreesLosesItsLeadOverOneFaceUp) {
+TEST(SeenArea, APlateSeenAt75DegreesLosesItsLeadOverOneFaceUp) {
   auto& dev = test::test_device();
   const PpfModel model = train_ppf_model(make_builtin_part("plate"), PpfTrainParams{}, nullptr, dev);
   const bp_camera cam = test::plate_camera();
