@@ -94,7 +94,7 @@ const ParamInfo kTable[] = {
      "this, the whole turn) for the pose whose edges step down most, refined and verified "
      "beside it; 0: off"},
     // Verification.
-    {"verify-tolerance", &P::verify_tolerance, unit_open, "verification",
+    {"verify-tolerance", &P::verify_tolerance, {1e-4, 1}, "verification",
      "agreement: depth tolerance of a model point that agrees"},
     {"verify-noise-factor", &P::verify_noise_factor, {0, 100}, "verification",
      "the tolerance widens to this many times the depth noise the best-fitting pose shows (at "
