@@ -74,46 +74,6 @@ Detection detection_for(const std::vector<Hypothesis>& hyps, std::size_t k) {
 }  // namespace
 
 
-namespace {
-
-// The flat-region test's settings for a cloud subsampled at the model's voxel: regions within
-// half the diameter, a plane tolerance of half a voxel or twice the depth noise, in steps of a
-// quarter voxel (step: the number of steps).
-FlatRegionOptions flat_options(const PpfModel& model, double noise, int* step) {
-  const double quarter = 0.25 * model.voxel_size;
-  const int n = int(std::ceil(std::max(0.5 * model.voxel_size, 2 * noise) / quarter));
-  if (step) *step = n;
-  FlatRegionOptions o;
-  o.radius = 0.5f * model.diameter;
-  o.tolerance = float(n * quarter);
-  o.link = 2.0f * model.voxel_size;
-  return o;
-}
-
-}  // namespace
-
-std::string Detector::flat_skip_reason(const PointCloud& sample, const Hypothesis& h,
-                                       double noise, double voxel_factor) const {
-  // Not for thin parts (sheets; outline.hpp): sheets stacked flat join their neighbours'
-  // faces within the tolerance, and a sheet's face is its widest flat region, so the test
-  // skipped right hypotheses (docs/decisions/2026-12-02-flat-region-thin-parts.md).
-  if (params_.flat_region <= 0 || outline_ratio_ == 0 || sample.points.empty()) return {};
-  int step = 0;
-  FlatRegionOptions o = flat_options(model_, noise, &step);
-  auto found = flat_model_regions_.find(step);
-  if (found == flat_model_regions_.end())
-    found = flat_model_regions_.emplace(step, FlatRegions(model_.cloud, o).largest()).first;
-  const std::size_t part = found->second;
-  // Stretched scene voxels lie further apart along the camera's axis.
-  o.link *= float(std::max(1.0, voxel_factor));
-  const std::size_t seen = FlatRegions(sample, o).size_from(nearest_point(sample, h.point));
-  if (double(seen) <= params_.flat_region * double(part)) return {};
-  return fmt::format(
-      "skipped: the highest point lies on a flat region of {} points, more than {} times the "
-      "part's widest ({} points): not the part (--flat-region)",
-      seen, params_.flat_region, part);
-}
-
 std::vector<Detection> Detector::in_rounds(std::size_t found,
                                            const std::function<void(std::size_t, std::size_t)>& vote,
                                            const std::function<std::vector<Detection>()>& rank) const {
@@ -174,6 +134,8 @@ Detector::Detector(const PpfModel& model, const DetectParams& params, ocl::Devic
   fit_geometry_.voxel_size = model_.voxel_size;
   fit_geometry_.centroid = model_centroid(model_.cloud);
   outline_ratio_ = outline_ratio_for(model_.cloud, model_.diameter, params_.verify_tolerance);
+  flat_skip_.emplace(model_.cloud, model_.diameter, model_.voxel_size, params_.flat_region,
+                     outline_ratio_ == 0);
   thinnest_extent_ = thinnest_extent(model_.cloud);
   // The probes of one extra pass: the look-alikes' (look-alike holes), then, for a thin part (no
   // outline factor), the edge probes that continue its faces (edge step; edge_probes.hpp says
@@ -464,7 +426,7 @@ std::vector<Detection> Detector::detect(const DepthImage& depth, const bp_camera
         ++taken;
         continue;
       }
-      d.reason = flat_skip_reason(sample.cloud, hyps[k], noise, voxel_factor);
+      d.reason = flat_skip_->reason(sample.cloud, hyps[k].point, noise, voxel_factor);
       if (!d.reason.empty()) {
         if (neighbourhoods) neighbourhoods->push_back(sample.cloud);
         d.subsampled = sample.cloud.points.size();
@@ -565,7 +527,7 @@ std::vector<Detection> Detector::detect(const PointCloud& input, DetectTimes* ti
       const double ms = clock.lap();
       t.prepare_ms += ms;
       t.stages.push_back({"crop+subsample", ms});
-      d.reason = flat_skip_reason(sub.cloud, hyps[k], 0, 1);
+      d.reason = flat_skip_->reason(sub.cloud, hyps[k].point, 0, 1);
       if (!d.reason.empty()) {
         d.subsampled = sub.cloud.points.size();
         skipped_.push_back(d);

@@ -16,6 +16,7 @@
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 
+#include "host/detect/hypotheses/flat_region.hpp"
 #include "host/detect/hypotheses/hypotheses.hpp"
 #include "host/detect/params/detect_params.hpp"
 #include "host/detect/select/detection.hpp"
@@ -146,13 +147,7 @@ class Detector {
   FitGeometry fit_geometry_;
   float outline_ratio_ = 0;  // the verification's outline, 0 for thin parts (outline.hpp)
   double thinnest_extent_ = 0;  // mm, the model's extent along its least-variance axis
-  // The flat-region test (flat_region.hpp) on a crop's subsample about hypothesis h: the reason
-  // to skip it, or empty. noise: the image's depth noise (mm), voxel_factor: the scene voxels'
-  // stretch along the camera's axis.
-  std::string flat_skip_reason(const PointCloud& sample, const Hypothesis& h, double noise,
-                               double voxel_factor) const;
-  // The model's widest flat region at a plane tolerance, by tolerance step (computed once each).
-  mutable std::map<int, std::size_t> flat_model_regions_;
+  std::optional<FlatRegionSkip> flat_skip_;  // --flat-region (flat_region.hpp)
 };
 
 }  // namespace binpick

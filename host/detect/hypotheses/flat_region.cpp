@@ -2,6 +2,11 @@
 
 #include <algorithm>
 #include <cmath>
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
 #include <limits>
 
 #include "host/core/point_grid.hpp"
@@ -75,6 +80,32 @@ std::size_t nearest_point(const PointCloud& cloud, const Eigen::Vector3f& p) {
     }
   }
   return best;
+}
+
+FlatRegionSkip::FlatRegionSkip(const PointCloud& model, float diameter, float voxel_size,
+                               double ratio, bool thin)
+    : model_(model), diameter_(diameter), voxel_size_(voxel_size), ratio_(ratio), thin_(thin) {}
+
+std::string FlatRegionSkip::reason(const PointCloud& sample, const Eigen::Vector3f& point,
+                                   double noise, double voxel_factor) const {
+  if (ratio_ <= 0 || thin_ || sample.points.empty()) return {};
+  const double quarter = 0.25 * voxel_size_;
+  const int step = int(std::ceil(std::max(0.5 * voxel_size_, 2 * noise) / quarter));
+  FlatRegionOptions o;
+  o.radius = 0.5f * diameter_;
+  o.tolerance = float(step * quarter);
+  o.link = 2.0f * voxel_size_;
+  auto found = widest_.find(step);
+  if (found == widest_.end()) found = widest_.emplace(step, FlatRegions(model_, o).largest()).first;
+  const std::size_t part = found->second;
+  // Stretched scene voxels lie further apart along the camera's axis.
+  o.link *= float(std::max(1.0, voxel_factor));
+  const std::size_t seen = FlatRegions(sample, o).size_from(nearest_point(sample, point));
+  if (double(seen) <= ratio_ * double(part)) return {};
+  return fmt::format(
+      "skipped: the highest point lies on a flat region of {} points, more than {} times the "
+      "part's widest ({} points): not the part (--flat-region)",
+      seen, ratio_, part);
 }
 
 }  // namespace binpick

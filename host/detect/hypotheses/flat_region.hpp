@@ -13,6 +13,8 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <map>
+#include <string>
 #include <vector>
 
 #include <Eigen/Core>
@@ -50,5 +52,28 @@ class FlatRegions {
 
 // The point of `cloud` nearest `p` (cloud not empty).
 std::size_t nearest_point(const PointCloud& cloud, const Eigen::Vector3f& p);
+
+// The skip rule for one model (`--flat-region`): a crop's subsample about a highest point is
+// skipped when the flat region the point lies on holds more than `ratio` times the points of the
+// part's widest. Regions within half the diameter, a plane tolerance of half a voxel or twice
+// the depth noise in steps of a quarter voxel; the part's widest is found once per step. Off for
+// ratio 0 and for thin parts (sheets stacked flat join their neighbours' faces, and a sheet's face
+// is its widest region: docs/decisions/2026-12-02-flat-region-thin-parts.md).
+class FlatRegionSkip {
+ public:
+  FlatRegionSkip(const PointCloud& model, float diameter, float voxel_size, double ratio,
+                 bool thin);
+  // Why to skip the hypothesis at `point` (its reason), or "" to keep it. noise: the image's
+  // depth noise (mm); voxel_factor: the scene voxels' stretch along the camera's axis.
+  std::string reason(const PointCloud& sample, const Eigen::Vector3f& point, double noise,
+                     double voxel_factor) const;
+
+ private:
+  const PointCloud& model_;
+  float diameter_ = 0, voxel_size_ = 0;
+  double ratio_ = 0;
+  bool thin_ = false;
+  mutable std::map<int, std::size_t> widest_;  // the part's widest region, by tolerance step
+};
 
 }  // namespace binpick

@@ -199,3 +199,23 @@ TEST(FlatRegion, AHighestPointOnASheetWiderThanThePartIsSkipped) {
     }
   }
 }
+
+// The skip rule alone (FlatRegionSkip): a point on a plane wider than the part's widest face is
+// skipped with its reason; one on a patch as small as the part's face is kept; off for ratio 0
+// and for thin parts. The part: a 7 x 7 mm face (1 mm voxels); the scene: a 41 x 41 mm sheet.
+TEST(FlatRegion, TheSkipRuleComparesWithThePartsWidestFace) {
+  PointCloud part, sheet, patch;
+  add_grid(part, 3, 0.0f);
+  add_grid(sheet, 20, 100.0f, -1.0f);
+  add_grid(patch, 3, 100.0f, -1.0f);
+  const float diameter = 20.0f, voxel = 1.0f;
+  const FlatRegionSkip skip(part, diameter, voxel, 1.25, false);
+  const std::string why = skip.reason(sheet, {0.0f, 0.0f, 100.0f}, 0.0, 1.0);
+  EXPECT_NE(why.find("skipped: the highest point lies on a flat region of"), std::string::npos)
+      << why;
+  EXPECT_NE(why.find("part's widest (49 points)"), std::string::npos) << why;
+  EXPECT_EQ(skip.reason(patch, {0.0f, 0.0f, 100.0f}, 0.0, 1.0), "");
+  EXPECT_EQ(FlatRegionSkip(part, diameter, voxel, 0.0, false).reason(sheet, {0, 0, 100}, 0, 1), "");
+  EXPECT_EQ(FlatRegionSkip(part, diameter, voxel, 1.25, true).reason(sheet, {0, 0, 100}, 0, 1), "");
+  EXPECT_EQ(skip.reason(PointCloud{}, {0, 0, 100}, 0, 1), "");
+}
