@@ -12,6 +12,7 @@
 #include "host/core/angles.hpp"
 #include "host/core/quantile.hpp"
 #include "host/detect/bin/bin_floor.hpp"
+#include "host/detect/bin/bin_frame.hpp"
 #include "host/detect/bin/bin_ground.hpp"
 #include "host/detect/bin/bin_planes.hpp"
 #include "host/detect/bin/bin_rim.hpp"
@@ -21,35 +22,10 @@
 namespace binpick {
 namespace {
 
-// The fraction of the image a plane's inliers span (5th to 95th percentile), the smaller of
-// the two directions: a floor or a rim spans much of the view, a part's face does not.
-double image_span(const PlaneSamples& s, const FoundPlane& p) {
-  std::vector<double> u, v;
-  for (std::uint32_t i : p.inliers) u.push_back(s.u[i]), v.push_back(s.v[i]);
-  return std::min((quantile(u, 0.95) - quantile(u, 0.05)) / s.width,
-                  (quantile(v, 0.95) - quantile(v, 0.05)) / s.height);
-}
-
-// The focal length (pixels) seen in the samples: neighbours in a row differ by stride pixels and
-// by stride / f in x / z. The median over the row pairs.
-double focal_estimate(const PlaneSamples& s) {
-  std::vector<double> f;
-  for (std::size_t i = 0; i + 1 < s.points.size(); ++i) {
-    if (s.v[i] != s.v[i + 1]) continue;
-    const double a = s.points[i].x() / s.points[i].z(), b = s.points[i + 1].x() / s.points[i + 1].z();
-    if (b - a > 1e-9) f.push_back(double(s.u[i + 1] - s.u[i]) / (b - a));
-  }
-  return f.empty() ? 1e9 : quantile(f, 0.5);
-}
 
 // How far beyond `known` (along dir * axis) the points more than 3 tol below the rim reach: the
 // 99.5th percentile of their distances beyond it (a stray point does not stretch the interior);
 // 0 if there are too few.
-// Planes tried as the floor's (see "up" in fit_bin), and rim fits per plane (each after the
-// first with up from the previous one's rim).
-constexpr std::size_t kUpCandidates = 3;
-constexpr int kRimPasses = 3;
-constexpr double kSearchedUpMargin = 1.5;
 
 double farthest_below_rim(const PlaneSamples& s, const Eigen::Vector3d& up,
                           const Eigen::Vector3d& axis, double dir, double known, double rim_height,
@@ -106,53 +82,15 @@ double side_beyond(const PlaneSamples& s, const Eigen::Vector3d& up, const Eigen
   return farthest_below_rim(s, up, axis[k], dir, from, rim.height, tol);
 }
 
-// The rim is the highest structure along the image's border: of the border band's samples, at
-// most this share of the rim's own count may stand above it (beyond 2 tol and 4 sigma of the
-// image's noise). Cut through a heap of parts with no bin (the paper's scenes), a direction a
-// few degrees off makes a slice of the heap one "height" along three sides; the heap's parts
-// above the slice give it away (docs/decisions/2026-11-25-bin-nothing-above-rim.md).
-// One image side may be covered by something above the rim, as the rim itself may be covered along
-// one (bin_rim.hpp): a robot arm over the rim's side, out to the image's border. So where the
-// frame has two sides or more seen and a level floor under it (floor_under), the samples above
-// on the image side holding the most of them are not counted. A slice through a heap has no
-// floor under it (the paper's scenes show none), and the heap's parts above it may lie mostly
-// on one side, so both conditions are needed (BinFit.ASliceThroughAHeapIsNoRim;
-// docs/decisions/2026-11-25-bin-covered-image-side.md).
-constexpr double kMaxAboveRim = 0.1;
 
-// The frame's first axis, a1 = cos(angle) e1 + sin(angle) e2 (bin_rim.hpp).
-Eigen::Vector3d frame_axis(const RimFit& rim, const Eigen::Vector3d& e1, const Eigen::Vector3d& e2) {
-  return std::cos(rim.angle) * e1 + std::sin(rim.angle) * e2;
-}
 
-// The interior's edges with the sides not seen left open.
-std::array<double, 4> open_edges(const RimFit& rim) {
-  std::array<double, 4> open = rim.edge;
-  for (int k = 0; k < 4; ++k)
-    if (!rim.seen[std::size_t(k)]) open[std::size_t(k)] = k % 2 ? INFINITY : -INFINITY;
-  return open;
-}
 
 std::string too_narrow(const Eigen::Vector2d& size, double min_side) {
   return fmt::format("the interior found is only {:.1f} x {:.1f} mm (a bin needs {:.1f} each way)",
                      size.x(), size.y(), min_side);
 }
 
-// The interior's width along each axis whose two sides were both seen (infinity where not).
-Eigen::Vector2d seen_widths(const RimFit& rim) {
-  Eigen::Vector2d w(INFINITY, INFINITY);
-  for (int k = 0; k < 2; ++k)
-    if (rim.seen[std::size_t(2 * k)] && rim.seen[std::size_t(2 * k + 1)])
-      w[k] = rim.edge[std::size_t(2 * k + 1)] - rim.edge[std::size_t(2 * k)];
-  return w;
-}
 
-std::string not_a_frame(double inside_share) {
-  return fmt::format(
-      "the structure at the highest height along the border is not a frame ({:.0f} % of the "
-      "points at its height lie inside it)",
-      100.0 * inside_share);
-}
 
 }  // namespace
 
@@ -170,7 +108,107 @@ BinFit fit_bin(ocl::Device& dev, const std::vector<float>& xyzw, std::uint32_t w
 
 namespace {
 
-// The fit; with the planes of the whole image given, along the border of s.window only.
+
+// The interior's edges along the frame's axes with each side not seen placed: with a given size,
+// the other side's edge plus that size; else the nearest wall plane beyond the edge seen, or the
+// farthest points below the rim (side_beyond). "" or the reason there is no bin.
+std::string place_unseen_sides(const PlaneSamples& s, const std::vector<FoundPlane>& planes,
+                               const BinFitOptions& opt, const FrameChoice& f,
+                               const Eigen::Vector3d axis[2], double tol,
+                               std::array<double, 4>& edge, std::vector<std::string>& unseen) {
+  const RimFit& rim = f.rim;
+  const Eigen::Vector3d& up = f.up;
+  // A level floor under the frame, for the side search: a forgiven frame was forgiven only over
+  // one.
+  const bool level_floor = f.on_floor || f.forgiven;
+  const bool sized = opt.spec.mode == BinSpec::Mode::sized;
+  for (int k = 0; k < 2; ++k) {
+    const bool lo = rim.seen[2 * k], hi = rim.seen[2 * k + 1];
+    if (lo && hi) continue;
+    if (!lo && !hi) {
+      // No side on this axis (only the near side of the rim stands out, bin_rim.cpp): the
+      // interior runs to the farthest points seen below the rim both ways from the rim's middle,
+      // so that all it holds stays in.
+      if (sized) return "two sides of the rim are out of view";
+      std::vector<double> along;
+      for (std::size_t i : rim.samples) along.push_back(axis[k].dot(s.points[i].cast<double>()));
+      const double middle = quantile(along, 0.5);
+      bool missed[2] = {false, false};
+      const auto beyond = [&](double dir) {
+        return side_beyond(s, up, axis, k, dir, middle, rim, level_floor, tol, missed);
+      };
+      const double to_lo = beyond(-1.0), to_hi = beyond(1.0);
+      if (!(to_lo > 4 * tol) || !(to_hi > 4 * tol))
+        return "only one side of the rim was found and no points below it on either hand";
+      edge[2 * k] = middle - to_lo;
+      edge[2 * k + 1] = middle + to_hi;
+      for (const char* sign : {"-", "+"})
+        if (missed[sign[0] == '+'])
+          unseen.push_back(fmt::format("{}{}", sign, k == 0 ? "a1" : "a2"));
+      continue;
+    }
+    const int known = lo ? 2 * k : 2 * k + 1, missing = lo ? 2 * k + 1 : 2 * k;
+    const double dir = lo ? 1.0 : -1.0;  // from the edge seen toward the one missing
+    if (sized) {
+      const int other = 1 - k;
+      if (!rim.seen[2 * other] || !rim.seen[2 * other + 1])
+        return "two sides of the rim are out of view";
+      // The given size nearer the complete axis' is that axis'; this one gets the other.
+      const double seen_other = edge[2 * other + 1] - edge[2 * other];
+      const double w = opt.spec.size.x(), d = opt.spec.size.y();
+      edge[missing] =
+          edge[known] + dir * (std::abs(w - seen_other) < std::abs(d - seen_other) ? d : w);
+      continue;
+    }
+    double nearest = INFINITY;
+    for (const FoundPlane& p : planes) {
+      if (std::abs(p.normal.dot(up)) > std::sin(10 * kDeg) ||
+          std::abs(p.normal.dot(axis[k])) < std::cos(10 * kDeg))
+        continue;
+      std::vector<double> c;
+      for (std::uint32_t i : p.inliers) c.push_back(axis[k].dot(s.points[i].cast<double>()));
+      const double beyond = dir * (quantile(c, 0.5) - edge[known]);
+      if (beyond > 4 * tol && beyond < nearest) nearest = beyond;
+    }
+    if (!std::isfinite(nearest)) {
+      // Neither rim in the border band nor wall seen on this side (side_beyond).
+      bool missed[2] = {false, false};
+      nearest = side_beyond(s, up, axis, k, dir, edge[known], rim, level_floor, tol, missed);
+      if (!(nearest > 4 * tol))
+        return "a side of the rim is out of view and neither a wall plane nor points below the "
+               "rim were found in its place";
+      if (missed[dir > 0])
+        unseen.push_back(fmt::format("{}{}", dir > 0 ? '+' : '-', k == 0 ? "a1" : "a2"));
+    }
+    edge[missing] = edge[known] + dir * nearest;
+  }
+  return {};
+}
+
+// The floor's height along up below the rim, inside its rectangle (bin_floor.hpp): a level plane,
+// else the lowest points seen (0.1 %: a stray sample does not lower it) less the noise (the 0.1st
+// percentile of a noisy surface lies 3 sigma below it); with a given size, the rim less its depth.
+// None, with bin.why, when too few points lie inside. Sets bin.floor_plane.
+std::optional<double> floor_height(const PlaneSamples& s, const std::vector<FoundPlane>& planes,
+                                   const BinFitOptions& opt, const FrameChoice& f,
+                                   const Eigen::Vector3d& a1, const Eigen::Vector3d& a2,
+                                   const std::array<double, 4>& edge, double tol, BinFit& bin) {
+  if (opt.spec.mode == BinSpec::Mode::sized) return f.rim.height - opt.spec.size.z();
+  const FloorUnder under = floor_under(s, planes, f.up, a1, a2, edge, f.rim.height, tol, opt.noise);
+  bin.floor_plane = under.plane.has_value();
+  if (under.plane) return *under.plane;
+  const std::vector<double>& h = under.heights;
+  if (h.size() < 20) {
+    bin.why = "no points inside the rim";
+    return std::nullopt;
+  }
+  return h[h.size() / 1000] + 3 * opt.noise;
+}
+
+// The fit; with the planes of the whole image given, along the border of s.window only. In
+// order: the tolerance and the planes; the window above the ground, where the ground shows all
+// around; the frame (choose_frame); its sides out of view placed; the whole frame checked again;
+// the floor.
 BinFit fit_bin_in(ocl::Device& dev, const PlaneSamples& s, const BinFitOptions& opt,
                   const std::vector<FoundPlane>* found_planes) {
   BinFit bin;
@@ -190,12 +228,9 @@ BinFit fit_bin_in(ocl::Device& dev, const PlaneSamples& s, const BinFitOptions& 
   ps.seed = opt.seed;
   const std::vector<FoundPlane> planes = found_planes ? *found_planes : find_planes(dev, s, ps);
   bin.planes = planes.size();
-  // A camera farther off than the bin is wide sees the ground all around it, and the rim lies
-  // inside the border band, where fit_rim looks for it, or not in it at all (bin_ground.hpp):
-  // the rim is then looked for along the border of the window of what stands above the ground.
-  // Only there: along the image's border, the ground all around it, a heap of parts on the
-  // ground with no bin gave a "frame" (BinFit.AHeapOnTheGroundIsNoBin;
-  // docs/detect/bin.md, "The ground all around"; docs/decisions/2026-12-02-bin-ground-window.md).
+  // A camera farther off than the bin is wide sees the ground all around it: the rim is then
+  // looked for along the border of the window of what stands above the ground (bin_ground.hpp;
+  // docs/detect/bin.md, "The ground all around").
   if (!found_planes) {
     GroundOptions go;
     go.tol = bin.tol;
@@ -205,251 +240,24 @@ BinFit fit_bin_in(ocl::Device& dev, const PlaneSamples& s, const BinFitOptions& 
       return fit_bin_in(dev, in_window, opt, &planes);
     }
   }
-  // "Up" is the normal of a large plane facing the camera that spans much of the image: the floor
-  // with flat parts on it, or a layer of parts. With the camera tilted far (30 degrees) the near
-  // wall's outer face is such a plane too, often the largest, and heights along its normal put
-  // the rim and that face at one "height"; and in a bin full of bulky parts the floor is hidden
-  // and the largest such plane is a layer of the pile, along which some "rim" is found too. So
-  // each of the kUpCandidates largest is tried, and up is the one whose rim holds the most
-  // samples: the true rim runs along the whole frame at one height only along the true up
-  // (docs/detect/bin.md, "Up"; docs/decisions/2026-11-25-bin-up-best-rim-of-planes.md).
-  std::vector<const FoundPlane*> candidates;
-  for (const FoundPlane& p : planes)
-    if (p.normal.z() <= -std::cos(60 * kDeg) && image_span(s, p) >= 0.25) candidates.push_back(&p);
-  std::stable_sort(candidates.begin(), candidates.end(), [](const FoundPlane* a, const FoundPlane* b) {
-    return a->inliers.size() > b->inliers.size();
-  });
-  if (candidates.size() > kUpCandidates) candidates.resize(kUpCandidates);
-  std::vector<Eigen::Vector3d> ups;
-  for (const FoundPlane* p : candidates) ups.push_back(p->normal);
-  const std::size_t from_planes = std::max<std::size_t>(1, ups.size());
-  if (ups.empty()) ups.push_back(Eigen::Vector3d(0, 0, -1));
-  RimOptions ro;
-  ro.tol = bin.tol;
-  ro.focal = focal_estimate(s);
-  Eigen::Vector3d up, e1, e2;
-  RimFit rim;
-  struct Choice {
-    Eigen::Vector3d up, e1, e2;
-    RimFit rim;
-    bool on_floor = false;  // a level floor lies under the frame (floor_under)
-    // Found only with one image side's samples above not counted, which asks for a level floor
-    // under the frame too (below), though on_floor does not count it.
-    bool forgiven = false;
-  } best;
-  std::size_t filled_points = 0;  // the largest structure rejected as no rim, and why
-  std::string filled_why;
-  const BorderBand band = border_band(s, ro.band);
-  const double above_margin = std::max(2 * bin.tol, 4 * opt.noise);
-  for (std::size_t c = 0;; ++c) {
-    if (c == from_planes) {
-      // Then the direction along which the rim holds the most samples (bin_up.hpp): in a bin
-      // full of bulky parts seen tilted, none of the planes may be level. Not when a plane's up
-      // gave a frame over a level floor already: the searched up could replace it only with half
-      // as many rim samples again and a level floor of its own (below), which it never had, and
-      // the search is a third of the fit's time
-      // (docs/decisions/2026-12-01-bin-up-search-skipped-over-floor.md). Nor when a plane's up
-      // gave a frame seen on all four sides (a full bin straight down: the floor hidden, the rim
-      // whole): it replaced none of those; the frames it did replace were slices through heaps
-      // (below; docs/decisions/2026-12-04-bin-up-search-skipped-full-frame.md).
-      if (best.rim.found &&
-          (best.on_floor || std::count(best.rim.seen.begin(), best.rim.seen.end(), true) == 4))
-        break;
-      RimUpSearch rs;
-      rs.tol = bin.tol;
-      const std::optional<RimUp> searched = search_rim_up(s, rs);
-      if (!searched) break;
-      ups.push_back(searched->up);
-    }
-    if (c == ups.size()) break;
-    up = ups[c];
-    // Then again with up from the rim's own plane (rim_normal), which is level where the first
-    // plane may lean; also when no frame was found at the first up: a floor plane found on
-    // leaning parts, a few degrees off, puts the far rim a few centimetres off the near one's
-    // height, but the rim's samples at that height still give the level.
-    for (int pass = 0; pass < kRimPasses; ++pass) {
-      e1 = Eigen::Vector3d::UnitX() - up.x() * up;
-      if (e1.norm() < 1e-6) e1 = Eigen::Vector3d::UnitY() - up.y() * up;
-      e1.normalize();
-      e2 = up.cross(e1);
-      rim = fit_rim(s, up, e1, e2, ro);
-      if (c == 0 && pass == 0 && !rim.found) bin.why = rim.why;  // the largest plane's reason
-      // A frame found at a level up is the answer; a frame found at the first up is levelled
-      // once (samples spread over 10 tolerances both ways); a structure that is no frame yet is
-      // levelled from samples spread over 5 (one side and slivers of two others;
-      // docs/decisions/2026-11-25-bin-near-rim-only.md).
-      if (pass + 1 == kRimPasses || (rim.found && pass > 0)) break;
-      const std::optional<Eigen::Vector3d> level =
-          rim_normal(s, rim, up, bin.tol, rim.found ? 10.0 : 5.0);
-      if (!level || std::acos(std::min(1.0, level->dot(up))) < 0.1 * kDeg) break;
-      up = *level;
-    }
-    // A structure that fills its own frame is no rim (the far wall's inner face, a large plane
-    // facing a camera tilted 30 degrees, is one "height" along its normal): checked here, with
-    // the sides not seen left open, so that it does not outbid the real rim (after the choice
-    // the check is made again with those sides placed).
-    const Eigen::Vector3d b1 = frame_axis(rim, e1, e2), b2 = up.cross(b1);
-    const std::array<double, 4> open = open_edges(rim);
-    bool forgiven = false;  // found only with one image side's samples above not counted
-    if (rim.found) {
-      const double inside = share_inside(s, up, b1, b2, rim.height, open, bin.tol);
-      std::size_t above = samples_above(band, up, rim.height + above_margin, false);
-      if (double(above) > kMaxAboveRim * double(rim.points) &&
-          std::count(rim.seen.begin(), rim.seen.end(), true) >= 2 &&
-          floor_under(s, planes, up, b1, b2, open, rim.height, bin.tol, opt.noise).plane) {
-        above = samples_above(band, up, rim.height + above_margin, true);
-        forgiven = true;
-      }
-      // Checked here as well as at the end, so that the next candidate can win: two edges of
-      // a robot arm's face beside the bin, with the ends of the rim's near side, made a narrow
-      // "frame" along a wrong searched up (a wire-mesh basket, whose thin rim holds few
-      // samples; docs/decisions/2026-11-25-bin-width-per-candidate.md).
-      if (!(seen_widths(rim).minCoeff() >= opt.min_side)) {
-        rim.found = false;
-        rim.why = fmt::format("the frame found is only {:.1f} mm across (a bin needs {:.1f})",
-                              seen_widths(rim).minCoeff(), opt.min_side);
-      } else if (inside > kMaxInsideShare) {
-        rim.found = false;
-        rim.why = not_a_frame(inside);
-      } else if (double(above) > kMaxAboveRim * double(rim.points)) {
-        rim.found = false;
-        rim.why = fmt::format(
-            "{} samples along the border stand above the structure at one height along three "
-            "sides ({} samples): a slice through a heap, not a rim",
-            above, rim.points);
-      }
-      if (!rim.found && rim.points > filled_points) filled_points = rim.points, filled_why = rim.why;
-    }
-    // The searched up must hold half as many rim samples again as the planes' best: where
-    // only the near side of the rim stands out, the turn about that side is free, and a
-    // searched up turned some degrees about it gathers a few more samples off the wall's outer
-    // face, while a wrong plane's rim holds several times fewer
-    // (docs/decisions/2026-11-25-bin-searched-up-margin.md).
-    const double need = c < from_planes ? 1.0 : kSearchedUpMargin;
-    if (!rim.found || (best.rim.found && !(double(rim.points) > need * double(best.rim.points))))
-      continue;
-    // A frame seen on one side only cannot replace one seen on two or more: more samples at one
-    // height along one side is weaker evidence of a frame than two sides meeting: a mesh wall's
-    // horizontal bars, seen steeply, made a one-sided "frame" with more samples than the true
-    // rim (docs/decisions/2026-12-02-bin-one-sided-frame-no-replace.md).
-    const auto sides = [](const RimFit& r) {
-      return std::count(r.seen.begin(), r.seen.end(), true);
-    };
-    if (best.rim.found && sides(rim) < 2 && sides(best.rim) >= 2) continue;
-    // A frame with a level floor under it (the plane up came from, or one parallel, with nothing
-    // below it) is a bin, not a slice of a pile: a later candidate (another plane's up, or the one
-    // searched along the rim) must have one too to replace it. A thin rim holds few samples, and a
-    // face at one "height" with a few of them (a robot arm's beside a wire-mesh basket) held more
-    // (docs/decisions/2026-11-25-bin-frame-over-floor-holds.md). A frame found only with one
-    // image side's samples above not counted has no such hold: a leaning layer of parts can be a
-    // level floor under a small "frame", with the rim's high side above it one image side
-    // (BinFit.UpFromTheRimWhenNoPlaneIsLevel).
-    const bool on_floor =
-        !forgiven &&
-        floor_under(s, planes, up, b1, b2, open, rim.height, bin.tol, opt.noise).plane.has_value();
-    if (best.on_floor && !on_floor) continue;
-    // A frame with no level floor under it must be seen on two sides or more. Cut through a
-    // heap of parts with no bin (the paper's scenes), the searched up made a slice of the heap
-    // one "height" along the border, a "frame" seen on one side only, while no frame found in a
-    // bin was (BinFit.ASliceThroughAHeapIsNoRim). Not three sides: a wire-mesh basket whose
-    // floor the sensor barely sees, with an arm over one side and the far side out of view,
-    // shows two (docs/decisions/2026-12-02-bin-one-side-needs-floor.md).
-    // (A frame found with one image side not counted has a level floor under it, though
-    // on_floor leaves it out.)
-    if (!on_floor && !forgiven && std::count(rim.seen.begin(), rim.seen.end(), true) < 2) {
-      if (rim.points > filled_points) {
-        filled_points = rim.points;
-        filled_why =
-            "the structure at one height along the border is seen as one side of a frame only, "
-            "with no level floor under it: a slice through a heap, not a rim";
-      }
-      continue;
-    }
-    best = {up, e1, e2, rim, on_floor, forgiven};
-  }
-  if (!best.rim.found) {
-    if (bin.why.empty()) bin.why = filled_why;
+  const FrameSearch search = choose_frame(s, planes, opt, bin.tol);
+  bin.why = search.first_why;
+  const FrameChoice& frame = search.best;
+  if (!frame.rim.found) {
+    if (bin.why.empty()) bin.why = search.filled_why;
     return bin;
   }
-  up = best.up, e1 = best.e1, e2 = best.e2, rim = best.rim;
+  const RimFit& rim = frame.rim;
+  const Eigen::Vector3d& up = frame.up;
   bin.rim_points = rim.points;
-  const Eigen::Vector3d a1 = frame_axis(rim, e1, e2);
+  const Eigen::Vector3d a1 = frame_axis(rim, frame.e1, frame.e2);
   const Eigen::Vector3d a2 = up.cross(a1);
   const Eigen::Vector3d axis[2] = {a1, a2};
   std::array<double, 4> edge = rim.edge;
-  // A level floor under the frame, for the side search (side_beyond): a forgiven frame was
-  // forgiven only over one.
-  const bool level_floor = best.on_floor || best.forgiven;
-  // A side of the frame out of view (a tilted camera) or hidden: with a given size, the other
-  // side's edge plus that size; else the nearest wall plane beyond the edge seen.
-  const bool sized = opt.spec.mode == BinSpec::Mode::sized;
-  for (int k = 0; k < 2; ++k) {
-    const bool lo = rim.seen[2 * k], hi = rim.seen[2 * k + 1];
-    if (lo && hi) continue;
-    if (!lo && !hi) {
-      // No side on this axis (only the near side of the rim stands out, bin_rim.cpp): the
-      // interior runs to the farthest points seen below the rim both ways from the rim's
-      // middle, so that all it holds stays in.
-      if (sized) {
-        bin.why = "two sides of the rim are out of view";
-        return bin;
-      }
-      std::vector<double> along;
-      for (std::size_t i : rim.samples) along.push_back(axis[k].dot(s.points[i].cast<double>()));
-      const double middle = quantile(along, 0.5);
-      bool unseen[2] = {false, false};
-      const auto beyond = [&](double dir) {
-        return side_beyond(s, up, axis, k, dir, middle, rim, level_floor, bin.tol, unseen);
-      };
-      const double to_lo = beyond(-1.0), to_hi = beyond(1.0);
-      if (!(to_lo > 4 * bin.tol) || !(to_hi > 4 * bin.tol)) {
-        bin.why = "only one side of the rim was found and no points below it on either hand";
-        return bin;
-      }
-      edge[2 * k] = middle - to_lo;
-      edge[2 * k + 1] = middle + to_hi;
-      for (const char* sign : {"-", "+"})
-        if (unseen[sign[0] == '+'])
-          bin.unseen_sides.push_back(fmt::format("{}{}", sign, k == 0 ? "a1" : "a2"));
-      continue;
-    }
-    const int known = lo ? 2 * k : 2 * k + 1, missing = lo ? 2 * k + 1 : 2 * k;
-    const double dir = lo ? 1.0 : -1.0;  // from the edge seen toward the one missing
-    if (sized) {
-      const int other = 1 - k;
-      if (!rim.seen[2 * other] || !rim.seen[2 * other + 1]) {
-        bin.why = "two sides of the rim are out of view";
-        return bin;
-      }
-      // The given size nearer the complete axis' is that axis'; this one gets the other.
-      const double seen_other = edge[2 * other + 1] - edge[2 * other];
-      const double w = opt.spec.size.x(), d = opt.spec.size.y();
-      edge[missing] = edge[known] + dir * (std::abs(w - seen_other) < std::abs(d - seen_other) ? d : w);
-      continue;
-    }
-    double nearest = INFINITY;
-    for (const FoundPlane& p : planes) {
-      if (std::abs(p.normal.dot(up)) > std::sin(10 * kDeg) ||
-          std::abs(p.normal.dot(axis[k])) < std::cos(10 * kDeg))
-        continue;
-      std::vector<double> c;
-      for (std::uint32_t i : p.inliers) c.push_back(axis[k].dot(s.points[i].cast<double>()));
-      const double beyond = dir * (quantile(c, 0.5) - edge[known]);
-      if (beyond > 4 * bin.tol && beyond < nearest) nearest = beyond;
-    }
-    if (!std::isfinite(nearest)) {
-      // Neither rim in the border band nor wall seen on this side (side_beyond).
-      bool missed[2] = {false, false};
-      nearest = side_beyond(s, up, axis, k, dir, edge[known], rim, level_floor, bin.tol, missed);
-      if (!(nearest > 4 * bin.tol)) {
-        bin.why = "a side of the rim is out of view and neither a wall plane nor points below "
-                  "the rim were found in its place";
-        return bin;
-      }
-      if (missed[dir > 0])
-        bin.unseen_sides.push_back(fmt::format("{}{}", dir > 0 ? '+' : '-', k == 0 ? "a1" : "a2"));
-    }
-    edge[missing] = edge[known] + dir * nearest;
+  std::string why = place_unseen_sides(s, planes, opt, frame, axis, bin.tol, edge, bin.unseen_sides);
+  if (!why.empty()) {
+    bin.why = std::move(why);
+    return bin;
   }
   const double inside_share = share_inside(s, up, a1, a2, rim.height, edge, bin.tol);
   if (inside_share > kMaxInsideShare) {
@@ -469,26 +277,10 @@ BinFit fit_bin_in(ocl::Device& dev, const PlaneSamples& s, const BinFitOptions& 
     std::swap(long_side, short_side);
   }
   if (x.x() < 0) x = -x, y = -y;
-
-  // The floor: below the rim, inside the rim's rectangle (bin_floor.hpp).
-  double floor_h = 0;
-  if (opt.spec.mode == BinSpec::Mode::sized) {
-    floor_h = rim.height - opt.spec.size.z();
-  } else {
-    const FloorUnder f = floor_under(s, planes, up, a1, a2, edge, rim.height, bin.tol, opt.noise);
-    const std::vector<double>& h = f.heights;
-    bin.floor_plane = f.plane.has_value();
-    if (f.plane) floor_h = *f.plane;
-    if (!bin.floor_plane) {
-      if (h.size() < 20) {
-        bin.why = "no points inside the rim";
-        return bin;
-      }
-      // The lowest points seen: the floor is no higher (0.1 %: a stray sample does not lower
-      // it), less the noise (the 0.1st percentile of a noisy surface lies 3 sigma below it).
-      floor_h = h[h.size() / 1000] + 3 * opt.noise;
-    }
-  }
+  const std::optional<double> floor =
+      floor_height(s, planes, opt, frame, a1, a2, edge, bin.tol, bin);
+  if (!floor) return bin;
+  const double floor_h = *floor;
   if (!(rim.height - floor_h > std::max(3 * bin.tol, opt.min_height))) {
     bin.why = fmt::format("the rim found is only {:.1f} mm over the floor (a bin needs {:.1f})",
                           rim.height - floor_h, std::max(3 * bin.tol, opt.min_height));

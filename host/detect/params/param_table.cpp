@@ -177,8 +177,8 @@ std::string param_table_markdown() {
   for (const ParamInfo& p : kTable) {
     const std::string name = is_flag(p) ? fmt::format("`--{0}` / `--no-{0}`", p.name)
                                         : fmt::format("`--{}`", p.name);
-    const std::string fallback = is_text(p) ? "(none)" : "";
-    const std::string shown = default_text(p).empty() ? fallback : "`" + default_text(p) + "`";
+    const std::string value = default_text(p);
+    const std::string shown = value.empty() ? (is_text(p) ? "(none)" : "") : fmt::format("`{}`", value);
     out += fmt::format("| {} | {} | {} | {} | {}{} |\n", name, shown, range_text(p), p.group,
                        p.help,
                        p.old_name ? fmt::format(" (`{}` in older --params files)", p.old_name)
