@@ -11,13 +11,15 @@
 
 namespace binpick::cli {
 
-void add_detect_cli_options(CLI::App* verb, DetectCliOptions& a, const std::string& what) {
+void add_detect_cli_options(CLI::App* verb, DetectCliOptions& a, const std::string& what,
+                            const std::set<std::string>& skip) {
   verb->add_option("--params", a.params_file,
                    "JSON file of " + what + " parameters (from `binpick tune`); options given "
                    "here win");
   DetectParams& p = a.params;
   for (const ParamInfo& info : detect_param_table()) {
     const std::string name = info.name;
+    if (skip.count(name)) continue;
     std::string help = what + ": " + info.help;
     if (!is_flag(info) && !is_text(info)) help += ", in " + range_text(info);
     CLI::Option* option = nullptr;

@@ -5,6 +5,7 @@
 
 #include <cstdint>
 #include <map>
+#include <set>
 #include <string>
 
 #include "host/core/cli_fwd.hpp"
@@ -22,8 +23,10 @@ struct DetectCliOptions {
 };
 
 // Adds --params and the parameter options to verb; `what` says what they set in the help
-// ("detection", "the starting point's").
-void add_detect_cli_options(CLI::App* verb, DetectCliOptions& o, const std::string& what);
+// ("detection", "the starting point's"). `skip`: parameters the verb does not take as options
+// (tune measures every hypothesis, and has a --budget-ms of its own).
+void add_detect_cli_options(CLI::App* verb, DetectCliOptions& o, const std::string& what,
+                            const std::set<std::string>& skip = {});
 
 // Defaults, then the file, then the options given. InputError for a bad file or value.
 DetectParams resolve(const DetectCliOptions& o);

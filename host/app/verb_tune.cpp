@@ -92,7 +92,9 @@ void add_tune_verb(CLI::App& app) {
       ->capture_default_str();
   add_train_options(verb, a->train,
                     "models (the voxel is kept; the steps are the search's starting point)");
-  add_detect_cli_options(verb, a->start, "starting point");
+  // The starting point's robot-mode parameters are not options: tune measures every hypothesis,
+  // and its --budget-ms (per hypothesis) is the search's own.
+  add_detect_cli_options(verb, a->start, "starting point", {"budget-ms", "stop-at-confident"});
   add_shard_options(verb, a->shards, "points");
   // The generic texts speak of merging outputs; tune's shards and array measure points.
   verb->get_option("--shard")->description(

@@ -31,6 +31,11 @@ class Stopwatch {
     return ms;
   }
   double lap_seconds() { return lap() / 1e3; }
+  // Milliseconds since the last lap (or the start), without starting a new one.
+  double elapsed() const {
+    return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start_)
+        .count();
+  }
 
  private:
   std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now();

@@ -76,23 +76,62 @@ Detection detection_for(const std::vector<Hypothesis>& hyps, std::size_t k) {
 
 std::vector<Detection> Detector::in_rounds(std::size_t found,
                                            const std::function<void(std::size_t, std::size_t)>& vote,
-                                           const std::function<std::vector<Detection>()>& rank) const {
-  const std::size_t first =
-      params_.instances > 0 ? found : std::min<std::size_t>(found, params_.hypotheses);
-  vote(0, first);
-  std::vector<Detection> out = rank();
+                                           const std::function<std::vector<Detection>()>& rank,
+                                           const Stopwatch& started, DetectTimes& t) {
+  rounds_report_.clear();
   // Confident when some pose fits that well, whether or not its look-alike fits as well
   // (lookalike_share.hpp): a part with a close look-alike would otherwise take the second round
   // on every image.
-  const bool confident = std::any_of(out.begin(), out.end(), [&](const Detection& d) {
-    return d.fit_score() >= params_.confident;
-  });
-  if (first == found || confident) return out;
-  // The second round's candidates are refined and ranked with the first's, as if all had been
-  // tried at once: the rival cap compares poses of neighbouring hypotheses
-  // (docs/decisions/2026-11-25-more-hypotheses.md).
-  vote(first, found);
-  return rank();
+  bool confident = false;
+  const auto ranked = [&](std::size_t voted) {
+    std::vector<Detection> out = rank();
+    if (!confident && std::any_of(out.begin(), out.end(), [&](const Detection& d) {
+          return d.fit_score() >= params_.confident;
+        })) {
+      confident = true;
+      t.first_confident_ms.push_back(started.elapsed());
+      rounds_report_ = fmt::format("the first confident pose after {:.0f} ms ({} hypotheses)",
+                                   t.first_confident_ms.back(), voted);
+    }
+    return out;
+  };
+  // (An instance budget, --targets', ranks every hypothesis' poses together.)
+  const bool one_at_a_time =
+      (params_.stop_at_confident || params_.budget_ms > 0) && params_.instances == 0;
+  if (!one_at_a_time) {
+    const std::size_t first =
+        params_.instances > 0 ? found : std::min<std::size_t>(found, params_.hypotheses);
+    vote(0, first);
+    std::vector<Detection> out = ranked(first);
+    if (first == found || confident) return out;
+    // The second round's candidates are refined and ranked with the first's, as if all had been
+    // tried at once: the rival cap compares poses of neighbouring hypotheses
+    // (docs/decisions/2026-11-25-more-hypotheses.md).
+    vote(first, found);
+    return ranked(found);
+  }
+  // A robot's mode: each round refines and verifies one more hypothesis with those before it
+  // (their ICP is kept: RefineMemo), so the ranking is always of all voted so far.
+  std::vector<Detection> out;
+  for (std::size_t voted = 0; voted < found;) {
+    vote(voted, voted + 1);
+    ++voted;
+    out = ranked(voted);
+    const auto stop = [&](const std::string& why) {
+      rounds_report_ += fmt::format("{}stopped after {} of {} hypotheses: {}",
+                                    rounds_report_.empty() ? "" : "; ", voted, found, why);
+    };
+    if (confident && params_.stop_at_confident) {
+      stop("a confident pose (--stop-at-confident)");
+      break;
+    }
+    if (params_.budget_ms > 0 && started.elapsed() >= params_.budget_ms && voted < found) {
+      stop(fmt::format("the budget of {} ms spent ({:.0f} ms)", params_.budget_ms,
+                       started.elapsed()));
+      break;
+    }
+  }
+  return out;
 }
 
 DetectTimes& DetectTimes::operator+=(const DetectTimes& o) {
@@ -103,6 +142,8 @@ DetectTimes& DetectTimes::operator+=(const DetectTimes& o) {
   hypotheses += o.hypotheses;
   bin_sought += o.bin_sought;
   bin_found += o.bin_found;
+  first_confident_ms.insert(first_confident_ms.end(), o.first_confident_ms.begin(),
+                            o.first_confident_ms.end());
   stages.insert(stages.end(), o.stages.begin(), o.stages.end());
   return *this;
 }
@@ -300,6 +341,7 @@ std::vector<Detection> Detector::detect(const DepthImage& depth, const bp_camera
                                         SharedScene* shared) {
   DetectTimes t;
   Stopwatch clock;
+  const Stopwatch started;
   require(depth.width > 0 && depth.height > 0, "the depth image is empty");
   check_image_fits_in_memory(depth.width, depth.height);
   require(std::any_of(depth.raw.begin(), depth.raw.end(), [](std::uint16_t v) { return v > 0; }),
@@ -473,7 +515,7 @@ std::vector<Detection> Detector::detect(const DepthImage& depth, const bp_camera
                            search_points ? &*search_points : nullptr);
   };
   std::vector<Detection> detections =
-      in_rounds(std::min(hyps.size(), hypotheses_sought(params_)), vote, rank);
+      in_rounds(std::min(hyps.size(), hypotheses_sought(params_)), vote, rank, started, t);
   if (times) *times += t;
   return detections;
 }
@@ -481,6 +523,7 @@ std::vector<Detection> Detector::detect(const DepthImage& depth, const bp_camera
 std::vector<Detection> Detector::detect(const PointCloud& input, DetectTimes* times) {
   DetectTimes t;
   Stopwatch clock;
+  const Stopwatch started;
   skipped_.clear();
   region_report_.clear();
   // `auto` (the default) looks for a bin where there is an image to look in; a region asked for
@@ -545,7 +588,8 @@ std::vector<Detection> Detector::detect(const PointCloud& input, DetectTimes* ti
     return refine_and_rank(voted, candidates, points, image.camera, t, false, nullptr, nullptr,
                            &refined);
   };
-  std::vector<Detection> detections = in_rounds(std::min(hyps.size(), hypotheses_sought(params_)), vote, rank);
+  std::vector<Detection> detections =
+      in_rounds(std::min(hyps.size(), hypotheses_sought(params_)), vote, rank, started, t);
   if (times) *times += t;
   return detections;
 }

@@ -45,6 +45,9 @@ struct DetectTimes {
   double refine_ms = 0;   // refinement and verification
   std::size_t hypotheses = 0;
   std::size_t bin_sought = 0, bin_found = 0;  // images a bin was looked for in, and found in
+  // Per image with a confident pose (fit >= --confident): ms from the start of its detection to
+  // the end of the round that verified it.
+  std::vector<double> first_confident_ms;
   StageTimings stages;    // every stage in order, for --verbose
   DetectTimes& operator+=(const DetectTimes& o);
   double total_ms() const { return prepare_ms + vote_ms + cluster_ms + refine_ms; }
@@ -95,6 +98,8 @@ class Detector {
   // reason says why), in hypothesis order; and what --roi / --bin found (empty without them).
   const std::vector<Detection>& skipped() const { return skipped_; }
   const std::string& region_report() const { return region_report_; }
+  // Of the last detect(): when the first confident pose came and why detection stopped, or "".
+  const std::string& rounds_report() const { return rounds_report_; }
   static constexpr std::size_t kMinCropPoints = 10;
 
  private:
@@ -115,9 +120,13 @@ class Detector {
   // verifies and ranks all kept so far. The first `hypotheses` of the `found`, then, if no pose
   // scores `confident` or more, the rest as well, all ranked together. With `instances`, all
   // in one round.
+  // With --stop-at-confident or --budget-ms, one hypothesis a round instead, in height order,
+  // until a confident pose (with the former) or the budget spent (the latter). started: the
+  // image's detection began; t: gets the time to the first confident pose.
   std::vector<Detection> in_rounds(std::size_t found,
                                    const std::function<void(std::size_t, std::size_t)>& vote,
-                                   const std::function<std::vector<Detection>()>& rank) const;
+                                   const std::function<std::vector<Detection>()>& rank,
+                                   const Stopwatch& started, DetectTimes& t);
   std::vector<Detection> refine_and_rank(std::vector<Detection> detections,
                                          const std::vector<std::vector<PoseCluster>>& candidates,
                                          const ocl::Buffer<float>& points, const bp_camera& cam,
@@ -130,6 +139,7 @@ class Detector {
   double program_build_s_ = 0;
   std::vector<Detection> skipped_;
   std::string region_report_;
+  std::string rounds_report_;
   double image_noise_ = 0;  // mm, the depth image's noise (depth_noise.hpp), for the near gate
   // The "no bin found" warning is printed once per Detector, and only for a bin of a given size:
   // `auto` (the default) is content to find none (DetectTimes counts the images it found one in).

@@ -231,6 +231,7 @@ void detect_image(const std::vector<ObjectDetector>& detectors, bool several,
       for (const StageTime& st : times.stages) line += fmt::format(" {} {:.1f}", st.stage, st.ms);
       *log << line << " ms\n";
       if (!detector.region_report().empty()) *log << "  " << detector.region_report() << "\n";
+      if (!detector.rounds_report().empty()) *log << "  " << detector.rounds_report() << "\n";
       for (std::size_t r = 0; r < found[m].size(); ++r)
         *log << "  " << detection_line(r, found[m][r]) << "\n";
       for (const Detection& d : detector.skipped())
@@ -342,11 +343,18 @@ std::string summary_line(const BatchSummary& s) {
   const std::string bins =
       t.bin_sought > 0 ? fmt::format("; a bin found in {} of {} images", t.bin_found, t.bin_sought)
                        : "";
+  std::string confident;
+  if (!t.first_confident_ms.empty()) {
+    std::vector<double> ms = t.first_confident_ms;
+    std::nth_element(ms.begin(), ms.begin() + long(ms.size() / 2), ms.end());
+    confident = fmt::format("; a confident pose in {} images, the first after {:.0f} ms (median)",
+                            ms.size(), ms[ms.size() / 2]);
+  }
   return fmt::format(
       "{} scenes ({} done before), {} images{}, {} hypotheses, {} rows; ms per hypothesis: "
-      "preparation {:.1f}, voting {:.1f}, clustering {:.1f}, refinement {:.1f}, total {:.1f}{}{}",
+      "preparation {:.1f}, voting {:.1f}, clustering {:.1f}, refinement {:.1f}, total {:.1f}{}{}{}",
       s.scenes, s.skipped, s.images, untargeted, t.hypotheses, s.rows, t.prepare_ms / h, t.vote_ms / h,
-      t.cluster_ms / h, t.refine_ms / h, t.total_ms() / h, bins, builds);
+      t.cluster_ms / h, t.refine_ms / h, t.total_ms() / h, bins, confident, builds);
 }
 
 }  // namespace binpick

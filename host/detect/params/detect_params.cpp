@@ -38,6 +38,10 @@ std::optional<ParamProblem> find_param_problem(const DetectParams& p) {
   } catch (const InputError& e) {
     return ParamProblem{"bin", 0, "", e.what()};
   }
+  if (p.instances > 0 && (p.stop_at_confident || p.budget_ms > 0))
+    return ParamProblem{"instances", double(p.instances), "",
+                        "--instances ranks every hypothesis' poses together: it does not go with "
+                        "--stop-at-confident or --budget-ms, which take them one at a time"};
   if (roi && roi->frame == RoiSpec::Frame::bin && bin.mode == BinSpec::Mode::none)
     return ParamProblem{
         "roi", 0, "",

@@ -20,6 +20,9 @@ struct DetectParams {
   double flat_region = 1.25;
   double exclusion_ratio = 1.2;
   std::uint32_t instances = 0;
+  // A robot's mode: the hypotheses one at a time, until a confident pose or the budget.
+  bool stop_at_confident = false;
+  double budget_ms = 0;
   // Region: where hypotheses and crops may be.
   std::string roi;
   std::string bin = "auto";

@@ -195,6 +195,54 @@ TEST(DetectMoreHypotheses, SecondRoundOnlyWhenNoPoseIsConfident) {
   }
 }
 
+// A robot's mode (--stop-at-confident, --budget-ms): the hypotheses one at a time in height
+// order. Always confident (--confident 0): one hypothesis an image, the first's rows, and
+// --verbose says it stopped; never confident: all ten, one at a time. A budget spent at once
+// (0.001 ms) stops after the first hypothesis too. The summary gives the time to the first
+// confident pose. Not with --instances.
+TEST(DetectRobotMode, StopsAtTheFirstConfidentPoseOrWhenTheBudgetIsSpent) {
+  const BracketBins bins("detect_robot");
+  ASSERT_FALSE(::testing::Test::HasFailure());
+  const auto per_scene = [](const fs::path& csv) {
+    std::map<int, std::size_t> n;
+    for (const auto& row : bop::read_results_csv(csv)) ++n[row.scene_id];
+    return n;
+  };
+  const auto [sure, sure_out] = bins.detect("sure.csv", "--stop-at-confident --confident 0 --verbose");
+  for (const auto& [scene, rows] : per_scene(sure)) EXPECT_EQ(rows, 1u) << "scene " << scene;
+  EXPECT_NE(sure_out.find("stopped after 1 of 10 hypotheses: a confident pose (--stop-at-confident)"),
+            std::string::npos)
+      << sure_out;
+  EXPECT_NE(sure_out.find("the first confident pose after"), std::string::npos) << sure_out;
+  EXPECT_NE(sure_out.find("a confident pose in 2 images, the first after"), std::string::npos)
+      << sure_out;
+  // The first hypothesis' pose is the one the one-hypothesis run ranks first.
+  const auto [one, one_out] = bins.detect("one.csv", "--hypotheses 1 --more-hypotheses 0");
+  EXPECT_EQ(scene_rows(sure, 0), scene_rows(one, 0));
+  EXPECT_EQ(scene_rows(sure, 1), scene_rows(one, 1));
+
+  const auto [never, never_out] = bins.detect("never.csv", "--stop-at-confident --confident 1");
+  for (const auto& [scene, rows] : per_scene(never)) EXPECT_EQ(rows, 10u) << "scene " << scene;
+  EXPECT_EQ(never_out.find("a confident pose in"), std::string::npos) << never_out;
+
+  const auto [spent, spent_out] = bins.detect("spent.csv", "--budget-ms 0.001 --verbose");
+  for (const auto& [scene, rows] : per_scene(spent)) EXPECT_EQ(rows, 1u) << "scene " << scene;
+  EXPECT_NE(spent_out.find("stopped after 1 of 10 hypotheses: the budget of 0.001 ms spent"),
+            std::string::npos)
+      << spent_out;
+
+  for (const std::string bad : {"--budget-ms -1", "--budget-ms nan",
+                                "--stop-at-confident --instances 3", "--budget-ms 5 --instances 2"}) {
+    const auto run = test::run_binpick(fmt::format("detect --model {} --dataset {} --out {} {}",
+                                                   bins.ppfm, bins.data,
+                                                   (bins.dir / "bad.csv").string(), bad));
+    EXPECT_EQ(run.status, 2) << bad;
+    EXPECT_NE(run.err.find(bad.find("instances") != std::string::npos ? "does not go with" : "budget-ms"),
+              std::string::npos)
+        << bad << "\n" << run.err;
+  }
+}
+
 // detect --targets FILE (BOP's test_targets_bop19.json as the instance budget): each image gets
 // exactly the rows of `--instances inst_count` on that image, images not listed (or listing
 // another obj_id only) get none and are not read, and bad target files or --targets with
