@@ -422,8 +422,7 @@ std::vector<Detection> Detector::detect(const DepthImage& depth, const bp_camera
   t.stages.push_back({"hypotheses", hyp_clock.lap()});
   // Highest points to stand in for those the flat-region test skips, found when needed: the
   // rounds again with as many more as were skipped (the same rounds give the same first ones),
-  // at most twice those sought (plates lying on a bin of shafts took most of its highest points:
-  // docs/decisions/2026-12-02-flat-region.md).
+  // at most twice those sought (docs/decisions/2026-12-02-flat-region.md).
   std::size_t flat_skipped = 0;
   const auto find_more = [&] {
     const std::size_t want = std::min(2 * hypotheses_sought(params_), hyps.size() + flat_skipped);

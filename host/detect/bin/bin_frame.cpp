@@ -146,9 +146,9 @@ bool judge_rim(RimFit& rim, const PlaneSamples& s, const BorderBand& band,
     above = samples_above(band, up, rim.height + above_margin, true);
     forgiven = true;
   }
-  // Checked here as well as at the end, so that the next candidate can win: two edges of a robot
-  // arm's face beside the bin, with the ends of the rim's near side, made a narrow "frame" along
-  // a wrong searched up (docs/decisions/2026-11-25-bin-width-per-candidate.md).
+  // Checked here as well as at the end, so that a narrow "frame" at a wrong up (edges of
+  // something beside the bin) lets the next candidate win
+  // (docs/decisions/2026-11-25-bin-width-per-candidate.md).
   if (!(seen_widths(rim).minCoeff() >= opt.min_side)) {
     rim.found = false;
     rim.why = fmt::format("the frame found is only {:.1f} mm across (a bin needs {:.1f})",
@@ -173,9 +173,9 @@ std::size_t sides_seen(const RimFit& r) {
 // Whether a frame found at a later up beats the best so far on its rim: more samples than need
 // times the best's (kSearchedUpMargin for the up searched along the rim: where only the near side
 // stands out, a turn about it gathers a few more off the wall's outer face;
-// docs/decisions/2026-11-25-bin-searched-up-margin.md), and not one side against two or more (a
-// mesh wall's horizontal bars, seen steeply, made a one-sided "frame" with more samples than the
-// true rim: docs/decisions/2026-12-02-bin-one-sided-frame-no-replace.md).
+// docs/decisions/2026-11-25-bin-searched-up-margin.md), and not one side against two or more:
+// two sides meeting are stronger evidence of a frame than more samples along one
+// (docs/decisions/2026-12-02-bin-one-sided-frame-no-replace.md).
 bool beats(const FrameChoice& best, const RimFit& rim, double need) {
   if (!best.rim.found) return true;
   if (!(double(rim.points) > need * double(best.rim.points))) return false;
@@ -233,15 +233,15 @@ FrameSearch choose_frame(const PlaneSamples& s, const std::vector<FoundPlane>& p
     }
     if (!rim.found || !beats(best, rim, c < from_planes ? 1.0 : kSearchedUpMargin)) continue;
     // A frame over a level floor is a bin, not a slice of a pile: a later one must have a floor
-    // too (a robot arm's face beside a wire-mesh basket held more samples than its thin rim;
+    // too, however many samples it holds (a thin rim holds few;
     // docs/decisions/2026-11-25-bin-frame-over-floor-holds.md).
     const bool on_floor =
         !forgiven && floor_under(s, planes, up, b1, b2, open_edges(rim), rim.height, tol, opt.noise)
                          .plane.has_value();
     if (best.on_floor && !on_floor) continue;
-    // A frame with no level floor under it must be seen on two sides or more: cut through a heap
-    // of parts with no bin, the searched up made a slice of the heap a "frame" seen on one side
-    // (BinFit.ASliceThroughAHeapIsNoRim; docs/decisions/2026-12-02-bin-one-side-needs-floor.md).
+    // A frame with no level floor under it must be seen on two sides or more: a slice through a
+    // heap with no bin is seen on one (BinFit.ASliceThroughAHeapIsNoRim;
+    // docs/decisions/2026-12-02-bin-one-side-needs-floor.md).
     if (!on_floor && !forgiven && sides_seen(rim) < 2) {
       if (rim.points > filled_points) {
         filled_points = rim.points;

@@ -1,6 +1,6 @@
 // The flat-region test on a hypothesis (the highest-point heuristic's blind spot): a highest
-// point on a flat patch wider than any flat region of the part is not on the part (plates lying
-// on a bin of shafts took most of the highest points); such a point is skipped with its reason
+// point on a flat patch wider than any flat region of the part is not on the part (a plate lying
+// on the parts sought); such a point is skipped with its reason
 // and the next highest point is taken instead (docs/detect/hypotheses.md, "The flat region";
 // docs/decisions/2026-12-02-flat-region.md).
 //

@@ -25,9 +25,9 @@ std::vector<VerifiedPose> verify_candidates(const VerifyScene& scene, const Veri
   // Refinement, then phase 1 and the fit pass's factors.
   std::vector<VerifiedPose> out = refine_and_verify(scene.fit_sums, scene.cam, g,
                                                     model.fit_points, poses, vo, memo);
-  // Phase 2: the probe pass's factors. A cloud seen through a virtual camera has no depth along
-  // the rays to weigh millimetres at a few hundred probes: on a shaft's cloud the look-alike
-  // holes turned a right pose end for end (docs/decisions/2026-11-25-lookalike-holes.md).
+  // Phase 2: the probe pass's factors, on a sensor's image only: a cloud seen through a virtual
+  // camera has no depth along the rays fine enough to weigh millimetres at a few hundred probes
+  // (docs/decisions/2026-11-25-lookalike-holes.md).
   if (scene.sensor && scene.probe_sums && !model.probes.probes.points.empty()) {
     LookalikeHolesOptions ho;
     ho.band_ratio = opt.holes_band;

@@ -15,9 +15,9 @@ namespace binpick {
 namespace {
 
 // Phase 1: the tolerance follows the sensor's noise, as the best-fitting pose shows it (its
-// residual's weighted RMS within a wide gate of 4 tolerances): at 5 % noise the fixed 0.04 d
-// lies inside the noise, and right poses scored little above wrong ones. It widens to at most
-// three times the fixed one, never narrows (docs/detect/verify.md, "The tolerance";
+// residual's weighted RMS within a wide gate of 4 tolerances), so that a noisy image's right
+// poses are not judged by a tolerance inside its noise. It widens to at most three times the
+// fixed one, never narrows (docs/detect/verify.md, "The tolerance";
 // docs/decisions/2026-11-24-tolerance-follows-noise.md). Returns the tolerance and the final
 // pass's gate.
 std::pair<float, float> image_tolerance(const std::vector<FitSums>& wide, float tolerance,
