@@ -13,6 +13,7 @@
 #include "host/formats/bop/png_image.hpp"
 #include "host/core/error.hpp"
 #include "host/core/progress.hpp"
+#include "host/core/quantile.hpp"
 #include "host/detect/params/params_file.hpp"
 #include "host/detect/batch/detect_parts.hpp"
 #include "host/detect/shared_scene.hpp"
@@ -344,12 +345,9 @@ std::string summary_line(const BatchSummary& s) {
       t.bin_sought > 0 ? fmt::format("; a bin found in {} of {} images", t.bin_found, t.bin_sought)
                        : "";
   std::string confident;
-  if (!t.first_confident_ms.empty()) {
-    std::vector<double> ms = t.first_confident_ms;
-    std::nth_element(ms.begin(), ms.begin() + long(ms.size() / 2), ms.end());
+  if (!t.first_confident_ms.empty())
     confident = fmt::format("; a confident pose in {} images, the first after {:.0f} ms (median)",
-                            ms.size(), ms[ms.size() / 2]);
-  }
+                            t.first_confident_ms.size(), quantile(t.first_confident_ms, 0.5));
   return fmt::format(
       "{} scenes ({} done before), {} images{}, {} hypotheses, {} rows; ms per hypothesis: "
       "preparation {:.1f}, voting {:.1f}, clustering {:.1f}, refinement {:.1f}, total {:.1f}{}{}{}",

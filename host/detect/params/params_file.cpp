@@ -39,7 +39,6 @@ void set_from_json(const ParamInfo& info, DetectParams& p, const Json& v,
         }
       },
       info.member);
-  (void)info;
 }
 
 Json to_json(const ParamInfo& info, const DetectParams& p) {

@@ -83,16 +83,17 @@ void lookalike_holes(const FitSumsFn& sums_of, const bp_camera& cam, const FitGe
   const bool holes_on = opt.band_ratio > 0 && model.lookalikes > 0;
   const bool edges_on = opt.edge_scale > 0 && model.edge_probes > 0;
   if (model.probes.points.empty() || !(holes_on || edges_on)) return;
+  RefineOptions near;  // the near gate, as refinement's last steps have it
+  near.near_gate = opt.near_gate;
+  near.noise = opt.noise;
   std::vector<bp_pose_fit> fits;
   std::vector<std::size_t> index;
   for (std::size_t k = 0; k < poses.size(); ++k) {
     if (!(poses[k].score() > 0)) continue;
+    // At the pose's verification tolerance, as the gate too.
     const float tolerance = poses[k].evidence.tolerance;
-    FitThresholds th;
-    th.gate = th.tolerance = tolerance;
-    th.slack = zbuffer_slack(g, th.tolerance);
+    FitThresholds th = fit_thresholds(g, tolerance, tolerance, near);
     th.residuals = true;
-    if (opt.near_gate) th.near_gate = bp_near_gate(th.gate, th.tolerance, opt.noise);
     fits.push_back(make_pose_fit(poses[k].R, poses[k].t, cam, g, th));
     index.push_back(k);
   }

@@ -158,7 +158,6 @@ std::vector<VerifiedPose> refine_and_verify(const FitSumsFn& sums, const bp_came
                                             std::uint32_t model_points,
                                             const std::vector<PoseToRefine>& poses,
                                             const VerifyOptions& opt, RefineMemo* memo) {
-  check(opt);
   return verify_poses(sums, cam, geometry, model_points,
                       refine_poses(sums, cam, geometry, poses, opt.refine, memo), opt);
 }

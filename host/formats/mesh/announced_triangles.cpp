@@ -4,6 +4,7 @@
 
 #include "host/core/error.hpp"
 #include "host/formats/mesh/little_endian.hpp"
+#include "host/formats/mesh/mesh_readers.hpp"
 #include "host/formats/mesh/ply_header.hpp"
 
 namespace binpick {
@@ -36,11 +37,7 @@ std::uint64_t count_records(std::string_view bytes, std::string_view word) {
 }
 
 std::uint64_t stl_triangles(std::string_view bytes) {
-  // Binary when the size rule holds, as read_stl decides (mesh_readers.hpp).
-  if (bytes.size() >= 84) {
-    const std::uint64_t count = load_little_endian<std::uint32_t>(bytes.data() + 80);
-    if (84 + 50 * count == bytes.size()) return count;
-  }
+  if (const auto count = binary_stl_triangles(bytes)) return *count;  // as read_stl decides
   return count_records(bytes, "facet");
 }
 

@@ -4,7 +4,9 @@
 // and does the checks common to all formats.
 #pragma once
 
+#include <cstdint>
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <string_view>
 
@@ -17,6 +19,9 @@ Mesh read_ply(std::string_view bytes);
 
 // STL: binary or ascii (told apart by the binary size rule, not by the "solid" prefix).
 Mesh read_stl(std::string_view bytes);
+// The triangle count of a binary STL, when the bytes are one by the size rule (84 header bytes and
+// 50 a triangle, exactly as many as the header says); none otherwise.
+std::optional<std::uint32_t> binary_stl_triangles(std::string_view bytes);
 
 // Wavefront OBJ via tinyobjloader (materials are ignored; mtllib files are looked up in
 // directory).

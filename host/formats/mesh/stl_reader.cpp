@@ -81,8 +81,7 @@ Mesh read_ascii_stl(std::string_view bytes) {
 
 Mesh read_stl(std::string_view bytes) {
   // Binary files may also start with "solid", so the size rule decides first.
-  if (bytes.size() >= binary_header_size && declared_binary_size(bytes) == bytes.size())
-    return read_binary_stl(bytes);
+  if (binary_stl_triangles(bytes)) return read_binary_stl(bytes);
   std::size_t start = bytes.find_first_not_of(" \t\r\n");
   if (start != std::string_view::npos && bytes.substr(start).starts_with("solid"))
     return read_ascii_stl(bytes);
@@ -96,6 +95,12 @@ Mesh read_stl(std::string_view bytes) {
                      std::to_string(bytes.size()) + " bytes");
   // Some exporters pad the file; the announced triangles are all there.
   return read_binary_stl(bytes);
+}
+
+std::optional<std::uint32_t> binary_stl_triangles(std::string_view bytes) {
+  if (bytes.size() < binary_header_size || declared_binary_size(bytes) != bytes.size())
+    return std::nullopt;
+  return load_little_endian<std::uint32_t>(bytes.data() + 80);
 }
 
 }  // namespace binpick
