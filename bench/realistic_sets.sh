@@ -11,18 +11,20 @@
 # makes each set once (WORK/data/SET, kept between runs: same seeds, same bins), trains its
 # model once per binary (WORK/models/SET-MD5.ppfm, MD5 of the binary), detects into
 # WORK/TAG/SET.csv with the options in $DETECT (extra `binpick detect` options, e.g.
-# DETECT="--plane-search 0") and scores it with
+# DETECT="--plane-search 0"; the word @binpose stands for the set's true bin as a --bin-pose
+# file, WORK/data/SET/bin_pose.json) and scores it with
 # `binpick eval --no-vsd`. Prints per set: images, top-ranked right (loose: 10 % of the diameter
-# and 15 degrees), top-ranked strict (5 %, 5 degrees), all hypotheses right, ms per hypothesis;
-# then the totals. Writes the same to WORK/TAG/summary.tsv. Detections already made for TAG are
+# and 15 degrees), top-ranked strict (5 %, 5 degrees), all hypotheses right, ms per hypothesis,
+# images a bin was found in; then the totals. Writes the same to WORK/TAG/summary.tsv. Detections already made for TAG are
 # kept (resumable); remove WORK/TAG to redo them. Without SETs, every set of the main list;
 # `--list` lists them. A second list, held out, is run only when asked (`@held-out`, or its sets
 # by name; `--list-held-out` lists them): five more parts of tools/unseen_parts.py (a gear shaft,
 # a cap screw, a flange, an angle bar, a stepped block). Run it after tuning on the main list, to
 # see whether a gain carries over; never tune on it. A third, `@tilted` (`--list-tilted`): nine
 # sets seen by a camera tilted 20-40 degrees, six in solid bins and three in baskets. A fourth,
-# `@far` (`--list-far`): three baskets seen through a wider lens, the ground all around them. A
-# fifth, `@paper` (`--list-paper`): the paper's bins of every built-in part at noise 0, 2 and 5 %
+# `@far` (`--list-far`): three baskets seen through a wider lens, the ground all around them.
+# `@cell` (`--list-cell`): three baskets small in the view and turned, in a cluttered cell. And
+# `@paper` (`--list-paper`): the paper's bins of every built-in part at noise 0, 2 and 5 %
 # (bench/same_detections.sh compares two tags of it row for row).
 # BINS=N (default 4) makes and runs N images a set instead: 4-image sets move by an image or two
 # under small perturbations, so a change whose gain is that size wants more. The sets are the
@@ -71,6 +73,14 @@ FAR=(
   "bracket_basket_far|--model builtin:bracket --bins 4 --objects 60 --seed 502 --distractors builtin:plate,builtin:bolt --sensor-model structured-light --specular-cone 8 --dropout-share 0.5 --bin-mesh @basket_arm --width 2064 --height 1544 --camera-height 2200 --intrinsics 3200,3200,1031.5,771.5"
   "tee_basket_far_t35|--model builtin:tee --bins 4 --objects 60 --seed 503 --distractors builtin:plate,builtin:bolt --sensor-model structured-light --noise 0.02 --bin-mesh @basket --width 2064 --height 1544 --camera-height 2600 --camera-tilt 35 --intrinsics 2800,2800,1031.5,771.5"
 )
+# In a cluttered cell, like the real scene: the basket small in the view (about a third of its
+# width), turned in the image (--camera-roll), 0.7 m in front of a fence, beside a robot, a crate,
+# a tray and cables on a wide floor (tools/wire_basket.py --cell).
+CELL=(
+  "plate_cell|--model builtin:plate --diameter 150 --bins 4 --objects 60 --seed 701 --distractors builtin:bracket,builtin:bolt,builtin:tee --sensor-model structured-light --specular-cone 8 --dropout-share 0.55 --bin-mesh @cell --width 2064 --height 1544 --camera-height 2400 --camera-tilt 25 --camera-roll 25 --intrinsics 2750,2750,1031.5,771.5"
+  "bracket_cell|--model builtin:bracket --bins 4 --objects 60 --seed 702 --distractors builtin:plate,builtin:bolt --sensor-model structured-light --specular-cone 8 --dropout-share 0.5 --bin-mesh @cell --width 2064 --height 1544 --camera-height 2200 --camera-tilt 30 --camera-roll -20 --intrinsics 2600,2600,1231.5,771.5"
+  "tee_cell|--model builtin:tee --bins 4 --objects 60 --seed 703 --distractors builtin:plate,builtin:bolt --sensor-model structured-light --noise 0.02 --bin-mesh @cell --width 2064 --height 1544 --camera-height 2600 --camera-tilt 20 --camera-roll 40 --intrinsics 3000,3000,1031.5,871.5"
+)
 # The paper's bins (unrendered bin, 350 parts, Gaussian noise) of every built-in part at noise 0,
 # 2 and 5 % of the diameter, two bins each: for checking that a change of form detects the same.
 PAPER=()
@@ -109,11 +119,15 @@ if [ "${1:-}" = "--list-far" ]; then
   for s in "${FAR[@]}"; do echo "${s%%|*}"; done
   exit 0
 fi
+if [ "${1:-}" = "--list-cell" ]; then
+  for s in "${CELL[@]}"; do echo "${s%%|*}"; done
+  exit 0
+fi
 if [ "${1:-}" = "--list-paper" ]; then
   for s in "${PAPER[@]}"; do echo "${s%%|*}"; done
   exit 0
 fi
-usage="usage: bench/realistic_sets.sh BINPICK WORK TAG [SET...|@held-out|@tilted|@far|@paper] | --list | --list-held-out | --list-tilted | --list-far | --list-paper"
+usage="usage: bench/realistic_sets.sh BINPICK WORK TAG [SET...|@held-out|@tilted|@far|@cell|@paper] | --list | --list-held-out | --list-tilted | --list-far | --list-cell | --list-paper"
 BINPICK=$(readlink -f "${1:?$usage}")
 WORK=${2:?$usage}
 TAG=${3:?$usage}
@@ -130,6 +144,8 @@ for w in "$@"; do
     for s in "${TILTED[@]}"; do wanted+=("${s%%|*}"); done
   elif [ "$w" = "@far" ]; then
     for s in "${FAR[@]}"; do wanted+=("${s%%|*}"); done
+  elif [ "$w" = "@cell" ]; then
+    for s in "${CELL[@]}"; do wanted+=("${s%%|*}"); done
   elif [ "$w" = "@paper" ]; then
     for s in "${PAPER[@]}"; do wanted+=("${s%%|*}"); done
   else
@@ -150,6 +166,8 @@ asset() {
       [ -f "$f" ] || python3 "$tools/wire_basket.py" "$f" --arm >/dev/null ;;
     basket_armhi) f=$WORK/assets/basket_armhi.stl
       [ -f "$f" ] || python3 "$tools/wire_basket.py" "$f" --arm --arm-top 150 >/dev/null ;;
+    cell) f=$WORK/assets/cell.stl
+      [ -f "$f" ] || python3 "$tools/wire_basket.py" "$f" --cell >/dev/null ;;
     bentsheet|washer|hexnut|gearshaft|capscrew|flange|anglebar|stepblock) f=$WORK/assets/$1.stl
       [ -f "$f" ] || python3 "$tools/unseen_parts.py" "$WORK/assets" >/dev/null ;;
     *) echo "realistic_sets: unknown asset @$1" >&2; exit 2 ;;
@@ -160,7 +178,7 @@ asset() {
 
 options_of() {
   local s
-  for s in "${SETS[@]}" "${HELD_OUT[@]}" "${TILTED[@]}" "${FAR[@]}" "${PAPER[@]}"; do
+  for s in "${SETS[@]}" "${HELD_OUT[@]}" "${TILTED[@]}" "${FAR[@]}" "${CELL[@]}" "${PAPER[@]}"; do
     if [ "${s%%|*}" = "$1" ]; then
       local word file out=()
       for word in ${s#*|}; do
@@ -177,7 +195,7 @@ options_of() {
       return 0
     fi
   done
-  echo "realistic_sets: no set named $1 (--list, --list-held-out, --list-tilted and --list-far list them)" >&2
+  echo "realistic_sets: no set named $1 (--list, --list-held-out, --list-tilted, --list-far and --list-cell list them)" >&2
   exit 2
 }
 
@@ -186,7 +204,7 @@ BINS=${BINS:-4}
 mkdir -p "$WORK/assets" "$WORK/data" "$WORK/models" "$WORK/$TAG"
 stamp=$(md5sum "$BINPICK" | cut -c1-12)  # a model per binary: a new build retrains
 summary=$WORK/$TAG/summary.tsv
-printf 'set\timages\ttop\tstrict\tall\thypotheses\tms_per_hypothesis\n' >"$summary"
+printf 'set\timages\ttop\tstrict\tall\thypotheses\tms_per_hypothesis\tbin_found\n' >"$summary"
 for set in "${wanted[@]}"; do
   opts=$(options_of "$set") || exit 1
   read -r -a synth_opts <<<"$opts"
@@ -211,19 +229,37 @@ for set in "${wanted[@]}"; do
   model=$WORK/models/$set-$stamp.ppfm
   [ -f "$model" ] || "$BINPICK" train "${model_opts[@]}" --out "$model" >/dev/null
   csv=$WORK/$TAG/$set.csv
+  # @binpose in $DETECT: the set's own bin, as a calibrated cell gives it (its synth world frame
+  # is the bin's: scene_camera.json's cam_R_w2c and cam_t_w2c, and the set's --bin-size).
+  detect_opts=${DETECT:-}
+  if [[ " $detect_opts " == *" @binpose "* ]]; then
+    size=600,400,300
+    for i in "${!synth_opts[@]}"; do
+      [ "${synth_opts[$i]}" = --bin-size ] && size=${synth_opts[$((i + 1))]}
+    done
+    python3 - "$data/test/000000/scene_camera.json" "$size" "$data/bin_pose.json" <<'PY'
+import json, sys
+cam = json.load(open(sys.argv[1]))["0"]
+json.dump({"cam_R_bin": cam["cam_R_w2c"], "cam_t_bin": cam["cam_t_w2c"],
+           "interior_mm": [float(v) for v in sys.argv[2].split(",")]}, open(sys.argv[3], "w"), indent=2)
+PY
+    detect_opts=${detect_opts//@binpose/$data/bin_pose.json}
+  fi
   # shellcheck disable=SC2086
-  "$BINPICK" detect --model "$model" --dataset "$data" --out "$csv" ${DETECT:-} >"$WORK/$TAG/$set.detect.log"
+  "$BINPICK" detect --model "$model" --dataset "$data" --out "$csv" $detect_opts >"$WORK/$TAG/$set.detect.log"
   [ -s "$csv" ] || { echo "realistic_sets: $set: detect wrote nothing" >&2; exit 1; }
   "$BINPICK" eval --dataset "$data" --results "$csv" --out "$WORK/$TAG/$set.report" --no-vsd \
     --pictures 0 --json >"$WORK/$TAG/$set.json"
-  python3 - "$WORK/$TAG/$set.json" "$set" >>"$summary" <<'PY'
-import json, sys
+  python3 - "$WORK/$TAG/$set.json" "$set" "$WORK/$TAG/$set.detect.log" >>"$summary" <<'PY'
+import json, re, sys
 row = json.load(open(sys.argv[1]))["datasets"][0]
+found = re.search(r"a bin found in (\d+) of (\d+) images", open(sys.argv[3]).read())
 loose, strict = row["precision"]["loose"], row["precision"]["strict"]
 n, h = row["images"], row["hypotheses"]
 ms = row["ms_per_hypothesis"]
 print("\t".join(str(x) for x in (sys.argv[2], n, round(loose["top"] * n), round(strict["top"] * n),
-                                 round(loose["all"] * h), h, "-" if ms is None else round(ms))))
+                                 round(loose["all"] * h), h, "-" if ms is None else round(ms),
+                                 found.group(1) if found else "-")))
 PY
   tail -1 "$summary"
 done

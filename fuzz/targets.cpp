@@ -7,6 +7,7 @@
 #include <string>
 
 #include "host/core/error.hpp"
+#include "host/detect/params/bin_pose_file.hpp"
 #include "host/detect/params/bin_spec.hpp"
 #include "host/detect/params/params_file.hpp"
 #include "host/formats/bop/bop_files.hpp"
@@ -98,6 +99,8 @@ void parse_params(std::string_view bytes) {
   parse_bin(params.bin);
 }
 
+void parse_bin_pose(std::string_view bytes) { binpick::parse_bin_pose(bytes, "bin_pose.json"); }
+
 void parse_test_targets(std::string_view bytes) {
   bop::parse_test_targets(std::string(bytes), "test_targets_bop19.json");
 }
@@ -117,6 +120,7 @@ const std::vector<Target>& all_targets() {
       {"png", parse_png},
       {"results_csv", parse_results_csv},
       {"params", parse_params},
+      {"bin_pose", parse_bin_pose},
       {"test_targets", parse_test_targets},
   };
   return targets;

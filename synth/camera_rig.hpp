@@ -21,6 +21,9 @@ struct CameraRig {
   // on the optical axis at height_mm: positive tilts move the camera towards -y (the image's
   // bottom edge), so it looks into the bin towards the +y wall, seen at the top of the image.
   double tilt_deg = 0.0;
+  // Then turned about its own optical axis: the bin shows turned by this much in the image,
+  // counter-clockwise as the image is seen (its x axis, drawn to the right untilted, rises).
+  double roll_deg = 0.0;
   std::uint32_t width = 1600, height = 900;
   std::optional<std::array<double, 4>> intrinsics;  // fx, fy, cx, cy; none: camera_for_bin's
 };
@@ -31,9 +34,11 @@ struct SceneView {
 };
 
 // The rig's world -> camera transform.
-Eigen::Isometry3d world_to_camera(double camera_height_mm, double tilt_deg = 0.0);
+Eigen::Isometry3d world_to_camera(double camera_height_mm, double tilt_deg = 0.0,
+                                  double roll_deg = 0.0);
 
-// Throws InputError for a tilt that is not finite or beyond 80 degrees either way, intrinsics
+// Throws InputError for a tilt that is not finite or beyond 80 degrees either way, a roll not
+// finite or beyond 180 degrees either way, intrinsics
 // that are not finite or focal lengths that are not positive.
 void validate_camera_rig(const CameraRig& rig);
 

@@ -33,6 +33,8 @@ json bin_entry(const SynthOptions& o, const ManifestInputs& in) {
 
 json camera_entry(const SynthOptions& o) {
   json camera = {{"height_mm", o.camera_height_mm}, {"tilt_deg", o.camera_tilt_deg}};
+  // Written only when set: datasets made before the roll existed keep their manifest.
+  if (o.camera_roll_deg != 0.0) camera["roll_deg"] = o.camera_roll_deg;
   if (o.intrinsics)
     camera["intrinsics"] = *o.intrinsics;
   else

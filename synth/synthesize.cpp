@@ -50,7 +50,7 @@ std::vector<Eigen::Isometry3d> in_camera_frame(const std::vector<Eigen::Isometry
 }
 
 CameraRig rig_of(const SynthOptions& o) {
-  return {o.camera_height_mm, o.camera_tilt_deg, o.width, o.height, o.intrinsics};
+  return {o.camera_height_mm, o.camera_tilt_deg, o.camera_roll_deg, o.width, o.height, o.intrinsics};
 }
 
 // The bin the options describe, loaded (a --bin-mesh file) or built.

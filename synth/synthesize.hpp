@@ -35,6 +35,7 @@ struct SynthOptions {
   SensorModel sensor;               // ideal: the rendered depth (plus --noise); docs/sensor_model.md
   double camera_height_mm = 1000.0;  // along the optical axis to the centre of the bin floor
   double camera_tilt_deg = 0.0;      // about the bin's x axis (synth/camera_rig.hpp)
+  double camera_roll_deg = 0.0;      // then about the optical axis (the bin turned in the image)
   std::optional<std::array<double, 4>> intrinsics;  // fx, fy, cx, cy; none: camera_for_bin
   std::uint32_t width = 1600, height = 900;
   double depth_scale = 0.1;         // mm per unit of the depth PNG

@@ -4,7 +4,7 @@ a bin like the real scene binpick is judged on (a wire-mesh basket whose rim is 
 in view, the ground seen through its walls and floor, a robot arm partly in view):
 
   tools/wire_basket.py OUT.stl [--size 600,400,300] [--bar 4] [--pitch 40] [--rim 10] [--arm]
-                       [--arm-top -40]
+                       [--arm-top -40] [--cell]
 
 The basket is in synth's bin frame (mm, the interior floor's centre at the origin, floor at z = 0,
 z up): walls of square bars (vertical every --pitch mm, horizontal every 1.5 --pitch), a floor of
@@ -15,6 +15,14 @@ the walls' top (default -40: under the rim), and its lower end passes through th
 reaches 89 mm into the interior, 213 mm under its top, like an arm reaching into the basket
 (something high at the bin's side that is not the rim; parts dropped land on it too). Pass the
 same interior to synth: `--bin-mesh OUT.stl --bin-size 600,400,300`.
+
+With --cell, the basket stands in a cluttered cell like the real one (the basket 0.5-0.9 m in
+front of a fence, the robot, cables, other bins, the floor all around): the ground 6 x 5 m; a
+fence 700 mm behind the +y wall, posts every metre 1.8 m tall with a wire panel (vertical wires
+every 50 mm, horizontal every 200 mm); a robot beside the -x wall (a 300 mm column 900 mm tall, a
+shoulder box and an upper arm held out above the column, higher than the rim); a closed crate
+500 x 350 x 250 beside the +x wall, turned 10 degrees; a second, empty basket-like tray behind
+and to the left, 150 mm high; and cables on the ground in front (20 mm rods in long zigzags).
 Needs numpy (pip install numpy)."""
 import argparse
 import os
@@ -42,7 +50,47 @@ def box(tris, lo, hi, rotation=None, pivot=None):
         tris.append((c[a], c[cc], c[d]))
 
 
-def basket(W, D, H, bar, pitch, rim, arm, arm_top=-40.0):
+def turned_z(deg, pivot):
+    """A rotation about z by deg, and its pivot, for box()."""
+    a = np.radians(deg)
+    return np.array([[np.cos(a), -np.sin(a), 0], [np.sin(a), np.cos(a), 0], [0, 0, 1]]), np.array(pivot, dtype=float)
+
+
+def add_cell(tris, W, D, H):
+    """The clutter of a real cell around the basket (see --cell); ground at z = -50."""
+    g = -50.0
+    hw, hd = W / 2, D / 2
+    fy = hd + 700  # the fence, behind the +y wall
+    for x in np.arange(-2500, 2501, 1000):  # posts
+        box(tris, (x - 20, fy - 20, g), (x + 20, fy + 20, g + 1800))
+    for x in np.arange(-2500, 2500, 50):  # vertical wires
+        box(tris, (x - 1.5, fy - 1.5, g + 100), (x + 1.5, fy + 1.5, g + 1750))
+    for z in np.arange(g + 100, g + 1751, 200):  # horizontal wires
+        box(tris, (-2500, fy - 1.5, z - 1.5), (2500, fy + 1.5, z + 1.5))
+    rx = -hw - 650  # the robot, beside the -x wall
+    box(tris, (rx - 150, -150, g), (rx + 150, 150, g + 900))  # column
+    box(tris, (rx - 120, -180, g + 900), (rx + 180, 180, g + 1150))  # shoulder
+    R, pivot = turned_z(-20, (rx, 0, g + 1100))
+    box(tris, (rx, -70, g + 1050), (rx + 550, 70, g + 1170), R, pivot)  # upper arm, held out
+    cx0 = hw + 500  # a closed crate beside the +x wall, turned
+    R, pivot = turned_z(10, (cx0 + 250, 0, g))
+    box(tris, (cx0, -175, g), (cx0 + 500, 175, g + 250), R, pivot)
+    tx, ty = -hw - 300, hd + 250  # a shallow tray behind and to the left
+    box(tris, (tx - 300, ty - 200, g), (tx + 300, ty + 200, g + 10))
+    for lo, hi in (((tx - 300, ty - 200, g), (tx + 300, ty - 190, g + 150)),
+                   ((tx - 300, ty + 190, g), (tx + 300, ty + 200, g + 150)),
+                   ((tx - 300, ty - 200, g), (tx - 290, ty + 200, g + 150)),
+                   ((tx + 290, ty - 200, g), (tx + 300, ty + 200, g + 150))):
+        box(tris, lo, hi)
+    y = -hd - 350  # cables in front: rods on the ground in zigzags
+    for k, x in enumerate(np.arange(-1800, 1800, 450)):
+        R, pivot = turned_z(25 if k % 2 else -25, (x, y, g))
+        box(tris, (x - 250, y - 10, g), (x + 250, y + 10, g + 20), R, pivot)
+    for x in (-1200, 900):
+        box(tris, (x - 10, -hd - 900, g), (x + 10, -hd - 150, g + 20))
+
+
+def basket(W, D, H, bar, pitch, rim, arm, arm_top=-40.0, cell=False):
     tris = []
     hw, hd, b = W / 2, D / 2, bar
     for x in np.arange(-hw, hw + 1e-6, pitch / 2):  # floor: bars along y on top, along x below
@@ -64,7 +112,11 @@ def basket(W, D, H, bar, pitch, rim, arm, arm_top=-40.0):
     box(tris, (-hw - rim, hd, H), (hw + rim, hd + rim, H + rim))
     box(tris, (-hw - rim, -hd, H), (-hw, hd, H + rim))
     box(tris, (hw, -hd, H), (hw + rim, hd, H + rim))
-    box(tris, (-1500, -1200, -60), (1500, 1200, -50))  # the ground
+    if cell:
+        box(tris, (-3000, -2500, -60), (3000, 2500, -50))  # the ground, wide
+        add_cell(tris, W, D, H)
+    else:
+        box(tris, (-1500, -1200, -60), (1500, 1200, -50))  # the ground
     if arm:
         a = np.radians(35)
         R = np.array([[1, 0, 0], [0, np.cos(a), -np.sin(a)], [0, np.sin(a), np.cos(a)]])
@@ -96,6 +148,9 @@ def main():
                    help="a turned box through the -y wall, its top outside the basket")
     p.add_argument("--arm-top", type=float, default=-40.0,
                    help="with --arm: its top's height above the walls' top, mm (the rim is --rim above them)")
+    p.add_argument("--cell", action="store_true",
+                   help="the basket in a cluttered cell: a fence behind it, a robot, a crate, a "
+                        "tray, cables, a wide floor")
     a = p.parse_args()
     try:
         W, D, H = (float(v) for v in a.size.split(","))
@@ -106,7 +161,7 @@ def main():
                  "--arm-top within 2000 mm")
     if os.path.exists(a.out):
         sys.exit(f"wire_basket.py: {a.out} exists; not overwritten")
-    tris = basket(W, D, H, a.bar, a.pitch, a.rim, a.arm, a.arm_top)
+    tris = basket(W, D, H, a.bar, a.pitch, a.rim, a.arm, a.arm_top, a.cell)
     write_stl(a.out, tris)
     print(f"wrote {a.out}: {len(tris)} triangles")
 

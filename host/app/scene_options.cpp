@@ -21,6 +21,10 @@ void add_scene_options(CLI::App* verb, SceneArgs& a) {
                    "which stays on the optical axis at --camera-height; positive moves the "
                    "camera towards -y, looking at the +y wall (degrees, -80 to 80)")
       ->capture_default_str();
+  verb->add_option("--camera-roll", a.camera_roll_deg,
+                   "then turn the camera about its optical axis: the bin shows turned by this "
+                   "much in the image, counter-clockwise (degrees, -180 to 180)")
+      ->capture_default_str();
   add_sensor_options(verb, a.sensor);
 }
 
@@ -28,6 +32,7 @@ void apply_scene_args(const SceneArgs& a, SynthOptions& o) {
   o.bin_render = a.bin_render == "none" ? BinRender::none : BinRender::full;
   if (!a.distractors.empty()) o.distractors = parse_distractors(a.distractors);
   o.camera_tilt_deg = a.camera_tilt_deg;
+  o.camera_roll_deg = a.camera_roll_deg;
   o.sensor = a.sensor;
 }
 

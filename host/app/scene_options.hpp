@@ -15,6 +15,7 @@ struct SceneArgs {
   std::string bin_render = "full";
   std::string distractors;
   double camera_tilt_deg = 0.0;
+  double camera_roll_deg = 0.0;
   SensorModel sensor;
 };
 

@@ -38,7 +38,7 @@ namespace fs = std::filesystem;
 struct DetectArgs {
   std::vector<std::string> models;  // --model, repeated: .ppfm files or directories of them
   std::vector<int> obj_ids;         // --obj-id, once per --model or not at all
-  std::string dataset, cloud, out, scenes, split = "test", sensor, targets;
+  std::string dataset, cloud, out, scenes, split = "test", sensor, targets, save_bin_pose;
   bool verbose = false;
   DetectCliOptions detection;  // --params and one option per parameter
   ShardCliOptions shards;      // --shard K/N, --slurm
@@ -119,6 +119,7 @@ void run_detect(DetectArgs& a) {
   if (!a.cloud.empty()) {
     if (!a.scenes.empty()) throw InputError("--scenes applies to --dataset only");
     if (!a.targets.empty()) throw InputError("--targets applies to --dataset only");
+    if (!a.save_bin_pose.empty()) throw InputError("--save-bin-pose applies to --dataset only");
     if (shard.sharded() || a.shards.slurm.enabled)
       throw InputError("--shard and --slurm apply to --dataset only (a --cloud is one scene)");
   }
@@ -142,6 +143,15 @@ void run_detect(DetectArgs& a) {
   for (const LoadedModel& m : models) opt.models.push_back({m.checksum, m.source.obj_id});
   opt.verbose = a.verbose;
   opt.shard = shard;
+  if (!a.save_bin_pose.empty()) {
+    if (shard.sharded() || a.shards.slurm.enabled)
+      throw InputError("--save-bin-pose writes the bin of one image: not with --shard or --slurm");
+    if (params.bin == "none" || !params.bin_pose.empty())
+      throw InputError("--save-bin-pose writes the bin found in an image: it needs --bin auto or "
+                       "--bin W,D,H, not --bin none or --bin-pose");
+    check_output_file(a.save_bin_pose);
+    opt.save_bin_pose = a.save_bin_pose;
+  }
   if (!a.targets.empty()) {
     if (params.instances > 0)
       throw InputError("--targets sets each image's instance budget from the file; leave out "
@@ -197,6 +207,10 @@ void add_detect_verb(CLI::App& app) {
                    "only in the images listing its obj_id, with their inst_count as its "
                    "--instances budget; images listing none are not read");
   verb->add_flag("--verbose", a->verbose, "print per-stage timings of every image");
+  verb->add_option("--save-bin-pose", a->save_bin_pose,
+                   "write the bin found in the first image (in scene order) that has one as a "
+                   "--bin-pose file: a fixed cell's calibration, e.g. with --scenes 0 and --bin "
+                   "W,D,H (docs/formats.md); the run fails if no image has one");
   add_detect_cli_options(verb, a->detection, "detection");
   add_shard_options(verb, a->shards, "scenes");
   verb->callback([a] { run_detect(*a); });

@@ -93,8 +93,10 @@ void add_tune_verb(CLI::App& app) {
   add_train_options(verb, a->train,
                     "models (the voxel is kept; the steps are the search's starting point)");
   // The starting point's robot-mode parameters are not options: tune measures every hypothesis,
-  // and its --budget-ms (per hypothesis) is the search's own.
-  add_detect_cli_options(verb, a->start, "starting point", {"budget-ms", "stop-at-confident"});
+  // and its --budget-ms (per hypothesis) is the search's own. Nor is a cell's bin pose: tune's
+  // bins are its own synthetic ones.
+  add_detect_cli_options(verb, a->start, "starting point",
+                         {"budget-ms", "stop-at-confident", "bin-pose"});
   add_shard_options(verb, a->shards, "points");
   // The generic texts speak of merging outputs; tune's shards and array measure points.
   verb->get_option("--shard")->description(

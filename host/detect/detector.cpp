@@ -24,6 +24,7 @@
 
 #include "host/core/error.hpp"
 #include "host/detect/bin/bin_region.hpp"
+#include "host/detect/params/bin_pose_file.hpp"
 #include "host/detect/params/bin_spec.hpp"
 #include "host/detect/scene/cloud_image.hpp"
 #include "host/detect/scene/depth_noise.hpp"
@@ -151,13 +152,14 @@ DetectTimes& DetectTimes::operator+=(const DetectTimes& o) {
 Detector::Detector(const PpfModel& model, const DetectParams& params, ocl::Device& dev)
     : dev_(dev), model_(model), params_(params) {
   check(params_);
+  bin_spec_ = params_.bin_pose.empty() ? parse_bin(params_.bin) : read_bin_pose(params_.bin_pose);
   require(model.diameter > 0 && model.voxel_size > 0 && !model.cloud.points.empty(),
           "the PPF model is empty");
   program_build_s_ = dev_.prebuild({"depth_to_points.cl", "scene_lowpass.cl", "scene_normals.cl",
                                     "hypotheses.cl", "scene_crop.cl", "voxel_subsample.cl",
                                     "device_scan.cl", "ppf_vote.cl", "pose_cluster.cl",
                                     "pose_fit.cl"});
-  if (!params_.roi.empty() || params_.bin != "none")
+  if (!params_.roi.empty() || bin_spec_.mode != BinSpec::Mode::none)
     program_build_s_ += dev_.prebuild({"scene_mask.cl", "bin_planes.cl"});
   device_model_ = upload_model(
       dev_, model_, bucket_cap_entries(params_.bucket_cap, model_.cloud.points.size()));
@@ -362,13 +364,13 @@ std::vector<Detection> Detector::detect(const DepthImage& depth, const bp_camera
   // gate (pose_refine.hpp).
   Stopwatch noise_clock;
   image_noise_ = depth_noise_mm(depth, cam);
-  const double noise = params_.noise_voxel > 1 || params_.bin != "none" ? image_noise_ : 0.0;
+  const double noise = params_.noise_voxel > 1 || bin_spec_.mode != BinSpec::Mode::none ? image_noise_ : 0.0;
   t.stages.push_back({"noise", noise_clock.lap()});
   // --roi / --bin: the mask of the pixels that may be used, and the low-pass of those only.
   RegionSetup region;
   region.noise = noise;
   region.roi = parse_roi(params_.roi);
-  region.bin = parse_bin(params_.bin);
+  region.bin = bin_spec_;
   region.margin = params_.bin_margin * model_.diameter;
   region.above = model_.diameter;
   region.min_height = 0.5 * model_.diameter;  // a tray shallower than half a part holds none
@@ -377,10 +379,10 @@ std::vector<Detection> Detector::detect(const DepthImage& depth, const bp_camera
   region.keep_through_walls = params_.through_walls;
   region.keep_over_rim = params_.over_rim;
   region.over_rim_gap = 0.25 * model_.diameter;  // a hole in the depth of an arm's face
-  const BinFit* known_bin = shared ? shared->bin(params_.bin, model_.diameter) : nullptr;
+  const BinFit* known_bin = shared ? shared->bin(bin_key(), model_.diameter) : nullptr;
   const SceneRegionMask masked =
       apply_region(scene, region, prep.lowpass_radius, &t.stages, known_bin);
-  if (shared && masked.bin) shared->keep_bin(params_.bin, model_.diameter, *masked.bin);
+  if (shared && masked.bin) shared->keep_bin(bin_key(), model_.diameter, *masked.bin);
   const ocl::Buffer<std::uint8_t>* mask = masked.mask ? &*masked.mask : nullptr;
   if (region.wanted()) {
     const std::size_t valid = std::size_t(std::count_if(
@@ -390,11 +392,12 @@ std::vector<Detection> Detector::detect(const DepthImage& depth, const bp_camera
                                   region_report_.empty() ? "" : "; ", mask ? masked.kept : valid,
                                   valid, mask ? valid - masked.kept : 0);
   }
+  last_bin_ = masked.bin;
   if (masked.bin) {
     ++t.bin_sought;
     t.bin_found += masked.bin->found;
   }
-  if (!masked.warning.empty() && !warned_no_bin_ && params_.bin != "auto") {
+  if (!masked.warning.empty() && !warned_no_bin_ && bin_spec_.mode != BinSpec::Mode::find) {
     std::cerr << "warning: " << masked.warning << "\n";
     warned_no_bin_ = true;
   }
@@ -525,11 +528,13 @@ std::vector<Detection> Detector::detect(const PointCloud& input, DetectTimes* ti
   const Stopwatch started;
   skipped_.clear();
   region_report_.clear();
+  last_bin_.reset();
   // `auto` (the default) looks for a bin where there is an image to look in; a region asked for
   // explicitly cannot be honoured on a cloud.
-  if (!params_.roi.empty() || (params_.bin != "none" && params_.bin != "auto"))
-    throw InputError("--roi and --bin W,D,H apply to depth images (--dataset), not to a point "
-                     "cloud");
+  if (!params_.roi.empty() || bin_spec_.mode == BinSpec::Mode::sized ||
+      bin_spec_.mode == BinSpec::Mode::given)
+    throw InputError("--roi, --bin W,D,H and --bin-pose apply to depth images (--dataset), not "
+                     "to a point cloud");
   check_cloud(input);
   require(!input.points.empty(), "the point cloud is empty");
   PointCloud cloud = input;

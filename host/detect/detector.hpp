@@ -16,6 +16,7 @@
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 
+#include "host/detect/bin/bin_fit.hpp"
 #include "host/detect/hypotheses/flat_region.hpp"
 #include "host/detect/hypotheses/hypotheses.hpp"
 #include "host/detect/params/detect_params.hpp"
@@ -98,6 +99,8 @@ class Detector {
   // reason says why), in hypothesis order; and what --roi / --bin found (empty without them).
   const std::vector<Detection>& skipped() const { return skipped_; }
   const std::string& region_report() const { return region_report_; }
+  // Of the last detect() on a depth image: the bin fitted or given, when one was asked for.
+  const std::optional<BinFit>& last_bin() const { return last_bin_; }
   // Of the last detect(): when the first confident pose came and why detection stopped, or "".
   const std::string& rounds_report() const { return rounds_report_; }
   static constexpr std::size_t kMinCropPoints = 10;
@@ -146,6 +149,14 @@ class Detector {
   bool warned_no_bin_ = false;
   const PpfModel& model_;
   DetectParams params_;
+  // The bin asked for: --bin, or the one --bin-pose gives (read once, here).
+  BinSpec bin_spec_;
+  // What identifies it among the fits an image's models share (shared_scene.hpp).
+  std::string bin_key() const {
+    return params_.bin_pose.empty() ? params_.bin : "pose:" + params_.bin_pose;
+  }
+  // The bin of the last depth image's region (when one was asked for).
+  std::optional<BinFit> last_bin_;
   DeviceModel device_model_;
   DeviceFitModel fit_model_;
   // The fit points followed by the look-alikes' probes and the edge probes (lookalike_holes.hpp);

@@ -44,7 +44,7 @@ void append_box(Mesh& mesh, const Box& box) {
     }
 }
 
-BinModel built_in_bin(const V& interior, const BinWalls& walls) {
+BinModel built_in_bin(const V& interior, const BuiltInBinWalls& walls) {
   require(interior.allFinite() && (interior.array() > 0).all(),
           "the bin interior needs three positive sizes");
   require(std::isfinite(walls.wall_mm) && walls.wall_mm >= 0.5 && walls.wall_mm <= 200,

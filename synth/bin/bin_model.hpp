@@ -16,7 +16,7 @@ namespace binpick {
 // `rim_mm` wide (as thick as the walls) running outward around the top of the walls, its upper
 // face level with the walls' tops at the interior height. Defaults: a plastic or steel
 // industrial tote.
-struct BinWalls {
+struct BuiltInBinWalls {
   double wall_mm = 10.0;
   double rim_mm = 25.0;
 };
@@ -36,7 +36,7 @@ struct BinModel {
 
 // Throws InputError unless the interior is positive, the wall is in [0.5, 200] mm and the rim
 // in [0, 500] mm (finite).
-BinModel built_in_bin(const Eigen::Vector3d& interior_mm, const BinWalls& walls);
+BinModel built_in_bin(const Eigen::Vector3d& interior_mm, const BuiltInBinWalls& walls);
 
 // A bin from a mesh already in the world frame and in mm (e.g. load_model of --bin-mesh).
 // Throws InputError for a mesh without triangles or with non-finite positions.

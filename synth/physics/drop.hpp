@@ -24,7 +24,7 @@ struct DropOptions {
   // The bin the parts collide with (synth/bin/bin_model.hpp): `bin` if set (a mesh bin), else
   // the built-in bin with these walls around bin_size_mm. The interior (bin_size_mm) places
   // the drop positions and decides which parts ended in the bin either way.
-  BinWalls walls;
+  BuiltInBinWalls walls;
   std::shared_ptr<const BinModel> bin;
   int objects = 350;
   int grid_x = 7;                 // drop positions along x per wave

@@ -98,6 +98,27 @@ TEST(CameraRig, TiltKeepsTheFloorCentreOnTheAxisAtTheSameDistance) {
   EXPECT_THROW(validate_camera_rig(bad), InputError);
 }
 
+TEST(CameraRig, RollTurnsTheBinInTheImageAboutTheOpticalAxis) {
+  for (const double tilt : {0.0, 25.0}) {
+    const Eigen::Isometry3d plain = world_to_camera(2000, tilt);
+    const Eigen::Isometry3d rolled = world_to_camera(2000, tilt, 30);
+    // The floor's centre stays on the axis at the same distance; the camera stays where it was.
+    EXPECT_TRUE((rolled * Eigen::Vector3d::Zero()).isApprox(Eigen::Vector3d(0, 0, 2000), 1e-9));
+    EXPECT_TRUE(rolled.inverse().translation().isApprox(plain.inverse().translation(), 1e-9));
+    // The bin's x axis, drawn along the image's x without a roll, now rises 30 degrees up the
+    // image (image y points down): counter-clockwise as seen.
+    const Eigen::Vector3d x = rolled.linear() * Eigen::Vector3d::UnitX();
+    EXPECT_NEAR(std::atan2(-x.y(), x.x()) * 180 / M_PI, 30.0, 1e-9) << tilt;
+    EXPECT_NEAR(x.z(), 0.0, 1e-12);
+  }
+  EXPECT_TRUE(world_to_camera(1000, 10, 0).isApprox(world_to_camera(1000, 10)));
+  CameraRig bad;
+  bad.roll_deg = 181;
+  EXPECT_THROW(validate_camera_rig(bad), InputError);
+  bad.roll_deg = std::nan("");
+  EXPECT_THROW(validate_camera_rig(bad), InputError);
+}
+
 TEST(CameraRig, ClippingPlanesEncloseTheBinAtAnyTilt) {
   const BinModel bin = built_in_bin(kInterior, {10, 25});
   for (const double tilt : {0.0, 30.0, -60.0, 80.0}) {

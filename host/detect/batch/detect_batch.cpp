@@ -14,6 +14,7 @@
 #include "host/core/error.hpp"
 #include "host/core/progress.hpp"
 #include "host/core/quantile.hpp"
+#include "host/detect/params/bin_pose_file.hpp"
 #include "host/detect/params/params_file.hpp"
 #include "host/detect/batch/detect_parts.hpp"
 #include "host/detect/shared_scene.hpp"
@@ -266,6 +267,16 @@ std::vector<ObjectDetector> image_detectors(const std::vector<ObjectDetector>& d
   return targeted;
 }
 
+// --save-bin-pose: the bin the image's first model found or was given, written; false if none.
+bool save_bin_pose(const std::vector<ObjectDetector>& detectors, const fs::path& path, int scene,
+                   int im_id, std::ostream* log) {
+  const std::optional<BinFit>& bin = detectors.front().detector->last_bin();
+  if (!bin || !bin->found) return false;
+  write_bin_pose(path, bin->axes, bin->origin, bin->interior);
+  if (log) *log << fmt::format("wrote the bin of scene {} image {} to {}\n", scene, im_id, path.string());
+  return true;
+}
+
 }  // namespace
 
 BatchSummary detect_dataset(Detector& detector, const BatchOptions& opt, std::ostream* log) {
@@ -318,6 +329,8 @@ BatchSummary detect_dataset(const std::vector<ObjectDetector>& detectors, const 
                    depth_path, scene, im_id, start, rows, details, summary,
                    opt.verbose ? log : nullptr);
       ++summary.images;
+      if (!opt.save_bin_pose.empty() && !summary.bin_pose_saved)
+        summary.bin_pose_saved = save_bin_pose(targeted, opt.save_bin_pose, scene, im_id, log);
     }
     // The results part last: its presence marks the scene done.
     write_file_atomically(details_part_file(opt.out, scene), [&](std::ostream& o) { o << details; });
@@ -325,6 +338,11 @@ BatchSummary detect_dataset(const std::vector<ObjectDetector>& detectors, const 
     progress.update(step, fmt::format("scene {}", scene));
   }
 
+  if (!opt.save_bin_pose.empty() && !summary.bin_pose_saved)
+    throw InputError(fmt::format("--save-bin-pose: no bin was found in the {} images detected "
+                                 "({} of them done before and not detected again); nothing "
+                                 "written to {}",
+                                 summary.images, summary.skipped, opt.save_bin_pose.string()));
   // The shard that finds every scene done merges (two finishing at once write the same bytes).
   summary.missing = missing_work(record, done).items.size();
   if (summary.missing == 0) summary.rows = merge_detect_parts(opt.out, scenes);

@@ -44,6 +44,9 @@ struct BatchOptions {
   // --targets: each model detects only in the images that list its obj_id, with their
   // inst_count as its instance budget (detect_targets.hpp); images listing none are skipped.
   std::optional<DetectTargets> targets;
+  // Non-empty: the bin of the first image (in scene order) whose detection found one is written
+  // there as a --bin-pose file (bin_pose_file.hpp); InputError at the end if none had one.
+  std::filesystem::path save_bin_pose;
 };
 
 struct BatchSummary {
@@ -52,6 +55,7 @@ struct BatchSummary {
   std::size_t missing = 0;  // scenes of the batch not done yet (other shards'): OUT not merged
   DetectTimes times;  // of the scenes run now (not the skipped ones)
   double program_build_s = 0;  // the detector's OpenCL program builds, outside every image's time
+  bool bin_pose_saved = false;  // BatchOptions::save_bin_pose written
 };
 
 // The scene ids of DATASET/SPLIT (directories named by a number), ascending. InputError if the

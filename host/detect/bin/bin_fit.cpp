@@ -85,6 +85,14 @@ double side_beyond(const PlaneSamples& s, const Eigen::Vector3d& up, const Eigen
 
 
 
+// The plane and height tolerance: given, or 0.3 % of the median depth and at least 2 mm.
+double fit_tolerance(const PlaneSamples& s, double given) {
+  if (given > 0) return given;
+  std::vector<double> z;
+  for (const auto& p : s.points) z.push_back(p.z());
+  return std::max(2.0, 0.003 * (z.empty() ? 0.0 : quantile(z, 0.5)));
+}
+
 std::string too_narrow(const Eigen::Vector2d& size, double min_side) {
   return fmt::format("the interior found is only {:.1f} x {:.1f} mm (a bin needs {:.1f} each way)",
                      size.x(), size.y(), min_side);
@@ -219,9 +227,7 @@ BinFit fit_bin_in(ocl::Device& dev, const PlaneSamples& s, const BinFitOptions& 
     bin.why = "too few points with depth";
     return bin;
   }
-  std::vector<double> z;
-  for (const auto& p : s.points) z.push_back(p.z());
-  bin.tol = opt.tol > 0 ? opt.tol : std::max(2.0, 0.003 * quantile(z, 0.5));
+  bin.tol = fit_tolerance(s, opt.tol);
 
   PlaneSearch ps;
   ps.tol = float(bin.tol);
@@ -308,7 +314,20 @@ BinFit fit_bin_in(ocl::Device& dev, const PlaneSamples& s, const BinFitOptions& 
 }  // namespace
 
 BinFit fit_bin(ocl::Device& dev, const PlaneSamples& s, const BinFitOptions& opt) {
+  if (opt.spec.mode == BinSpec::Mode::given) return given_bin(opt.spec, s, opt.tol);
   return fit_bin_in(dev, s, opt, nullptr);
+}
+
+BinFit given_bin(const BinSpec& spec, const PlaneSamples& s, double tol) {
+  if (spec.mode != BinSpec::Mode::given) throw std::logic_error("given_bin: no bin given");
+  BinFit bin;
+  bin.found = bin.given = bin.floor_plane = true;
+  bin.axes = spec.R;
+  bin.origin = spec.t;
+  bin.interior = bin.measured = spec.size;
+  bin.samples = s.points.size();
+  bin.tol = fit_tolerance(s, tol);
+  return bin;
 }
 
 RegionBox bin_interior_box(const BinFit& bin, double margin, double above,
@@ -349,6 +368,15 @@ RegionBox roi_box(const RoiSpec& roi, const BinFit* bin) {
 
 std::string describe(const BinFit& bin) {
   if (!bin.found) return "bin: not found (" + bin.why + ")";
+  if (bin.given) {
+    const Eigen::Vector3d up = bin.axes.col(2);
+    return fmt::format(
+        "bin: given (--bin-pose), interior {:.1f} x {:.1f} x {:.1f} mm, floor centre ({:.1f}, "
+        "{:.1f}, {:.1f}) mm, up ({:.4f}, {:.4f}, {:.4f}), tilted {:.1f} deg from the optical "
+        "axis; tolerance {:.1f} mm",
+        bin.interior.x(), bin.interior.y(), bin.interior.z(), bin.origin.x(), bin.origin.y(),
+        bin.origin.z(), up.x(), up.y(), up.z(), bin.tilt_degrees(), bin.tol);
+  }
   const Eigen::Vector3d up = bin.axes.col(2);
   return fmt::format(
       "bin: interior {:.1f} x {:.1f} x {:.1f} mm (seen inside the rim: {:.1f} x {:.1f}), rim "

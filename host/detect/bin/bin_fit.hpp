@@ -50,6 +50,7 @@ struct BinFit {
   Eigen::Vector3d interior = Eigen::Vector3d::Zero();   // W, D, H (mm)
   Eigen::Vector3d measured = Eigen::Vector3d::Zero();   // W, D seen inside the rim; H (sized: as given)
   bool floor_plane = false;  // the floor is a fitted plane (else rim - H or the lowest points)
+  bool given = false;        // placed from a --bin-pose file, not fitted
   // Sides of the rim where neither the rim nor a wall plane was seen ("+a1" ...): the interior
   // there ends at the farthest point seen below the rim, so W or D may be short of the truth.
   std::vector<std::string> unseen_sides;
@@ -67,12 +68,18 @@ struct BinFit {
 };
 
 // Routine: on a point image (xyzw a pixel, w = 0 without data) held on the host; the planes are
-// scored on dev. Never throws for a scene without a bin: found = false and why.
+// scored on dev. Never throws for a scene without a bin: found = false and why. A spec of
+// Mode::given is placed as given, with the tolerance of the image's fit (given_bin).
 BinFit fit_bin(ocl::Device& dev, const std::vector<float>& xyzw, std::uint32_t width,
                std::uint32_t height, const BinFitOptions& opt);
 // The same on the samples of the point image (sample_points; from the device's point image
 // without reading all of it back): the same fit.
 BinFit fit_bin(ocl::Device& dev, const PlaneSamples& samples, const BinFitOptions& opt);
+
+// The bin a spec of Mode::given places (a fixed cell's, bin_pose_file.hpp): found, its floor a
+// plane, the tolerance (tol, or as fit_bin takes it from the samples' median depth) that of a
+// fit in this image.
+BinFit given_bin(const BinSpec& spec, const PlaneSamples& samples, double tol = 0);
 
 // The interior shrunk by margin (mm) on the sides, up to `above` over the rim (parts may pile
 // higher). From floor_clearance (mm) above the floor when it is >= 0: the floor itself is no

@@ -3,6 +3,7 @@
 //   --roi camera:x0,y0,z0,x1,y1,z1   a box in the camera frame (mm)
 //   --roi bin:x0,y0,z0,x1,y1,z1      a box in the bin's frame (mm; needs a bin, bin_fit.hpp)
 //   --bin none | auto | W,D,H        no bin; find it; find a bin of this interior size (mm)
+// and the bin of a fixed cell, given (--bin-pose FILE, bin_pose_file.hpp).
 #pragma once
 
 #include <optional>
@@ -18,8 +19,11 @@ struct RoiSpec {
 };
 
 struct BinSpec {
-  enum class Mode { none, find, sized } mode = Mode::none;
-  Eigen::Vector3d size = Eigen::Vector3d::Zero();  // sized: interior W x D x H (mm)
+  enum class Mode { none, find, sized, given } mode = Mode::none;
+  Eigen::Vector3d size = Eigen::Vector3d::Zero();  // sized, given: interior W x D x H (mm)
+  // given: the bin's frame (bin_fit.hpp) in the camera frame, p_camera = R p_bin + t (mm).
+  Eigen::Matrix3d R = Eigen::Matrix3d::Identity();
+  Eigen::Vector3d t = Eigen::Vector3d::Zero();
 };
 
 // Empty text: no ROI. Otherwise InputError("'TEXT': expected ...") for anything malformed: an

@@ -42,10 +42,12 @@ std::optional<ParamProblem> find_param_problem(const DetectParams& p) {
     return ParamProblem{"instances", double(p.instances), "",
                         "--instances ranks every hypothesis' poses together: it does not go with "
                         "--stop-at-confident or --budget-ms, which take them one at a time"};
-  if (roi && roi->frame == RoiSpec::Frame::bin && bin.mode == BinSpec::Mode::none)
+  if (roi && roi->frame == RoiSpec::Frame::bin && bin.mode == BinSpec::Mode::none &&
+      p.bin_pose.empty())
     return ParamProblem{
         "roi", 0, "",
-        fmt::format("'{}' is in the bin's frame: it needs --bin auto or --bin W,D,H", p.roi)};
+        fmt::format("'{}' is in the bin's frame: it needs --bin auto, --bin W,D,H or --bin-pose",
+                    p.roi)};
   return std::nullopt;
 }
 

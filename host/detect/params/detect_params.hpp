@@ -26,6 +26,7 @@ struct DetectParams {
   // Region: where hypotheses and crops may be.
   std::string roi;
   std::string bin = "auto";
+  std::string bin_pose;  // a bin pose file (bin_pose_file.hpp): the bin given; "": --bin
   double bin_margin = 0.1;
   bool through_walls = false;
   bool over_rim = false;

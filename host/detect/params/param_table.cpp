@@ -50,6 +50,9 @@ const ParamInfo kTable[] = {
     {"bin", &P::bin, {}, "region",
      "the bin: none; auto (find its floor and rim in each depth image); W,D,H (find a bin of "
      "this interior size, mm). Its walls, rim and outside are kept out of hypotheses and crops"},
+    {"bin-pose", &P::bin_pose, {}, "region",
+     "a fixed cell's bin, given: a JSON file of its pose in the camera frame and its interior "
+     "(docs/formats.md), used in every image instead of --bin; empty: --bin"},
     {"bin-margin", &P::bin_margin, {0, 10}, "region",
      "how far the bin's walls and rim are kept out"},
     {"through-walls", &P::through_walls, {}, "region",

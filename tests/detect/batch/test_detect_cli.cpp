@@ -1,7 +1,8 @@
 // `binpick detect` as a user runs it: the results CSV (format, best first, same bytes on a rerun
 // except the time column), resuming a batch, --scenes, --params with the command line winning,
 // the --cloud path, and bad input (missing files, a model of another format version, an all-zero
-// depth image, NaN points) with one clear message and no crash. Also the results CSV reader.
+// depth image, NaN points) with one clear message and no crash; a fixed cell's bin saved and
+// given. Also the results CSV reader.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -13,6 +14,7 @@
 
 #include <fmt/format.h>
 
+#include "host/detect/params/bin_pose_file.hpp"
 #include "host/detect/verify/score.hpp"
 #include "host/formats/bop/bop_files.hpp"
 #include "host/formats/bop/png_image.hpp"
@@ -21,6 +23,8 @@
 #include "host/app/model_options.hpp"
 #include "host/formats/mesh/load_model.hpp"
 #include "host/train/surface_sampling.hpp"
+#include "tests/detect/bin/bin_fit_check.hpp"
+#include "tests/detect/bin/bin_scene.hpp"
 #include "tests/support/cli_run.hpp"
 
 using namespace binpick;
@@ -434,4 +438,64 @@ TEST(ResultsCsv, RoundTripsAndValidates) {
     }
   }
   EXPECT_THROW(bop::read_results_csv(dir / "missing.csv"), InputError);
+}
+
+// A fixed cell's bin: found once and saved (--save-bin-pose), then given (--bin-pose) to every
+// image; refused where it cannot apply, one clear message each.
+TEST_F(DetectCli, BinPoseIsSavedOnceAndGivenToEveryImage) {
+  // Two images of an analytic bin (bin_scene.hpp), tilted and turned, as a BOP dataset.
+  test::BinSceneSpec spec;
+  spec.tilt_deg = 20, spec.yaw_deg = 25;
+  const test::BinScene scene = test::make_bin_scene(spec);
+  const fs::path data = *dir_ / "bin_data";
+  const bp_camera& c = scene.cam;
+  fs::create_directories(data);
+  bop::write_camera(data / "camera.json", {c.fx, c.fy, c.cx, c.cy, c.width, c.height, c.depth_scale});
+  for (int s = 0; s < 2; ++s) {
+    const fs::path sd = data / "test" / fmt::format("{:06d}", s);
+    fs::create_directories(sd / "depth");
+    write_png(sd / "depth" / "000000.png", GrayImage<std::uint16_t>{c.width, c.height, scene.depth.raw});
+    bop::SceneCamera cam;
+    cam.K << c.fx, 0, c.cx, 0, c.fy, c.cy, 0, 0, 1;
+    cam.depth_scale = c.depth_scale;
+    bop::write_scene_cameras(sd / "scene_camera.json", {{0, cam}});
+  }
+  const fs::path pose = *dir_ / "cell_bin.json", out = *dir_ / "bin_pose.csv";
+  const std::string base = fmt::format("detect --model {} --dataset {} --out {} --hypotheses 1 "
+                                       "--more-hypotheses 0 ", model_, data.string(), out.string());
+  auto r = test::run_binpick(base + "--bin 400,300,180 --save-bin-pose " + pose.string());
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.out.find("wrote the bin of scene 0 image 0"), std::string::npos) << r.out;
+  const BinSpec saved = read_bin_pose(pose);
+  EXPECT_LT(test::angle_deg(saved.R.col(2), scene.bin_to_cam.col(2)), 1.0);
+  EXPECT_LT(scene.to_bin(saved.t).norm(), 5.0);
+  EXPECT_EQ(saved.size, Eigen::Vector3d(400, 300, 180));
+
+  fs::remove(out);
+  r = test::run_binpick(base + "--bin-pose " + pose.string() + " --verbose");
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.out.find("bin: given (--bin-pose)"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("a bin found in 2 of 2 images"), std::string::npos) << r.out;
+
+  // Refused: no bin in any image (nothing written), options it does not go with, a bad file.
+  const fs::path nowhere = *dir_ / "no_bin.json";
+  r = test::run_binpick(fmt::format("detect --model {} --dataset {} --out {} --save-bin-pose {}",
+                                    model_, (*dir_ / "data").string(), (*dir_ / "nb.csv").string(),
+                                    nowhere.string()));
+  EXPECT_EQ(r.status, 2) << r.err;
+  EXPECT_NE(r.err.find("--save-bin-pose: no bin was found"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(nowhere));
+  const fs::path bad = *dir_ / "bad_bin.json";
+  { std::ofstream(bad) << R"({"cam_R_bin": [1,0,0,0,1,0,0,0,1], "cam_t_bin": [0,0,1]})"; }
+  for (const auto& [args, message] : std::vector<std::pair<std::string, std::string>>{
+           {"--bin-pose " + (*dir_ / "missing.json").string(), "missing.json"},
+           {"--bin-pose " + bad.string(), "bad_bin.json: \"interior_mm\" is missing"},
+           {"--bin none --save-bin-pose " + nowhere.string(), "it needs --bin auto or --bin W,D,H"},
+           {"--bin-pose " + pose.string() + " --save-bin-pose " + nowhere.string(), "not --bin none or --bin-pose"},
+           {"--shard 1/2 --save-bin-pose " + nowhere.string(), "not with --shard or --slurm"}}) {
+    r = test::run_binpick(base + args);
+    EXPECT_EQ(r.status, 2) << args << "\n" << r.err;
+    EXPECT_NE(r.err.find(message), std::string::npos) << args << "\n" << r.err;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << args << "\n" << r.err;
+  }
 }
