@@ -11,6 +11,7 @@
 
 #include "host/core/angles.hpp"
 #include "host/core/quantile.hpp"
+#include "host/detect/bin/bin_anywhere.hpp"
 #include "host/detect/bin/bin_floor.hpp"
 #include "host/detect/bin/bin_frame.hpp"
 #include "host/detect/bin/bin_ground.hpp"
@@ -311,11 +312,58 @@ BinFit fit_bin_in(ocl::Device& dev, const PlaneSamples& s, const BinFitOptions& 
   return bin;
 }
 
+// Whether a frame found along the border is the bin of the given size: each side seen inside its
+// rim within 10 % of the size given (a side out of view was placed at the size, so agrees).
+bool matches_size(const BinFit& bin, const Eigen::Vector3d& size) {
+  const double w = std::max(size.x(), size.y()), d = std::min(size.x(), size.y());
+  return std::abs(bin.measured.x() - w) <= 0.1 * w && std::abs(bin.measured.y() - d) <= 0.1 * d;
+}
+
+// A bin of the given size anywhere in view (bin_anywhere.hpp), at the planes' candidate ups.
+BinFit fit_sized_anywhere(ocl::Device& dev, const PlaneSamples& s, const BinFitOptions& opt) {
+  BinFit bin;
+  bin.samples = s.points.size();
+  bin.tol = fit_tolerance(s, opt.tol);
+  PlaneSearch ps;
+  ps.tol = float(bin.tol);
+  ps.seed = opt.seed;
+  const std::vector<FoundPlane> planes = find_planes(dev, s, ps);
+  bin.planes = planes.size();
+  std::size_t from_planes = 0;
+  SizedRimSearch search;
+  const Eigen::Vector3d& size = opt.spec.size;
+  search.size = {std::max(size.x(), size.y()), std::min(size.x(), size.y())};
+  search.tol = bin.tol;
+  const SizedRim rim = find_sized_rim(s, plane_ups(s, planes, from_planes), search);
+  if (!rim.found) {
+    bin.why = rim.why;
+    return bin;
+  }
+  bin.found = bin.anywhere = true;
+  Eigen::Vector3d x = rim.a1, y = rim.a2;
+  if (x.x() < 0) x = -x, y = -y;
+  bin.axes.col(0) = x;
+  bin.axes.col(1) = y;
+  bin.axes.col(2) = rim.up;
+  bin.origin = rim.centre.x() * rim.a1 + rim.centre.y() * rim.a2 + (rim.height - size.z()) * rim.up;
+  bin.interior = bin.measured = {search.size.x(), search.size.y(), size.z()};
+  bin.rim_points = rim.points;
+  bin.coverage = rim.coverage;
+  return bin;
+}
+
 }  // namespace
 
 BinFit fit_bin(ocl::Device& dev, const PlaneSamples& s, const BinFitOptions& opt) {
   if (opt.spec.mode == BinSpec::Mode::given) return given_bin(opt.spec, s, opt.tol);
-  return fit_bin_in(dev, s, opt, nullptr);
+  BinFit bin = fit_bin_in(dev, s, opt, nullptr);
+  if (opt.spec.mode != BinSpec::Mode::sized || (bin.found && matches_size(bin, opt.spec.size)))
+    return bin;
+  // The rim along the border is not the bin of this size: look for its rectangle anywhere.
+  const BinFit anywhere = fit_sized_anywhere(dev, s, opt);
+  if (anywhere.found) return anywhere;
+  if (!bin.found) bin.why += "; " + anywhere.why;
+  return bin;
 }
 
 BinFit given_bin(const BinSpec& spec, const PlaneSamples& s, double tol) {
@@ -392,6 +440,10 @@ std::string describe(const BinFit& bin) {
               : fmt::format("; the rim looked for along pixels {}-{} x {}-{}, the ground all "
                             "around",
                             bin.window.u0, bin.window.u1, bin.window.v0, bin.window.v1)) +
+         (bin.anywhere ? fmt::format("; the rim's rectangle found anywhere in view ({:.0f} % of "
+                                     "its perimeter seen)",
+                                     100 * bin.coverage)
+                       : std::string()) +
          (bin.unseen_sides.empty()
               ? std::string()
               : fmt::format("; {} side(s) of the rim unseen, the interior taken to the farthest "

@@ -51,6 +51,10 @@ struct BinFit {
   Eigen::Vector3d measured = Eigen::Vector3d::Zero();   // W, D seen inside the rim; H (sized: as given)
   bool floor_plane = false;  // the floor is a fitted plane (else rim - H or the lowest points)
   bool given = false;        // placed from a --bin-pose file, not fitted
+  // A given size's rectangle found anywhere in view (bin_anywhere.hpp), where the rim along the
+  // border was not that bin; coverage: the share of its perimeter the rim's samples reach.
+  bool anywhere = false;
+  double coverage = 0;
   // Sides of the rim where neither the rim nor a wall plane was seen ("+a1" ...): the interior
   // there ends at the farthest point seen below the rim, so W or D may be short of the truth.
   std::vector<std::string> unseen_sides;

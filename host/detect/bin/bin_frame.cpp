@@ -75,27 +75,6 @@ Eigen::Vector2d seen_widths(const RimFit& rim) {
 
 
 
-// The ups tried first: the normals of the planes that face the camera within 60 degrees and span
-// a quarter of the image both ways (the floor, the rim's plane, a layer of parts), most inliers
-// first, at most kUpCandidates; the optical axis if none. from_planes: how many came from planes
-// (at least 1). The true rim runs along the whole frame at one height only along the true up, so
-// each is tried and the rim with the most samples wins (docs/detect/bin.md, "Up";
-// docs/decisions/2026-11-25-bin-up-best-rim-of-planes.md).
-std::vector<Eigen::Vector3d> plane_ups(const PlaneSamples& s, const std::vector<FoundPlane>& planes,
-                                       std::size_t& from_planes) {
-  std::vector<const FoundPlane*> candidates;
-  for (const FoundPlane& p : planes)
-    if (p.normal.z() <= -std::cos(60 * kDeg) && image_span(s, p) >= 0.25) candidates.push_back(&p);
-  std::stable_sort(candidates.begin(), candidates.end(), [](const FoundPlane* a, const FoundPlane* b) {
-    return a->inliers.size() > b->inliers.size();
-  });
-  if (candidates.size() > kUpCandidates) candidates.resize(kUpCandidates);
-  std::vector<Eigen::Vector3d> ups;
-  for (const FoundPlane* p : candidates) ups.push_back(p->normal);
-  from_planes = std::max<std::size_t>(1, ups.size());
-  if (ups.empty()) ups.push_back(Eigen::Vector3d(0, 0, -1));
-  return ups;
-}
 
 // The rim at `up`, then again with up from the rim's own plane (rim_normal), which is level where
 // the first plane may lean; also when no frame was found at the first up: a floor plane found on
@@ -183,6 +162,28 @@ bool beats(const FrameChoice& best, const RimFit& rim, double need) {
 }
 
 }  // namespace
+
+// The ups tried first: the normals of the planes that face the camera within 60 degrees and span
+// a quarter of the image both ways (the floor, the rim's plane, a layer of parts), most inliers
+// first, at most kUpCandidates; the optical axis if none. from_planes: how many came from planes
+// (at least 1). The true rim runs along the whole frame at one height only along the true up, so
+// each is tried and the rim with the most samples wins (docs/detect/bin.md, "Up";
+// docs/decisions/2026-11-25-bin-up-best-rim-of-planes.md).
+std::vector<Eigen::Vector3d> plane_ups(const PlaneSamples& s, const std::vector<FoundPlane>& planes,
+                                       std::size_t& from_planes) {
+  std::vector<const FoundPlane*> candidates;
+  for (const FoundPlane& p : planes)
+    if (p.normal.z() <= -std::cos(60 * kDeg) && image_span(s, p) >= 0.25) candidates.push_back(&p);
+  std::stable_sort(candidates.begin(), candidates.end(), [](const FoundPlane* a, const FoundPlane* b) {
+    return a->inliers.size() > b->inliers.size();
+  });
+  if (candidates.size() > kUpCandidates) candidates.resize(kUpCandidates);
+  std::vector<Eigen::Vector3d> ups;
+  for (const FoundPlane* p : candidates) ups.push_back(p->normal);
+  from_planes = std::max<std::size_t>(1, ups.size());
+  if (ups.empty()) ups.push_back(Eigen::Vector3d(0, 0, -1));
+  return ups;
+}
 
 // The frame's first axis, a1 = cos(angle) e1 + sin(angle) e2 (bin_rim.hpp).
 Eigen::Vector3d frame_axis(const RimFit& rim, const Eigen::Vector3d& e1, const Eigen::Vector3d& e2) {

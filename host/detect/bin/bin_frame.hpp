@@ -36,6 +36,12 @@ struct FrameSearch {
 FrameSearch choose_frame(const PlaneSamples& s, const std::vector<FoundPlane>& planes,
                          const BinFitOptions& opt, double tol);
 
+// The candidate ups: the normals of the planes facing the camera within 60 degrees and spanning a
+// quarter of the image both ways, most supported first (kUpCandidates of them), else the optical
+// axis; from_planes: how many came from planes (at least 1).
+std::vector<Eigen::Vector3d> plane_ups(const PlaneSamples& s, const std::vector<FoundPlane>& planes,
+                                       std::size_t& from_planes);
+
 // The frame's first axis, a1 = cos(angle) e1 + sin(angle) e2 (bin_rim.hpp).
 Eigen::Vector3d frame_axis(const RimFit& rim, const Eigen::Vector3d& e1, const Eigen::Vector3d& e2);
 
