@@ -23,6 +23,8 @@ struct Candidate {
   double height = 0;  // the slice's middle
   double turn = 0;    // radians: u = cos a + sin b
   double cu = 0, cv = 0;
+  double hw = 0, hd = 0;  // half the interior along u and v
+  int slice = 0;          // the slice it came from (any size: evaluated on that slice's samples)
 };
 
 // Line-ness of a histogram: each bin (3 wide) over the larger of its neighbours a strip width
@@ -55,6 +57,43 @@ std::pair<double, double> best_pair(const std::vector<double>& f, int span, int 
   return {best, middle};
 }
 
+// A pair of strips: min of the two responses, the middle between them and their span (bins).
+struct StripPair {
+  double score = 0, middle = 0;
+  int span = 0;
+};
+
+// Without a size: the best `keep` pairs among the response's 8 highest local peaks, spanning
+// span_lo .. span_hi bins.
+std::vector<StripPair> best_pairs(const std::vector<double>& f, int span_lo, int span_hi,
+                                  std::size_t keep) {
+  std::vector<int> peaks;
+  const int n = int(f.size());
+  for (int i = 0; i < n; ++i) {
+    const double v = f[std::size_t(i)];
+    bool top = v > 0;
+    for (int d = -2; d <= 2 && top; ++d)
+      if (d != 0 && i + d >= 0 && i + d < n)
+        top = d < 0 ? v > f[std::size_t(i + d)] : v >= f[std::size_t(i + d)];
+    if (top) peaks.push_back(i);
+  }
+  std::sort(peaks.begin(), peaks.end(),
+            [&](int a, int b) { return f[std::size_t(a)] > f[std::size_t(b)]; });
+  if (peaks.size() > 8) peaks.resize(8);
+  std::vector<StripPair> pairs;
+  for (std::size_t x = 0; x < peaks.size(); ++x)
+    for (std::size_t y = 0; y < peaks.size(); ++y) {
+      const int span = peaks[y] - peaks[x];
+      if (span < span_lo || span > span_hi) continue;
+      pairs.push_back({std::min(f[std::size_t(peaks[x])], f[std::size_t(peaks[y])]),
+                       peaks[x] + 0.5 * span, span});
+    }
+  std::sort(pairs.begin(), pairs.end(),
+            [](const StripPair& a, const StripPair& b) { return a.score > b.score; });
+  if (pairs.size() > keep) pairs.resize(keep);
+  return pairs;
+}
+
 // The turned coordinates of point i.
 inline Eigen::Vector2d turned(const Projected& p, std::size_t i, double c, double s) {
   return {c * p.a[i] + s * p.b[i], -s * p.a[i] + c * p.b[i]};
@@ -63,11 +102,10 @@ inline Eigen::Vector2d turned(const Projected& p, std::size_t i, double c, doubl
 // The strip's samples about a candidate (within tol of its height, in a band outside the inner
 // edges), by side: 0 +u, 1 -u, 2 +v, 3 -v.
 std::array<std::vector<std::size_t>, 4> strip_sides(const Projected& p, const Candidate& c,
-                                                   const SizedRimSearch& opt) {
+                                                   const RimSearch& opt) {
   std::array<std::vector<std::size_t>, 4> sides;
   const double co = std::cos(c.turn), si = std::sin(c.turn);
-  const double hw = 0.5 * opt.size.x(), hd = 0.5 * opt.size.y(), in = 2 * opt.tol,
-               out = opt.strip + 2 * opt.tol;
+  const double hw = c.hw, hd = c.hd, in = 2 * opt.tol, out = opt.strip + 2 * opt.tol;
   for (std::size_t i = 0; i < p.h.size(); ++i) {
     if (std::abs(p.h[i] - c.height) > opt.tol) continue;
     const Eigen::Vector2d q = turned(p, i, co, si) - Eigen::Vector2d(c.cu, c.cv);
@@ -80,7 +118,7 @@ std::array<std::vector<std::size_t>, 4> strip_sides(const Projected& p, const Ca
 
 // Refines a candidate from its strips: the turn from each side's direction (least squares), the
 // centre midway between opposite strips' medians, the height their median; twice.
-void refine(const Projected& p, Candidate& c, const SizedRimSearch& opt) {
+void refine(const Projected& p, Candidate& c, const RimSearch& opt) {
   for (int pass = 0; pass < 2; ++pass) {
     const auto sides = strip_sides(p, c, opt);
     // The turn: each side's points give the direction of least spread across it.
@@ -119,43 +157,67 @@ void refine(const Projected& p, Candidate& c, const SizedRimSearch& opt) {
       has[std::size_t(k)] = x.size() >= 5;
       if (has[std::size_t(k)]) median[std::size_t(k)] = quantile(x, 0.5);
     }
-    if (has[0] && has[1]) c.cu = 0.5 * (median[0] + median[1]);
-    if (has[2] && has[3]) c.cv = 0.5 * (median[2] + median[3]);
     if (heights.size() >= 10) c.height = quantile(heights, 0.5);
+    if (opt.size.minCoeff() > 0) {  // the size given: the centre midway between the strips
+      if (has[0] && has[1]) c.cu = 0.5 * (median[0] + median[1]);
+      if (has[2] && has[3]) c.cv = 0.5 * (median[2] + median[3]);
+      continue;
+    }
+    // Any size: the inner edges, where each strip's points nearest the inside begin; away from
+    // the corners, where the other sides' strips would pull them in.
+    std::array<double, 4> edge{};
+    for (int k = 0; k < 4; ++k) {
+      std::vector<double> x;
+      const double half = (k < 2 ? c.hd : c.hw) - 2 * opt.tol;
+      for (std::size_t i : again[std::size_t(k)]) {
+        const Eigen::Vector2d q = turned(p, i, co, si);
+        const double along = k < 2 ? q.y() - c.cv : q.x() - c.cu;
+        if (std::abs(along) < half) x.push_back(k < 2 ? q.x() : q.y());
+      }
+      has[std::size_t(k)] = x.size() >= 5;
+      if (has[std::size_t(k)]) edge[std::size_t(k)] = quantile(x, k % 2 == 0 ? 0.05 : 0.95);
+    }
+    if (has[0] && has[1]) c.cu = 0.5 * (edge[0] + edge[1]), c.hw = 0.5 * (edge[0] - edge[1]);
+    if (has[2] && has[3]) c.cv = 0.5 * (edge[2] + edge[3]), c.hd = 0.5 * (edge[2] - edge[3]);
   }
 }
 
-// Share of the perimeter's segments (10 a side) the strip reaches, and its samples.
-std::pair<double, std::size_t> coverage(const Projected& p, const Candidate& c,
-                                        const SizedRimSearch& opt) {
+// The perimeter's segments (10 a side) the strip reaches: their share, the least share of one
+// side, and the strip's samples.
+struct Coverage {
+  double share = 0, least_side = 0;
+  std::size_t points = 0;
+};
+Coverage coverage(const Projected& p, const Candidate& c, const RimSearch& opt) {
   const auto sides = strip_sides(p, c, opt);
   const double co = std::cos(c.turn), si = std::sin(c.turn);
   constexpr int kSegments = 10;
-  int reached = 0;
+  int reached = 0, least = kSegments;
   std::size_t points = 0;
   for (int k = 0; k < 4; ++k) {
     std::array<bool, kSegments> seg{};
-    const double half = k < 2 ? 0.5 * opt.size.y() : 0.5 * opt.size.x();
+    const double half = k < 2 ? c.hd : c.hw;
     for (std::size_t i : sides[std::size_t(k)]) {
       const Eigen::Vector2d q = turned(p, i, co, si) - Eigen::Vector2d(c.cu, c.cv);
       const double along = k < 2 ? q.y() : q.x();
       const int j = int(std::floor((along + half) / (2 * half) * kSegments));
       if (j >= 0 && j < kSegments) seg[std::size_t(j)] = true;
     }
-    reached += int(std::count(seg.begin(), seg.end(), true));
+    const int side = int(std::count(seg.begin(), seg.end(), true));
+    reached += side;
+    least = std::min(least, side);
     points += sides[std::size_t(k)].size();
   }
-  return {double(reached) / (4 * kSegments), points};
+  return {double(reached) / (4 * kSegments), double(least) / kSegments, points};
 }
 
 // How much denser the strip is than the bands just inside and just outside it (kBand wide), at
 // its height: a rim stands alone at its height, while a slice through the ground or a heap is as
 // dense beside the "strip" as on it.
-double strip_contrast(const Projected& p, const Candidate& c, const SizedRimSearch& opt) {
+double strip_contrast(const Projected& p, const Candidate& c, const RimSearch& opt) {
   constexpr double kBand = 50;
   const double co = std::cos(c.turn), si = std::sin(c.turn);
-  const double hw = 0.5 * opt.size.x(), hd = 0.5 * opt.size.y(), in = 2 * opt.tol,
-               out = opt.strip + 2 * opt.tol;
+  const double hw = c.hw, hd = c.hd, in = 2 * opt.tol, out = opt.strip + 2 * opt.tol;
   std::size_t strip = 0, beside = 0;
   for (std::size_t i = 0; i < p.h.size(); ++i) {
     if (std::abs(p.h[i] - c.height) > opt.tol) continue;
@@ -176,13 +238,12 @@ double strip_contrast(const Projected& p, const Candidate& c, const SizedRimSear
 // than 2 tol (a contour through a heap, whose inside stands higher, is no rim: what a bin holds
 // lies below its rim).
 std::pair<double, double> inside_shares(const Projected& p, const Candidate& c,
-                                        const SizedRimSearch& opt) {
+                                        const RimSearch& opt) {
   const double co = std::cos(c.turn), si = std::sin(c.turn);
   std::size_t at = 0, above = 0, inside = 0, slice = 0;
   for (std::size_t i = 0; i < p.h.size(); ++i) {
     const Eigen::Vector2d q = turned(p, i, co, si) - Eigen::Vector2d(c.cu, c.cv);
-    const bool in = std::abs(q.x()) < 0.5 * opt.size.x() - 2 * opt.tol &&
-                    std::abs(q.y()) < 0.5 * opt.size.y() - 2 * opt.tol;
+    const bool in = std::abs(q.x()) < c.hw - 2 * opt.tol && std::abs(q.y()) < c.hd - 2 * opt.tol;
     const bool level = std::abs(p.h[i] - c.height) <= opt.tol;
     slice += level;
     if (!in) continue;
@@ -194,25 +255,59 @@ std::pair<double, double> inside_shares(const Projected& p, const Candidate& c,
           inside ? double(above) / double(inside) : 1.0};
 }
 
-// The best candidates of one up: every slice with enough samples, every turn.
-std::vector<Candidate> candidates_at(const Projected& p, const SizedRimSearch& opt) {
-  std::vector<Candidate> best;
-  constexpr std::size_t kKeep = 8;
-  const double lo = quantile(p.h, 0.001), hi = quantile(p.h, 0.999);
+// What the rectangle holds: samples inside it (2 tol in) more than 3 tol above the lowest of
+// them (1 %), and under its rim.
+std::size_t held(const Projected& p, const Candidate& c, const RimSearch& opt) {
+  const double co = std::cos(c.turn), si = std::sin(c.turn);
+  std::vector<double> inside;
+  for (std::size_t i = 0; i < p.h.size(); ++i) {
+    const Eigen::Vector2d q = turned(p, i, co, si) - Eigen::Vector2d(c.cu, c.cv);
+    if (std::abs(q.x()) < c.hw - 2 * opt.tol && std::abs(q.y()) < c.hd - 2 * opt.tol)
+      inside.push_back(p.h[i]);
+  }
+  if (inside.size() < 20) return 0;
+  const double low = quantile(inside, 0.01);
+  return std::size_t(std::count_if(inside.begin(), inside.end(), [&](double h) {
+    return h > low + 3 * opt.tol && h < c.height - opt.tol;
+  }));
+}
+
+// The samples by height slice: slice j holds [lo + j tol, lo + (j + 2) tol).
+std::vector<std::vector<std::size_t>> height_slices(const Projected& p, const RimSearch& opt,
+                                                    double& lo) {
+  lo = quantile(p.h, 0.001);
+  const double hi = quantile(p.h, 0.999);
   const int slices = int(std::ceil((hi - lo) / opt.tol)) + 1;
-  if (slices <= 0 || slices > 100000) return best;
-  std::vector<std::vector<std::size_t>> in(std::size_t(slices) + 1);
+  std::vector<std::vector<std::size_t>> in;
+  if (slices <= 0 || slices > 100000) return in;
+  in.resize(std::size_t(slices));
   for (std::size_t i = 0; i < p.h.size(); ++i) {
     const int k = int(std::floor((p.h[i] - lo) / opt.tol));
     if (k < 0 || k >= slices) continue;
     in[std::size_t(k)].push_back(i);
-    if (k > 0) in[std::size_t(k - 1)].push_back(i);  // slice j: [lo + j tol, lo + (j + 2) tol)
+    if (k > 0) in[std::size_t(k - 1)].push_back(i);
   }
+  return in;
+}
+
+// The best candidates of one up, every slice with enough samples, every turn: of a given size
+// the 8 best overall; of any size the 2 best of each slice (the ground's slices, dense with
+// strips between holes, would otherwise crowd out the rim's).
+std::vector<Candidate> candidates_at(const Projected& p,
+                                     const std::vector<std::vector<std::size_t>>& in, double lo,
+                                     const RimSearch& opt) {
+  std::vector<Candidate> best, of_slice;
+  const bool sized = opt.size.minCoeff() > 0;
+  const std::size_t keep = sized ? 8 : 2;
+  const int slices = int(in.size());
   const int away = std::max(2, int(std::lround(2 * opt.tol / opt.cell)) + 2);
   const int extra = int(std::ceil(opt.strip / opt.cell));
+  std::vector<Candidate> all;
   for (int j = 0; j < slices; ++j) {
     const std::vector<std::size_t>& idx = in[std::size_t(j)];
     if (idx.size() < opt.min_slice) continue;
+    of_slice.clear();
+    std::vector<Candidate>& list = sized ? best : of_slice;
     for (double deg = 0; deg < 180; deg += opt.turn_step_deg) {
       const double t = deg * kDeg, co = std::cos(t), si = std::sin(t);
       std::vector<double> u, v;
@@ -223,41 +318,60 @@ std::vector<Candidate> candidates_at(const Projected& p, const SizedRimSearch& o
       }
       const auto [u0, u1] = std::minmax_element(u.begin(), u.end());
       const auto [v0, v1] = std::minmax_element(v.begin(), v.end());
-      if (*u1 - *u0 < opt.size.x() || *v1 - *v0 < opt.size.y()) continue;  // too small
+      const double smallest = sized ? opt.size.y() : opt.min_side;
+      if (*u1 - *u0 < smallest || *v1 - *v0 < smallest) continue;  // too small
       const auto histogram = [&](const std::vector<double>& x, double x0, double x1) {
         std::vector<int> h(std::size_t((x1 - x0) / opt.cell) + 1, 0);
         for (double xi : x) ++h[std::size_t((xi - x0) / opt.cell)];
         return h;
       };
-      const auto [su, mu] = best_pair(strip_response(histogram(u, *u0, *u1), away),
-                                      int(opt.size.x() / opt.cell), extra);
-      if (su <= 0) continue;
-      const auto [sv, mv] = best_pair(strip_response(histogram(v, *v0, *v1), away),
-                                      int(opt.size.y() / opt.cell), extra);
-      if (sv <= 0) continue;
-      Candidate c;
-      c.score = su + sv;
-      c.height = lo + (j + 1) * opt.tol;
-      c.turn = t;
-      c.cu = *u0 + (mu + 0.5) * opt.cell;
-      c.cv = *v0 + (mv + 0.5) * opt.cell;
-      if (best.size() == kKeep && c.score <= best.back().score) continue;
-      best.push_back(c);
-      std::sort(best.begin(), best.end(),
-                [](const Candidate& x, const Candidate& y) { return x.score > y.score; });
-      if (best.size() > kKeep) best.pop_back();
+      const std::vector<double> fu = strip_response(histogram(u, *u0, *u1), away);
+      const std::vector<double> fv = strip_response(histogram(v, *v0, *v1), away);
+      std::vector<StripPair> pu, pv;
+      if (sized) {
+        const auto [su, mu] = best_pair(fu, int(opt.size.x() / opt.cell), extra);
+        const auto [sv, mv] = best_pair(fv, int(opt.size.y() / opt.cell), extra);
+        if (su > 0 && sv > 0) pu = {{su, mu, 0}}, pv = {{sv, mv, 0}};
+      } else {
+        const int lo_span = int(opt.min_side / opt.cell), hi_span = int(opt.max_side / opt.cell) + extra;
+        pu = best_pairs(fu, lo_span, hi_span, 3);
+        pv = best_pairs(fv, lo_span, hi_span, 3);
+      }
+      for (const StripPair& a : pu)
+        for (const StripPair& b : pv) {
+          Candidate c;
+          c.score = a.score + b.score;
+          c.height = lo + (j + 1) * opt.tol;
+          c.turn = t;
+          c.cu = *u0 + (a.middle + 0.5) * opt.cell;
+          c.cv = *v0 + (b.middle + 0.5) * opt.cell;
+          // Sized: the inner edges at the size. Any: the strips' middles less a thin strip's
+          // half, refined from the strips.
+          c.hw = sized ? 0.5 * opt.size.x() : std::max(0.0, 0.5 * a.span * opt.cell - 10);
+          c.hd = sized ? 0.5 * opt.size.y() : std::max(0.0, 0.5 * b.span * opt.cell - 10);
+          c.slice = j;
+          if (list.size() == keep && c.score <= list.back().score) continue;
+          list.push_back(c);
+          std::sort(list.begin(), list.end(),
+                    [](const Candidate& x, const Candidate& y) { return x.score > y.score; });
+          if (list.size() > keep) list.pop_back();
+        }
     }
+    all.insert(all.end(), of_slice.begin(), of_slice.end());
   }
-  return best;
+  return sized ? best : all;
 }
 
 }  // namespace
 
-SizedRim find_sized_rim(const PlaneSamples& s, const std::vector<Eigen::Vector3d>& ups,
-                        const SizedRimSearch& opt) {
-  SizedRim out;
-  out.why = "no rectangle of the given size at one height anywhere in view";
-  if (!(opt.size.minCoeff() > 0) || s.points.size() < opt.min_slice) return out;
+AnywhereRim find_rim_anywhere(const PlaneSamples& s, const std::vector<Eigen::Vector3d>& ups,
+                        const RimSearch& opt) {
+  AnywhereRim out;
+  const bool sized = opt.size.minCoeff() > 0;
+  out.why = sized ? "no rectangle of the given size at one height anywhere in view"
+                  : "no rim's rectangle at one height anywhere in view";
+  if (s.points.size() < opt.min_slice || !(opt.min_side > 0 && opt.max_side >= opt.min_side))
+    return out;
   for (const Eigen::Vector3d& up_in : ups) {
     const Eigen::Vector3d up = up_in.normalized();
     Eigen::Vector3d e1 = Eigen::Vector3d::UnitX() - up.x() * up;
@@ -269,13 +383,37 @@ SizedRim find_sized_rim(const PlaneSamples& s, const std::vector<Eigen::Vector3d
       const Eigen::Vector3d q = pf.cast<double>();
       p.a.push_back(e1.dot(q)), p.b.push_back(e2.dot(q)), p.h.push_back(up.dot(q));
     }
-    for (Candidate c : candidates_at(p, opt)) {
-      refine(p, c, opt);
-      const auto [cov, points] = coverage(p, c, opt);
-      if (cov < opt.min_coverage || cov <= out.coverage) continue;
-      const auto [level, above] = inside_shares(p, c, opt);
-      if (level > 0.3 || above > opt.max_above || strip_contrast(p, c, opt) < opt.min_contrast)
+    double lo = 0;
+    const std::vector<std::vector<std::size_t>> slices = height_slices(p, opt, lo);
+    for (Candidate c : candidates_at(p, slices, lo, opt)) {
+      // Any size: refined and judged on its slice's samples first (many candidates), on all
+      // of them only for what stands inside.
+      Projected slice;
+      if (!sized)
+        for (std::size_t i : slices[std::size_t(c.slice)])
+          slice.a.push_back(p.a[i]), slice.b.push_back(p.b[i]), slice.h.push_back(p.h[i]);
+      const Projected& near = sized ? p : slice;
+      refine(near, c, opt);
+      if (!sized && !(2 * std::min(c.hw, c.hd) >= opt.min_side &&
+                      2 * std::max(c.hw, c.hd) <= opt.max_side))
         continue;
+      const Coverage cover = coverage(near, c, opt);
+      const double cov = cover.share;
+      // Any size: every side must show (a rectangle stretched to clutter beside the bin has two
+      // sides half empty).
+      if (cov < opt.min_coverage || (!sized && cover.least_side < opt.min_side_coverage)) continue;
+      // Sized: the most perimeter. Any size: the most perimeter, but within 10 % of it the most
+      // held (the bin with parts before an empty tray).
+      const std::size_t holds = sized ? 0 : held(p, c, opt);
+      if (out.found && (sized || std::abs(cov - out.coverage) > 0.1
+                            ? cov <= out.coverage
+                            : holds <= out.held))
+        continue;
+      if (strip_contrast(near, c, opt) < opt.min_contrast) continue;
+      const auto [level, above] = inside_shares(p, c, opt);
+      if (level > 0.3 || above > opt.max_above) continue;
+      out.held = holds;
+      out.size = {2 * c.hw, 2 * c.hd};
       out.found = true;
       out.why.clear();
       out.up = up;
@@ -284,7 +422,7 @@ SizedRim find_sized_rim(const PlaneSamples& s, const std::vector<Eigen::Vector3d
       out.centre = {c.cu, c.cv};
       out.height = c.height;
       out.coverage = cov;
-      out.points = points;
+      out.points = cover.points;
     }
   }
   return out;

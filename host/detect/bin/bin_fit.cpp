@@ -319,8 +319,10 @@ bool matches_size(const BinFit& bin, const Eigen::Vector3d& size) {
   return std::abs(bin.measured.x() - w) <= 0.1 * w && std::abs(bin.measured.y() - d) <= 0.1 * d;
 }
 
-// A bin of the given size anywhere in view (bin_anywhere.hpp), at the planes' candidate ups.
-BinFit fit_sized_anywhere(ocl::Device& dev, const PlaneSamples& s, const BinFitOptions& opt) {
+// A bin anywhere in view (bin_anywhere.hpp), at the planes' candidate ups: of the size given,
+// its floor the rim less H; of any size, its floor the level plane under it or its lowest points,
+// as fit_bin_in's.
+BinFit fit_anywhere(ocl::Device& dev, const PlaneSamples& s, const BinFitOptions& opt) {
   BinFit bin;
   bin.samples = s.points.size();
   bin.tol = fit_tolerance(s, opt.tol);
@@ -330,23 +332,54 @@ BinFit fit_sized_anywhere(ocl::Device& dev, const PlaneSamples& s, const BinFitO
   const std::vector<FoundPlane> planes = find_planes(dev, s, ps);
   bin.planes = planes.size();
   std::size_t from_planes = 0;
-  SizedRimSearch search;
+  RimSearch search;
+  const bool sized = opt.spec.mode == BinSpec::Mode::sized;
   const Eigen::Vector3d& size = opt.spec.size;
-  search.size = {std::max(size.x(), size.y()), std::min(size.x(), size.y())};
+  if (sized) search.size = {std::max(size.x(), size.y()), std::min(size.x(), size.y())};
+  // Without a size, a frame anywhere is a weaker clue than one along the border (a pile's top
+  // layer shows rectangles of part edges at one height): it must be able to hold a pile, two
+  // parts wide and, below, a part and a half deep, and 100 mm both ways.
+  search.min_side = sized ? std::max(opt.min_side, 100.0) : std::max(2 * opt.min_side, 100.0);
+  const double min_depth = std::max({3 * search.tol, 3 * opt.min_height, 100.0});
   search.tol = bin.tol;
-  const SizedRim rim = find_sized_rim(s, plane_ups(s, planes, from_planes), search);
+  const AnywhereRim rim = find_rim_anywhere(s, plane_ups(s, planes, from_planes), search);
   if (!rim.found) {
     bin.why = rim.why;
     return bin;
   }
-  bin.found = bin.anywhere = true;
+  // x along the longer side, pointing to the camera's right.
   Eigen::Vector3d x = rim.a1, y = rim.a2;
+  Eigen::Vector2d wd = rim.size;
+  if (wd.y() > wd.x()) x = rim.a2, y = -rim.a1, std::swap(wd.x(), wd.y());
   if (x.x() < 0) x = -x, y = -y;
+  double floor_h = sized ? rim.height - size.z() : 0.0;
+  if (!sized) {
+    const std::array<double, 4> edge = {rim.centre.x() - 0.5 * rim.size.x(),
+                                        rim.centre.x() + 0.5 * rim.size.x(),
+                                        rim.centre.y() - 0.5 * rim.size.y(),
+                                        rim.centre.y() + 0.5 * rim.size.y()};
+    const FloorUnder under =
+        floor_under(s, planes, rim.up, rim.a1, rim.a2, edge, rim.height, bin.tol, opt.noise);
+    bin.floor_plane = under.plane.has_value();
+    if (!under.plane && under.heights.size() < 20) {
+      bin.why = "no points inside the rim found anywhere in view";
+      return bin;
+    }
+    floor_h = under.plane ? *under.plane
+                          : under.heights[under.heights.size() / 1000] + 3 * opt.noise;
+    if (!(rim.height - floor_h > min_depth)) {
+      bin.why = fmt::format("the rim found anywhere in view is only {:.1f} mm over its floor (a bin "
+                            "found there needs {:.1f})",
+                            rim.height - floor_h, min_depth);
+      return bin;
+    }
+  }
+  bin.found = bin.anywhere = true;
   bin.axes.col(0) = x;
   bin.axes.col(1) = y;
   bin.axes.col(2) = rim.up;
-  bin.origin = rim.centre.x() * rim.a1 + rim.centre.y() * rim.a2 + (rim.height - size.z()) * rim.up;
-  bin.interior = bin.measured = {search.size.x(), search.size.y(), size.z()};
+  bin.origin = rim.centre.x() * rim.a1 + rim.centre.y() * rim.a2 + floor_h * rim.up;
+  bin.interior = bin.measured = {wd.x(), wd.y(), rim.height - floor_h};
   bin.rim_points = rim.points;
   bin.coverage = rim.coverage;
   return bin;
@@ -357,10 +390,14 @@ BinFit fit_sized_anywhere(ocl::Device& dev, const PlaneSamples& s, const BinFitO
 BinFit fit_bin(ocl::Device& dev, const PlaneSamples& s, const BinFitOptions& opt) {
   if (opt.spec.mode == BinSpec::Mode::given) return given_bin(opt.spec, s, opt.tol);
   BinFit bin = fit_bin_in(dev, s, opt, nullptr);
-  if (opt.spec.mode != BinSpec::Mode::sized || (bin.found && matches_size(bin, opt.spec.size)))
+  // A frame along the border stands when it is of the size given, or (any size) when the rim
+  // was seen on every side: a side placed at the farthest point below the rim may be a cell's
+  // clutter taken for the bin's inside.
+  const bool sized = opt.spec.mode == BinSpec::Mode::sized;
+  if (bin.found && (sized ? matches_size(bin, opt.spec.size) : bin.unseen_sides.empty()))
     return bin;
-  // The rim along the border is not the bin of this size: look for its rectangle anywhere.
-  const BinFit anywhere = fit_sized_anywhere(dev, s, opt);
+  // The rim along the border is no bin (of this size): look for its rectangle anywhere.
+  const BinFit anywhere = fit_anywhere(dev, s, opt);
   if (anywhere.found) return anywhere;
   if (!bin.found) bin.why += "; " + anywhere.why;
   return bin;

@@ -15,7 +15,9 @@
 // given size, or, with neither rim nor wall seen there, at the farthest point seen below the rim);
 // the floor = the plane parallel to up with the most points inside that rectangle, below the rim
 // (else the lowest points inside it). With a given size, the rim and its rectangle's centre and
-// orientation are found the same way and the floor is the rim minus H.
+// orientation are found the same way and the floor is the rim minus H. Where the border gives no
+// bin (of the size given; without one, with every side seen) the rim's rectangle is searched
+// anywhere in view (bin_anywhere.hpp).
 #pragma once
 
 #include <cstdint>
@@ -51,8 +53,8 @@ struct BinFit {
   Eigen::Vector3d measured = Eigen::Vector3d::Zero();   // W, D seen inside the rim; H (sized: as given)
   bool floor_plane = false;  // the floor is a fitted plane (else rim - H or the lowest points)
   bool given = false;        // placed from a --bin-pose file, not fitted
-  // A given size's rectangle found anywhere in view (bin_anywhere.hpp), where the rim along the
-  // border was not that bin; coverage: the share of its perimeter the rim's samples reach.
+  // The rim's rectangle found anywhere in view (bin_anywhere.hpp), where the rim along the border
+  // was no bin; coverage: the share of its perimeter the rim's samples reach.
   bool anywhere = false;
   double coverage = 0;
   // Sides of the rim where neither the rim nor a wall plane was seen ("+a1" ...): the interior

@@ -1,5 +1,5 @@
-// A bin of a given size found anywhere in view (host/detect/bin/bin_anywhere.cpp, through
-// fit_bin with --bin W,D,H): small in the image, turned, tilted, in front of clutter that stands
+// A bin found anywhere in view (host/detect/bin/bin_anywhere.cpp, through fit_bin with
+// --bin W,D,H and --bin auto): small in the image, turned, tilted, in front of clutter that stands
 // higher than its rim; and no bin said where there is none.
 #include <gtest/gtest.h>
 
@@ -36,12 +36,25 @@ TEST(BinAnywhere, FindsASmallTurnedBinInFrontOfClutterFromItsSize) {
   }
 }
 
-TEST(BinAnywhere, NoBinOfThatSizeIsSaidNotGuessed) {
+TEST(BinAnywhere, FindsASmallTurnedBinInFrontOfClutterWithoutItsSize) {
+  for (const auto& [tilt, yaw] : {std::pair{25.0, 25.0}, {15.0, -35.0}, {0.0, 40.0}}) {
+    SCOPED_TRACE(testing::Message() << "tilt " << tilt << " yaw " << yaw);
+    const BinSceneSpec s = cell_spec(tilt, yaw);
+    const BinScene scene = make_bin_scene(s);
+    const BinFit b = fit(scene, {BinSpec::Mode::find, {}});
+    expect_matches(b, scene, s, true);
+    EXPECT_TRUE(b.anywhere);
+  }
+}
+
+TEST(BinAnywhere, NoBinIsSaidWhereThereIsNone) {
   // A heap on the ground, and the cell without its bin (only the walls' clutter).
   for (int k = 0; k < 2; ++k) {
     BinSceneSpec s = k == 0 ? heap_spec(3) : cell_spec(20, 10);
     if (k == 1) s.W = 0.5, s.D = 0.5, s.H = 0.5, s.wall = 0, s.spheres.clear();
-    const BinFit b = fit(make_bin_scene(s), {BinSpec::Mode::sized, {400, 300, 180}});
-    EXPECT_FALSE(b.found) << describe(b);
+    for (const BinSpec& spec : {BinSpec{BinSpec::Mode::sized, {400, 300, 180}}, BinSpec{BinSpec::Mode::find, {}}}) {
+      const BinFit b = fit(make_bin_scene(s), spec);
+      EXPECT_FALSE(b.found) << describe(b);
+    }
   }
 }
