@@ -7,6 +7,7 @@
 #include <fmt/format.h>
 
 #include "host/core/angles.hpp"
+#include "host/core/two_halves.hpp"
 #include "host/core/quantile.hpp"
 
 namespace binpick {
@@ -290,76 +291,111 @@ std::vector<std::vector<std::size_t>> height_slices(const Projected& p, const Ri
   return in;
 }
 
+// Keeps the `keep` best-scoring candidates in `list` (best first).
+void offer(std::vector<Candidate>& list, const Candidate& c, std::size_t keep) {
+  if (list.size() == keep && c.score <= list.back().score) return;
+  list.insert(std::upper_bound(list.begin(), list.end(), c,
+                               [](const Candidate& x, const Candidate& y) { return x.score > y.score; }),
+              c);
+  if (list.size() > keep) list.pop_back();
+}
+
+// The best candidates of slice j (samples idx, its middle `height`) over every turn: `keep` of
+// them. u: scratch.
+std::vector<Candidate> slice_candidates(const Projected& p, const std::vector<std::size_t>& idx,
+                                        int j, double height, const RimSearch& opt,
+                                        std::size_t keep, std::vector<double>& u) {
+  std::vector<Candidate> list;
+  const bool sized = opt.size.minCoeff() > 0;
+  const int away = std::max(2, int(std::lround(2 * opt.tol / opt.cell)) + 2);
+  const int extra = int(std::ceil(opt.strip / opt.cell));
+  const double smallest = sized ? opt.size.y() : opt.min_side;
+  const auto histogram = [&](const std::vector<double>& x, double x0, double x1) {
+    std::vector<int> h(std::size_t((x1 - x0) / opt.cell) + 1, 0);
+    for (double xi : x) ++h[std::size_t((xi - x0) / opt.cell)];
+    return h;
+  };
+  // The strips across u at each turn; across v at turn t they are those across u at t + 90
+  // degrees (at t - 90, mirrored), so each turn's histogram serves twice.
+  const int turns = std::max(2, 2 * int(std::lround(90 / opt.turn_step_deg)));
+  const int quarter = turns / 2;
+  std::vector<std::vector<double>> response(static_cast<std::size_t>(turns));
+  std::vector<double> lo(static_cast<std::size_t>(turns)), hi(static_cast<std::size_t>(turns));
+  for (int k = 0; k < turns; ++k) {
+    const double t = k * std::numbers::pi / turns, co = std::cos(t), si = std::sin(t);
+    u.clear();
+    for (std::size_t i : idx) u.push_back(co * p.a[i] + si * p.b[i]);
+    const auto [u0, u1] = std::minmax_element(u.begin(), u.end());
+    lo[std::size_t(k)] = *u0, hi[std::size_t(k)] = *u1;
+    if (*u1 - *u0 >= smallest) response[std::size_t(k)] = strip_response(histogram(u, *u0, *u1), away);
+  }
+  for (int k = 0; k < turns; ++k) {
+    const double t = k * std::numbers::pi / turns;
+    const int m = k < quarter ? k + quarter : k - quarter;
+    const std::vector<double>& fu = response[std::size_t(k)];
+    if (fu.empty() || response[std::size_t(m)].empty()) continue;  // too small
+    std::vector<double> fv = response[std::size_t(m)];
+    const double u_start = lo[std::size_t(k)];
+    double v_start = lo[std::size_t(m)];
+    if (k >= quarter) {  // v = -u at t - 90: the bins reversed
+      std::reverse(fv.begin(), fv.end());
+      v_start = -lo[std::size_t(m)] - double(fv.size()) * opt.cell;
+    }
+    std::vector<StripPair> pu, pv;
+    if (sized) {
+      const auto [su, mu] = best_pair(fu, int(opt.size.x() / opt.cell), extra);
+      const auto [sv, mv] = best_pair(fv, int(opt.size.y() / opt.cell), extra);
+      if (su > 0 && sv > 0) pu = {{su, mu, 0}}, pv = {{sv, mv, 0}};
+    } else {
+      const int lo_span = int(opt.min_side / opt.cell), hi_span = int(opt.max_side / opt.cell) + extra;
+      pu = best_pairs(fu, lo_span, hi_span, 3);
+      pv = best_pairs(fv, lo_span, hi_span, 3);
+    }
+    for (const StripPair& a : pu)
+      for (const StripPair& b : pv) {
+        Candidate c;
+        c.score = a.score + b.score;
+        c.height = height;
+        c.turn = t;
+        c.cu = u_start + (a.middle + 0.5) * opt.cell;
+        c.cv = v_start + (b.middle + 0.5) * opt.cell;
+        // Sized: the inner edges at the size. Any: the strips' middles less a thin strip's
+        // half, refined from the strips.
+        c.hw = sized ? 0.5 * opt.size.x() : std::max(0.0, 0.5 * a.span * opt.cell - 10);
+        c.hd = sized ? 0.5 * opt.size.y() : std::max(0.0, 0.5 * b.span * opt.cell - 10);
+        c.slice = j;
+        offer(list, c, keep);
+      }
+  }
+  return list;
+}
+
 // The best candidates of one up, every slice with enough samples, every turn: of a given size
 // the 8 best overall; of any size the 2 best of each slice (the ground's slices, dense with
-// strips between holes, would otherwise crowd out the rim's).
+// strips between holes, would otherwise crowd out the rim's). The slices on two threads (even
+// ones here, odd ones on the other), merged in slice order: the same result as one thread's.
 std::vector<Candidate> candidates_at(const Projected& p,
                                      const std::vector<std::vector<std::size_t>>& in, double lo,
                                      const RimSearch& opt) {
-  std::vector<Candidate> best, of_slice;
   const bool sized = opt.size.minCoeff() > 0;
-  const std::size_t keep = sized ? 8 : 2;
-  const int slices = int(in.size());
-  const int away = std::max(2, int(std::lround(2 * opt.tol / opt.cell)) + 2);
-  const int extra = int(std::ceil(opt.strip / opt.cell));
-  std::vector<Candidate> all;
-  for (int j = 0; j < slices; ++j) {
-    const std::vector<std::size_t>& idx = in[std::size_t(j)];
-    if (idx.size() < opt.min_slice) continue;
-    of_slice.clear();
-    std::vector<Candidate>& list = sized ? best : of_slice;
-    for (double deg = 0; deg < 180; deg += opt.turn_step_deg) {
-      const double t = deg * kDeg, co = std::cos(t), si = std::sin(t);
-      std::vector<double> u, v;
-      u.reserve(idx.size()), v.reserve(idx.size());
-      for (std::size_t i : idx) {
-        const Eigen::Vector2d q = turned(p, i, co, si);
-        u.push_back(q.x()), v.push_back(q.y());
-      }
-      const auto [u0, u1] = std::minmax_element(u.begin(), u.end());
-      const auto [v0, v1] = std::minmax_element(v.begin(), v.end());
-      const double smallest = sized ? opt.size.y() : opt.min_side;
-      if (*u1 - *u0 < smallest || *v1 - *v0 < smallest) continue;  // too small
-      const auto histogram = [&](const std::vector<double>& x, double x0, double x1) {
-        std::vector<int> h(std::size_t((x1 - x0) / opt.cell) + 1, 0);
-        for (double xi : x) ++h[std::size_t((xi - x0) / opt.cell)];
-        return h;
-      };
-      const std::vector<double> fu = strip_response(histogram(u, *u0, *u1), away);
-      const std::vector<double> fv = strip_response(histogram(v, *v0, *v1), away);
-      std::vector<StripPair> pu, pv;
-      if (sized) {
-        const auto [su, mu] = best_pair(fu, int(opt.size.x() / opt.cell), extra);
-        const auto [sv, mv] = best_pair(fv, int(opt.size.y() / opt.cell), extra);
-        if (su > 0 && sv > 0) pu = {{su, mu, 0}}, pv = {{sv, mv, 0}};
-      } else {
-        const int lo_span = int(opt.min_side / opt.cell), hi_span = int(opt.max_side / opt.cell) + extra;
-        pu = best_pairs(fu, lo_span, hi_span, 3);
-        pv = best_pairs(fv, lo_span, hi_span, 3);
-      }
-      for (const StripPair& a : pu)
-        for (const StripPair& b : pv) {
-          Candidate c;
-          c.score = a.score + b.score;
-          c.height = lo + (j + 1) * opt.tol;
-          c.turn = t;
-          c.cu = *u0 + (a.middle + 0.5) * opt.cell;
-          c.cv = *v0 + (b.middle + 0.5) * opt.cell;
-          // Sized: the inner edges at the size. Any: the strips' middles less a thin strip's
-          // half, refined from the strips.
-          c.hw = sized ? 0.5 * opt.size.x() : std::max(0.0, 0.5 * a.span * opt.cell - 10);
-          c.hd = sized ? 0.5 * opt.size.y() : std::max(0.0, 0.5 * b.span * opt.cell - 10);
-          c.slice = j;
-          if (list.size() == keep && c.score <= list.back().score) continue;
-          list.push_back(c);
-          std::sort(list.begin(), list.end(),
-                    [](const Candidate& x, const Candidate& y) { return x.score > y.score; });
-          if (list.size() > keep) list.pop_back();
-        }
+  const std::size_t keep = sized ? 8 : 2, slices = in.size();
+  std::vector<std::vector<Candidate>> of_slice(slices);
+  const std::size_t evens = (slices + 1) / 2;
+  in_two_halves(2 * evens, [&](std::size_t first, std::size_t last) {
+    std::vector<double> u;
+    for (std::size_t k = first; k < last; ++k) {
+      const std::size_t j = k < evens ? 2 * k : 2 * (k - evens) + 1;
+      if (j >= slices || in[j].size() < opt.min_slice) continue;
+      of_slice[j] = slice_candidates(p, in[j], int(j), lo + double(j + 1) * opt.tol, opt, keep, u);
     }
-    all.insert(all.end(), of_slice.begin(), of_slice.end());
-  }
-  return sized ? best : all;
+  });
+  std::vector<Candidate> all;
+  for (const std::vector<Candidate>& list : of_slice)
+    for (const Candidate& c : list) {
+      if (sized) offer(all, c, keep);
+      else all.push_back(c);
+    }
+  return all;
 }
 
 }  // namespace
@@ -402,14 +438,14 @@ AnywhereRim find_rim_anywhere(const PlaneSamples& s, const std::vector<Eigen::Ve
       // Any size: every side must show (a rectangle stretched to clutter beside the bin has two
       // sides half empty).
       if (cov < opt.min_coverage || (!sized && cover.least_side < opt.min_side_coverage)) continue;
+      if (strip_contrast(near, c, opt) < opt.min_contrast) continue;
       // Sized: the most perimeter. Any size: the most perimeter, but within 10 % of it the most
-      // held (the bin with parts before an empty tray).
+      // held (the bin with parts before an empty tray). These two look at every sample: last.
       const std::size_t holds = sized ? 0 : held(p, c, opt);
       if (out.found && (sized || std::abs(cov - out.coverage) > 0.1
                             ? cov <= out.coverage
                             : holds <= out.held))
         continue;
-      if (strip_contrast(near, c, opt) < opt.min_contrast) continue;
       const auto [level, above] = inside_shares(p, c, opt);
       if (level > 0.3 || above > opt.max_above) continue;
       out.held = holds;
