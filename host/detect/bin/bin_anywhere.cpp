@@ -440,11 +440,12 @@ AnywhereRim find_rim_anywhere(const PlaneSamples& s, const std::vector<Eigen::Ve
       if (cov < opt.min_coverage || (!sized && cover.least_side < opt.min_side_coverage)) continue;
       if (strip_contrast(near, c, opt) < opt.min_contrast) continue;
       // Sized: the most perimeter. Any size: the most perimeter, but within 10 % of it the most
-      // held (the bin with parts before an empty tray). These two look at every sample: last.
+      // held (the bin with parts before an empty tray), then the highest (a slice through the
+      // walls below the rim shows the same ring). These two look at every sample: last.
       const std::size_t holds = sized ? 0 : held(p, c, opt);
-      if (out.found && (sized || std::abs(cov - out.coverage) > 0.1
-                            ? cov <= out.coverage
-                            : holds <= out.held))
+      if (out.found && (sized || std::abs(cov - out.coverage) > 0.1 ? cov <= out.coverage
+                        : holds != out.held                        ? holds < out.held
+                                                                   : c.height <= out.height))
         continue;
       const auto [level, above] = inside_shares(p, c, opt);
       if (level > 0.3 || above > opt.max_above) continue;

@@ -319,6 +319,22 @@ bool matches_size(const BinFit& bin, const Eigen::Vector3d& size) {
   return std::abs(bin.measured.x() - w) <= 0.1 * w && std::abs(bin.measured.y() - d) <= 0.1 * d;
 }
 
+// Whether the bin holds something: of the samples inside it (2 tol in from the walls), at least
+// 20 and 2 % lie more than 3 tol above its floor and under its rim.
+bool holds_something(const BinFit& bin, const PlaneSamples& s) {
+  std::size_t inside = 0, held = 0;
+  const double t = bin.tol;
+  for (const Eigen::Vector3f& pf : s.points) {
+    const Eigen::Vector3d q = bin.axes.transpose() * (pf.cast<double>() - bin.origin);
+    if (std::abs(q.x()) > 0.5 * bin.interior.x() - 2 * t ||
+        std::abs(q.y()) > 0.5 * bin.interior.y() - 2 * t || q.z() > bin.interior.z() - t)
+      continue;
+    ++inside;
+    held += q.z() > 3 * t;
+  }
+  return held >= 20 && double(held) >= 0.02 * double(inside);
+}
+
 // A bin anywhere in view (bin_anywhere.hpp), at the planes' candidate ups: of the size given,
 // its floor the rim less H; of any size, its floor the level plane under it or its lowest points,
 // as fit_bin_in's.
@@ -392,9 +408,11 @@ BinFit fit_bin(ocl::Device& dev, const PlaneSamples& s, const BinFitOptions& opt
   BinFit bin = fit_bin_in(dev, s, opt, nullptr);
   // A frame along the border stands when it is of the size given, or (any size) when the rim
   // was seen on every side: a side placed at the farthest point below the rim may be a cell's
-  // clutter taken for the bin's inside.
+  // clutter taken for the bin's inside. And when it holds something: of a cell's bins, the one to
+  // pick from is not an empty tray beside it.
   const bool sized = opt.spec.mode == BinSpec::Mode::sized;
-  if (bin.found && (sized ? matches_size(bin, opt.spec.size) : bin.unseen_sides.empty()))
+  if (bin.found && (sized ? matches_size(bin, opt.spec.size) : bin.unseen_sides.empty()) &&
+      holds_something(bin, s))
     return bin;
   // The rim along the border is no bin (of this size): look for its rectangle anywhere.
   const BinFit anywhere = fit_anywhere(dev, s, opt);

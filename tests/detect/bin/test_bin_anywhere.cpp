@@ -47,6 +47,22 @@ TEST(BinAnywhere, FindsASmallTurnedBinInFrontOfClutterWithoutItsSize) {
   }
 }
 
+TEST(BinAnywhere, AnEmptyFrameAlongTheBorderIsLookedPast) {
+  // A bin filling the view: with parts, the border's frame stands; empty, it holds nothing, so the
+  // search anywhere runs too (in a cell, an empty tray along the border is not the bin to pick
+  // from) and here finds the same bin.
+  BinSceneSpec s;
+  s.tilt_deg = 20;
+  const BinFit full = fit(make_bin_scene(s), {BinSpec::Mode::find, {}});
+  ASSERT_TRUE(full.found) << full.why;
+  EXPECT_FALSE(full.anywhere);
+  s.spheres.clear();
+  const BinScene empty_scene = make_bin_scene(s);
+  const BinFit empty = fit(empty_scene, {BinSpec::Mode::find, {}});
+  expect_matches(empty, empty_scene, s, true);
+  EXPECT_TRUE(empty.anywhere);
+}
+
 TEST(BinAnywhere, NoBinIsSaidWhereThereIsNone) {
   // A heap on the ground, and the cell without its bin (only the walls' clutter).
   for (int k = 0; k < 2; ++k) {
