@@ -398,6 +398,31 @@ std::vector<Candidate> candidates_at(const Projected& p,
   return all;
 }
 
+// The rim is the highest ring of its rectangle: level slices through a wire basket's wall bars
+// (or a solid wall) show the same ring lower down. The best rectangle is raised to the highest
+// slice where it still reaches the perimeter, stands out from the bands beside it, and under
+// which little inside stands higher.
+void climb(const Projected& p, const std::vector<std::vector<std::size_t>>& slices, double lo,
+           Candidate& c, const RimSearch& opt) {
+  for (std::size_t j = slices.size(); j-- > 0;) {
+    const double height = lo + double(j + 1) * opt.tol;
+    if (height <= c.height + opt.tol) return;
+    if (slices[j].size() < opt.min_slice / 4) continue;
+    Projected slice;
+    for (std::size_t i : slices[j])
+      slice.a.push_back(p.a[i]), slice.b.push_back(p.b[i]), slice.h.push_back(p.h[i]);
+    Candidate up = c;
+    up.height = height;
+    if (coverage(slice, up, opt).share < opt.min_coverage ||
+        strip_contrast(slice, up, opt) < opt.min_contrast)
+      continue;
+    const auto [level, above] = inside_shares(p, up, opt);
+    if (level > 0.3 || above > opt.max_above) continue;
+    c.height = height;
+    return;
+  }
+}
+
 }  // namespace
 
 AnywhereRim find_rim_anywhere(const PlaneSamples& s, const std::vector<Eigen::Vector3d>& ups,
@@ -421,6 +446,8 @@ AnywhereRim find_rim_anywhere(const PlaneSamples& s, const std::vector<Eigen::Ve
     }
     double lo = 0;
     const std::vector<std::vector<std::size_t>> slices = height_slices(p, opt, lo);
+    Candidate best;  // this up's, if it beat the ups before
+    bool improved = false;
     for (Candidate c : candidates_at(p, slices, lo, opt)) {
       // Any size: refined and judged on its slice's samples first (many candidates), on all
       // of them only for what stands inside.
@@ -449,6 +476,7 @@ AnywhereRim find_rim_anywhere(const PlaneSamples& s, const std::vector<Eigen::Ve
         continue;
       const auto [level, above] = inside_shares(p, c, opt);
       if (level > 0.3 || above > opt.max_above) continue;
+      best = c, improved = true;
       out.held = holds;
       out.size = {2 * c.hw, 2 * c.hd};
       out.found = true;
@@ -460,6 +488,10 @@ AnywhereRim find_rim_anywhere(const PlaneSamples& s, const std::vector<Eigen::Ve
       out.height = c.height;
       out.coverage = cov;
       out.points = cover.points;
+    }
+    if (improved) {
+      climb(p, slices, lo, best, opt);
+      out.height = best.height;
     }
   }
   return out;
