@@ -413,7 +413,11 @@ void climb(const Projected& p, const std::vector<std::vector<std::size_t>>& slic
       slice.a.push_back(p.a[i]), slice.b.push_back(p.b[i]), slice.h.push_back(p.h[i]);
     Candidate up = c;
     up.height = height;
-    if (coverage(slice, up, opt).share < opt.min_coverage ||
+    // Judged as the search judges (without a size, every side too: three walls' tops over a
+    // ring closed lower down by something else, a floor's edge, are no rim).
+    const Coverage cover = coverage(slice, up, opt);
+    if (cover.share < opt.min_coverage ||
+        (opt.size.minCoeff() <= 0 && cover.least_side < opt.min_side_coverage) ||
         strip_contrast(slice, up, opt) < opt.min_contrast)
       continue;
     const auto [level, above] = inside_shares(p, up, opt);
