@@ -16,8 +16,8 @@ reaches 89 mm into the interior, 213 mm under its top, like an arm reaching into
 (something high at the bin's side that is not the rim; parts dropped land on it too). Pass the
 same interior to synth: `--bin-mesh OUT.stl --bin-size 600,400,300`.
 
-With --cell, the basket stands in a cluttered cell like the real one (the basket 0.5-0.9 m in
-front of a fence, the robot, cables, other bins, the floor all around): the ground 6 x 5 m; a
+With --cell, the basket stands in a cluttered cell (in front of a fence, beside a robot, cables
+and other bins, the floor all around): the ground 6 x 5 m; a
 fence 700 mm behind the +y wall, posts every metre 1.8 m tall with a wire panel (vertical wires
 every 50 mm, horizontal every 200 mm); a robot beside the -x wall (a 300 mm column 900 mm tall, a
 shoulder box and an upper arm held out above the column, higher than the rim); a closed crate

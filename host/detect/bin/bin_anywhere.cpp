@@ -371,9 +371,10 @@ std::vector<Candidate> slice_candidates(const Projected& p, const std::vector<st
 }
 
 // The best candidates of one up, every slice with enough samples, every turn: of a given size
-// the 8 best overall; of any size the 2 best of each slice (the ground's slices, dense with
-// strips between holes, would otherwise crowd out the rim's). The slices on two threads (even
-// ones here, odd ones on the other), merged in slice order: the same result as one thread's.
+// the 8 best overall; of any size the 2 best of each slice, so that every height is searched
+// whatever the density of the others (docs/decisions/2026-12-07-bin-anywhere.md). The slices on
+// two threads (even ones here, odd ones on the other), merged in slice order: the same result
+// as one thread's.
 std::vector<Candidate> candidates_at(const Projected& p,
                                      const std::vector<std::vector<std::size_t>>& in, double lo,
                                      const RimSearch& opt) {
@@ -398,30 +399,48 @@ std::vector<Candidate> candidates_at(const Projected& p,
   return all;
 }
 
+// The samples of each slice, as their own projection (candidates are refined and judged on their
+// slice's samples, which the climb visits too).
+std::vector<Projected> slice_projections(const Projected& p,
+                                         const std::vector<std::vector<std::size_t>>& slices) {
+  std::vector<Projected> out(slices.size());
+  for (std::size_t j = 0; j < slices.size(); ++j)
+    for (std::size_t i : slices[j])
+      out[j].a.push_back(p.a[i]), out[j].b.push_back(p.b[i]), out[j].h.push_back(p.h[i]);
+  return out;
+}
+
+// The judgement of a rim's strip at c's height, on the samples near it: it reaches the perimeter
+// (without a size, every side: a rectangle stretched to clutter beside a bin, or three walls' tops
+// over a ring closed lower down by something else, has a side empty) and stands out from the bands
+// beside it.
+bool strip_passes(const Projected& near, const Candidate& c, const RimSearch& opt,
+                  Coverage& cover) {
+  cover = coverage(near, c, opt);
+  return cover.share >= opt.min_coverage &&
+         (opt.size.minCoeff() > 0 || cover.least_side >= opt.min_side_coverage) &&
+         strip_contrast(near, c, opt) >= opt.min_contrast;
+}
+
+// ... and of what lies inside, over every sample: no layer at the rim's height, little above it.
+bool inside_passes(const Projected& p, const Candidate& c, const RimSearch& opt) {
+  const auto [level, above] = inside_shares(p, c, opt);
+  return level <= 0.3 && above <= opt.max_above;
+}
+
 // The rim is the highest ring of its rectangle: level slices through a wire basket's wall bars
 // (or a solid wall) show the same ring lower down. The best rectangle is raised to the highest
-// slice where it still reaches the perimeter, stands out from the bands beside it, and under
-// which little inside stands higher.
-void climb(const Projected& p, const std::vector<std::vector<std::size_t>>& slices, double lo,
-           Candidate& c, const RimSearch& opt) {
+// slice where it still passes.
+void climb(const Projected& p, const std::vector<Projected>& slices, double lo, Candidate& c,
+           const RimSearch& opt) {
   for (std::size_t j = slices.size(); j-- > 0;) {
     const double height = lo + double(j + 1) * opt.tol;
     if (height <= c.height + opt.tol) return;
-    if (slices[j].size() < opt.min_slice / 4) continue;
-    Projected slice;
-    for (std::size_t i : slices[j])
-      slice.a.push_back(p.a[i]), slice.b.push_back(p.b[i]), slice.h.push_back(p.h[i]);
+    if (slices[j].h.size() < opt.min_slice / 4) continue;
     Candidate up = c;
     up.height = height;
-    // Judged as the search judges (without a size, every side too: three walls' tops over a
-    // ring closed lower down by something else, a floor's edge, are no rim).
-    const Coverage cover = coverage(slice, up, opt);
-    if (cover.share < opt.min_coverage ||
-        (opt.size.minCoeff() <= 0 && cover.least_side < opt.min_side_coverage) ||
-        strip_contrast(slice, up, opt) < opt.min_contrast)
-      continue;
-    const auto [level, above] = inside_shares(p, up, opt);
-    if (level > 0.3 || above > opt.max_above) continue;
+    Coverage cover;
+    if (!strip_passes(slices[j], up, opt, cover) || !inside_passes(p, up, opt)) continue;
     c.height = height;
     return;
   }
@@ -450,26 +469,20 @@ AnywhereRim find_rim_anywhere(const PlaneSamples& s, const std::vector<Eigen::Ve
     }
     double lo = 0;
     const std::vector<std::vector<std::size_t>> slices = height_slices(p, opt, lo);
+    const std::vector<Projected> slice_points = slice_projections(p, slices);
     Candidate best;  // this up's, if it beat the ups before
     bool improved = false;
     for (Candidate c : candidates_at(p, slices, lo, opt)) {
       // Any size: refined and judged on its slice's samples first (many candidates), on all
       // of them only for what stands inside.
-      Projected slice;
-      if (!sized)
-        for (std::size_t i : slices[std::size_t(c.slice)])
-          slice.a.push_back(p.a[i]), slice.b.push_back(p.b[i]), slice.h.push_back(p.h[i]);
-      const Projected& near = sized ? p : slice;
+      const Projected& near = sized ? p : slice_points[std::size_t(c.slice)];
       refine(near, c, opt);
       if (!sized && !(2 * std::min(c.hw, c.hd) >= opt.min_side &&
                       2 * std::max(c.hw, c.hd) <= opt.max_side))
         continue;
-      const Coverage cover = coverage(near, c, opt);
+      Coverage cover;
+      if (!strip_passes(near, c, opt, cover)) continue;
       const double cov = cover.share;
-      // Any size: every side must show (a rectangle stretched to clutter beside the bin has two
-      // sides half empty).
-      if (cov < opt.min_coverage || (!sized && cover.least_side < opt.min_side_coverage)) continue;
-      if (strip_contrast(near, c, opt) < opt.min_contrast) continue;
       // Sized: the most perimeter. Any size: the most perimeter, but within 10 % of it the most
       // held (the bin with parts before an empty tray), then the highest (a slice through the
       // walls below the rim shows the same ring). These two look at every sample: last.
@@ -478,8 +491,7 @@ AnywhereRim find_rim_anywhere(const PlaneSamples& s, const std::vector<Eigen::Ve
                         : holds != out.held                        ? holds < out.held
                                                                    : c.height <= out.height))
         continue;
-      const auto [level, above] = inside_shares(p, c, opt);
-      if (level > 0.3 || above > opt.max_above) continue;
+      if (!inside_passes(p, c, opt)) continue;
       best = c, improved = true;
       out.held = holds;
       out.size = {2 * c.hw, 2 * c.hd};
@@ -494,7 +506,7 @@ AnywhereRim find_rim_anywhere(const PlaneSamples& s, const std::vector<Eigen::Ve
       out.points = cover.points;
     }
     if (improved) {
-      climb(p, slices, lo, best, opt);
+      climb(p, slice_points, lo, best, opt);
       out.height = best.height;
     }
   }

@@ -111,7 +111,6 @@ double BinFit::tilt_degrees() const {
 
 BinFit fit_bin(ocl::Device& dev, const std::vector<float>& xyzw, std::uint32_t width,
                std::uint32_t height, const BinFitOptions& opt) {
-  if (opt.spec.mode == BinSpec::Mode::none) throw std::logic_error("fit_bin: no bin asked for");
   return fit_bin(dev, sample_points(xyzw, width, height), opt);
 }
 
@@ -214,14 +213,13 @@ std::optional<double> floor_height(const PlaneSamples& s, const std::vector<Foun
   return h[h.size() / 1000] + 3 * opt.noise;
 }
 
-// The fit; with the planes of the whole image given, along the border of s.window only. In
-// order: the tolerance and the planes; the window above the ground, where the ground shows all
-// around; the frame (choose_frame); its sides out of view placed; the whole frame checked again;
-// the floor.
-BinFit fit_bin_in(ocl::Device& dev, const PlaneSamples& s, const BinFitOptions& opt,
-                  const std::vector<FoundPlane>* found_planes) {
+// The fit along the border, on the image's planes; in_window: along the border of s.window only
+// (already chosen). In order: the tolerance; the window above the ground, where the ground shows
+// all around; the frame (choose_frame); its sides out of view placed; the whole frame checked
+// again; the floor.
+BinFit fit_bin_in(const PlaneSamples& s, const BinFitOptions& opt,
+                  const std::vector<FoundPlane>& planes, bool in_window) {
   BinFit bin;
-  if (opt.spec.mode == BinSpec::Mode::none) throw std::logic_error("fit_bin: no bin asked for");
   bin.samples = s.points.size();
   bin.window = s.window;
   if (s.points.size() < 100) {
@@ -229,22 +227,17 @@ BinFit fit_bin_in(ocl::Device& dev, const PlaneSamples& s, const BinFitOptions& 
     return bin;
   }
   bin.tol = fit_tolerance(s, opt.tol);
-
-  PlaneSearch ps;
-  ps.tol = float(bin.tol);
-  ps.seed = opt.seed;
-  const std::vector<FoundPlane> planes = found_planes ? *found_planes : find_planes(dev, s, ps);
   bin.planes = planes.size();
   // A camera farther off than the bin is wide sees the ground all around it: the rim is then
   // looked for along the border of the window of what stands above the ground (bin_ground.hpp;
   // docs/detect/bin.md, "The ground all around").
-  if (!found_planes) {
+  if (!in_window) {
     GroundOptions go;
     go.tol = bin.tol;
     if (const std::optional<PixelWindow> w = window_above_ground(s, planes, go)) {
-      PlaneSamples in_window = s;
-      in_window.window = *w;
-      return fit_bin_in(dev, in_window, opt, &planes);
+      PlaneSamples windowed = s;
+      windowed.window = *w;
+      return fit_bin_in(windowed, opt, planes, true);
     }
   }
   const FrameSearch search = choose_frame(s, planes, opt, bin.tol);
@@ -338,23 +331,20 @@ bool holds_something(const BinFit& bin, const PlaneSamples& s) {
 // A bin anywhere in view (bin_anywhere.hpp), at the planes' candidate ups: of the size given,
 // its floor the rim less H; of any size, its floor the level plane under it or its lowest points,
 // as fit_bin_in's.
-BinFit fit_anywhere(ocl::Device& dev, const PlaneSamples& s, const BinFitOptions& opt) {
+BinFit fit_anywhere(const PlaneSamples& s, const BinFitOptions& opt,
+                    const std::vector<FoundPlane>& planes) {
   BinFit bin;
   bin.samples = s.points.size();
   bin.tol = fit_tolerance(s, opt.tol);
-  PlaneSearch ps;
-  ps.tol = float(bin.tol);
-  ps.seed = opt.seed;
-  const std::vector<FoundPlane> planes = find_planes(dev, s, ps);
   bin.planes = planes.size();
   std::size_t from_planes = 0;
   RimSearch search;
   const bool sized = opt.spec.mode == BinSpec::Mode::sized;
   const Eigen::Vector3d& size = opt.spec.size;
   if (sized) search.size = {std::max(size.x(), size.y()), std::min(size.x(), size.y())};
-  // Without a size, a frame anywhere is a weaker clue than one along the border (a pile's top
-  // layer shows rectangles of part edges at one height): it must be able to hold a pile, two
-  // parts wide and, below, a part and a half deep, and 100 mm both ways.
+  // Without a size, a frame anywhere is a weaker clue than one along the border (edges of parts
+  // at one height can make rectangles too): it must be able to hold a pile, two parts wide and,
+  // below, a part and a half deep, and 100 mm both ways (docs/decisions/2026-12-07-bin-anywhere.md).
   search.min_side = sized ? std::max(opt.min_side, 100.0) : std::max(2 * opt.min_side, 100.0);
   const double min_depth = std::max({3 * search.tol, 3 * opt.min_height, 100.0});
   search.tol = bin.tol;
@@ -404,18 +394,25 @@ BinFit fit_anywhere(ocl::Device& dev, const PlaneSamples& s, const BinFitOptions
 }  // namespace
 
 BinFit fit_bin(ocl::Device& dev, const PlaneSamples& s, const BinFitOptions& opt) {
+  if (opt.spec.mode == BinSpec::Mode::none) throw std::logic_error("fit_bin: no bin asked for");
   if (opt.spec.mode == BinSpec::Mode::given) return given_bin(opt.spec, s, opt.tol);
-  BinFit bin = fit_bin_in(dev, s, opt, nullptr);
+  if (s.points.size() < 100) return fit_bin_in(s, opt, {}, false);  // says: too few points
+  // The image's planes, found once for the fit along the border and the search anywhere.
+  PlaneSearch ps;
+  ps.tol = float(fit_tolerance(s, opt.tol));
+  ps.seed = opt.seed;
+  const std::vector<FoundPlane> planes = find_planes(dev, s, ps);
+  BinFit bin = fit_bin_in(s, opt, planes, false);
   // A frame along the border stands when it is of the size given, or (any size) when the rim
-  // was seen on every side: a side placed at the farthest point below the rim may be a cell's
-  // clutter taken for the bin's inside. And when it holds something: of a cell's bins, the one to
-  // pick from is not an empty tray beside it.
+  // was seen on every side (a side placed at the farthest point below the rim may reach over
+  // clutter), and when it holds something (the bin to pick from holds parts); else the search
+  // anywhere decides (docs/decisions/2026-12-07-bin-anywhere.md).
   const bool sized = opt.spec.mode == BinSpec::Mode::sized;
   if (bin.found && (sized ? matches_size(bin, opt.spec.size) : bin.unseen_sides.empty()) &&
       holds_something(bin, s))
     return bin;
   // The rim along the border is no bin (of this size): look for its rectangle anywhere.
-  const BinFit anywhere = fit_anywhere(dev, s, opt);
+  const BinFit anywhere = fit_anywhere(s, opt, planes);
   if (anywhere.found) return anywhere;
   if (!bin.found) bin.why += "; " + anywhere.why;
   return bin;
