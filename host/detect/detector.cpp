@@ -2,6 +2,7 @@
 #include "host/detect/verify/below_floor.hpp"
 #include "host/detect/verify/seen_area.hpp"
 #include "host/detect/hypotheses/flat_region.hpp"
+#include "host/detect/hypotheses/prerank.hpp"
 #include "host/detect/bin/bin_fit.hpp"
 #include "host/detect/select/instance_select.hpp"
 #include "host/detect/select/select_detections.hpp"
@@ -221,11 +222,11 @@ Detector::Detector(const PpfModel& model, const DetectParams& params, ocl::Devic
 }
 
 std::vector<PoseCluster> Detector::vote_and_cluster(const PointCloud& subsampled, Detection& d,
-                                                    DetectTimes& t) {
+                                                    DetectTimes& t, double ref_ratio) {
   auto& dev = dev_;
   Stopwatch clock;
-  const std::vector<std::uint32_t> refs =
-      select_reference_points(subsampled.points.size(), params_.ref_ratio);
+  const std::vector<std::uint32_t> refs = select_reference_points(
+      subsampled.points.size(), ref_ratio > 0 ? ref_ratio : params_.ref_ratio);
   d.subsampled = subsampled.points.size();
   d.refs = refs.size();
 
@@ -262,6 +263,29 @@ std::vector<PoseCluster> Detector::vote_and_cluster(const PointCloud& subsampled
     d.votes = clusters.front().votes;
   }
   return clusters;
+}
+
+std::vector<std::size_t> Detector::vote_order(
+    std::size_t found, std::size_t ranked,
+    const std::function<const HypothesisCrop&(std::size_t)>& crop, DetectTimes& t) {
+  ranked = std::min(ranked, found);
+  if (!params_.prerank || ranked < 2) return prerank_order({}, found);
+  Stopwatch clock;
+  DetectTimes coarse;  // its stages are one line in --verbose
+  std::vector<double> votes(ranked, -1.0);
+  for (std::size_t k = 0; k < ranked; ++k) {
+    const HypothesisCrop& c = crop(k);
+    if (!c.reason.empty()) continue;
+    const double n = double(c.cloud.points.size());
+    Detection d;
+    const std::vector<PoseCluster> clusters = vote_and_cluster(
+        c.cloud, d, coarse, std::min(1.0, std::max(params_.prerank_ref_ratio, kPrerankRefs / n)));
+    votes[k] = clusters.empty() ? 0.0 : double(clusters.front().votes) / double(d.refs);
+  }
+  const double ms = clock.lap();
+  t.prepare_ms += ms;
+  t.stages.push_back({fmt::format("prerank ({} highest points)", ranked), ms});
+  return prerank_order(votes, found);
 }
 
 std::vector<Detection> Detector::refine_and_rank(
@@ -439,49 +463,70 @@ std::vector<Detection> Detector::detect(const DepthImage& depth, const bp_camera
   };
   t.prepare_ms += clock.lap();
 
+  // Each highest point's crop, sampled once: the coarse ranking and the vote share it.
+  std::vector<std::optional<HypothesisCrop>> crops;
+  const auto crop = [&](std::size_t k) -> const HypothesisCrop& {
+    if (crops.size() < hyps.size()) crops.resize(hyps.size());
+    if (!crops[k]) {
+      clock.lap();
+      // Equal to voxel_subsample(crop_sphere(...)) on a scene with normals everywhere (with the
+      // crop's z divided by the voxel factor for the grid: depth_stretch).
+      NeighbourhoodSample sample =
+          sample_neighbourhood(scene, crop_about(hyps[k], params_.crop_ratio * model_.diameter),
+                               prep.normals, model_.voxel_size, &t.stages, mask,
+                               float(voxel_factor));
+      HypothesisCrop c;
+      c.cloud = std::move(sample.cloud);
+      c.cropped = sample.cropped;
+      if (c.cloud.points.size() < kMinCropPoints) {
+        // Nothing to vote on (a hole, a speck of depth, the edge of the region): said, not voted.
+        c.reason = fmt::format(
+            "skipped: the crop has {} points with depth, {} with a normal after subsampling "
+            "(fewer than {})",
+            c.cropped, c.cloud.points.size(), kMinCropPoints);
+      } else {
+        c.reason = flat_skip_->reason(c.cloud, hyps[k].point, noise, voxel_factor);
+        c.flat = !c.reason.empty();
+      }
+      crops[k] = std::move(c);
+      t.prepare_ms += clock.lap();
+    }
+    return *crops[k];
+  };
+  std::vector<std::size_t> order = vote_order(hyps.size(), hypotheses_sought(params_), crop, t);
+  const auto more = [&] {  // stand-ins beyond those ranked, in height order
+    if (!find_more()) return false;
+    for (std::size_t k = order.size(); k < hyps.size(); ++k) order.push_back(k);
+    return true;
+  };
+
   std::vector<Detection> voted;
   std::vector<std::vector<PoseCluster>> candidates;
   // vote(from, to) takes highest points in order until to - from are voted or skipped for
   // their crop; those the flat-region test skips do not count (the next is taken instead).
   std::size_t next = 0;
   const auto vote = [&](std::size_t from, std::size_t to) {
-    clock.lap();
     std::size_t taken = from;
-    while (taken < to && (next < hyps.size() || find_more())) {
-      const std::size_t k = next++;
-      // Equal to voxel_subsample(crop_sphere(...)) on a scene with normals everywhere (with the
-      // crop's z divided by the voxel factor for the grid: depth_stretch).
-      const NeighbourhoodSample sample =
-          sample_neighbourhood(scene, crop_about(hyps[k], params_.crop_ratio * model_.diameter),
-                               prep.normals, model_.voxel_size, &t.stages, mask,
-                               float(voxel_factor));
-      t.prepare_ms += clock.lap();
+    while (taken < to && (next < order.size() || more())) {
+      const std::size_t k = order[next++];
+      const HypothesisCrop& c = crop(k);
       Detection d = detection_for(hyps, k);
-      d.neighbourhood = sample.cropped;
-      if (sample.cloud.points.size() < kMinCropPoints) {
-        // Nothing to vote on (a hole, a speck of depth, the edge of the region): said, not voted.
-        if (neighbourhoods) neighbourhoods->push_back(sample.cloud);
-        d.subsampled = sample.cloud.points.size();
-        d.reason = fmt::format(
-            "skipped: the crop has {} points with depth, {} with a normal after subsampling "
-            "(fewer than {})",
-            sample.cropped, sample.cloud.points.size(), kMinCropPoints);
+      d.neighbourhood = c.cropped;
+      if (neighbourhoods) neighbourhoods->push_back(c.cloud);
+      if (!c.reason.empty()) {
+        d.subsampled = c.cloud.points.size();
+        d.reason = c.reason;
         skipped_.push_back(d);
-        ++taken;
-        continue;
-      }
-      d.reason = flat_skip_->reason(sample.cloud, hyps[k].point, noise, voxel_factor);
-      if (!d.reason.empty()) {
-        if (neighbourhoods) neighbourhoods->push_back(sample.cloud);
-        d.subsampled = sample.cloud.points.size();
-        skipped_.push_back(d);
-        ++flat_skipped;
+        if (c.flat)
+          ++flat_skipped;
+        else
+          ++taken;
         continue;
       }
       ++taken;
-      candidates.push_back(vote_and_cluster(sample.cloud, d, t));
       clock.lap();
-      if (neighbourhoods) neighbourhoods->push_back(sample.cloud);
+      candidates.push_back(vote_and_cluster(c.cloud, d, t));
+      clock.lap();
       voted.push_back(d);
     }
     t.hypotheses += taken - from;
@@ -490,8 +535,9 @@ std::vector<Detection> Detector::detect(const DepthImage& depth, const bp_camera
   std::optional<ocl::Buffer<float>> search_points;
   if (plane_search_model_.probes > 0 && params_.plane_search > 0 &&
       search_reads_lowpass(noise, thinnest_extent_) && !hyps.empty()) {
-    float farthest = 0;
-    for (const Hypothesis& h : hyps) farthest = std::max(farthest, h.depth);
+    float farthest = 0;  // of the hypotheses voted on first
+    for (std::size_t i = 0; i < std::min(order.size(), hypotheses_sought(params_)); ++i)
+      farthest = std::max(farthest, hyps[order[i]].depth);
     const int radius =
         search_lowpass_radius(kEdgeMarginVoxels * model_.voxel_size / kProbeVoxelDivisor,
                               farthest / std::max(cam.fx, cam.fy));
@@ -556,32 +602,49 @@ std::vector<Detection> Detector::detect(const PointCloud& input, DetectTimes* ti
                                   CL_MEM_READ_ONLY);
   t.prepare_ms += clock.lap();
 
+  std::vector<std::optional<HypothesisCrop>> crops(hyps.size());  // as on a depth image
+  const auto crop = [&](std::size_t k) -> const HypothesisCrop& {
+    if (!crops[k]) {
+      clock.lap();
+      const PointCloud neighbourhood =
+          crop_sphere(cloud, crop_about(hyps[k], params_.crop_ratio * model_.diameter));
+      HypothesisCrop c;
+      c.cropped = neighbourhood.points.size();
+      // The scene is subsampled like the model (its voxel), so that densities, and so votes,
+      // match.
+      c.cloud = voxel_subsample(dev_, neighbourhood, model_.voxel_size).cloud;
+      const double ms = clock.lap();
+      t.prepare_ms += ms;
+      t.stages.push_back({"crop+subsample", ms});
+      c.reason = flat_skip_->reason(c.cloud, hyps[k].point, 0, 1);
+      c.flat = !c.reason.empty();
+      crops[k] = std::move(c);
+    }
+    return *crops[k];
+  };
+  // The stand-ins for flat-skipped points (the second half) follow in height order.
+  const std::vector<std::size_t> order =
+      vote_order(hyps.size(), hypotheses_sought(params_), crop, t);
+
   std::vector<Detection> voted;
   std::vector<std::vector<PoseCluster>> candidates;
   std::size_t next = 0;  // as on a depth image: flat-skipped highest points do not count
   const auto vote = [&](std::size_t from, std::size_t to) {
-    clock.lap();
     std::size_t taken = from;
-    while (taken < to && next < hyps.size()) {
-      const std::size_t k = next++;
-      const PointCloud neighbourhood =
-          crop_sphere(cloud, crop_about(hyps[k], params_.crop_ratio * model_.diameter));
+    while (taken < to && next < order.size()) {
+      const std::size_t k = order[next++];
+      const HypothesisCrop& c = crop(k);
       Detection d = detection_for(hyps, k);
-      d.neighbourhood = neighbourhood.points.size();
-      // The scene is subsampled like the model (its voxel), so that densities, and so votes,
-      // match.
-      const VoxelSubsample sub = voxel_subsample(dev_, neighbourhood, model_.voxel_size);
-      const double ms = clock.lap();
-      t.prepare_ms += ms;
-      t.stages.push_back({"crop+subsample", ms});
-      d.reason = flat_skip_->reason(sub.cloud, hyps[k].point, 0, 1);
-      if (!d.reason.empty()) {
-        d.subsampled = sub.cloud.points.size();
+      d.neighbourhood = c.cropped;
+      if (!c.reason.empty()) {
+        d.subsampled = c.cloud.points.size();
+        d.reason = c.reason;
         skipped_.push_back(d);
         continue;
       }
       ++taken;
-      candidates.push_back(vote_and_cluster(sub.cloud, d, t));
+      clock.lap();
+      candidates.push_back(vote_and_cluster(c.cloud, d, t));
       clock.lap();
       voted.push_back(d);
     }

@@ -19,6 +19,7 @@
 #include "host/detect/bin/bin_fit.hpp"
 #include "host/detect/hypotheses/flat_region.hpp"
 #include "host/detect/hypotheses/hypotheses.hpp"
+#include "host/detect/hypotheses/prerank.hpp"
 #include "host/detect/params/detect_params.hpp"
 #include "host/detect/select/detection.hpp"
 #include "host/detect/vote/ppf_vote.hpp"
@@ -108,8 +109,15 @@ class Detector {
  private:
   // Reference points, votes, clusters of a subsampled neighbourhood with normals: the best
   // `candidates` clusters, most voted first.
+  // ref_ratio: of the coarse ranking (prerank.hpp); 0: --ref-ratio.
   std::vector<PoseCluster> vote_and_cluster(const PointCloud& subsampled, Detection& d,
-                                            DetectTimes& t);
+                                            DetectTimes& t, double ref_ratio = 0);
+  // The order the `found` highest points are voted in: with --prerank the first `ranked` by a
+  // coarse vote on crop(k) (those with a reason last), the rest by height (prerank.hpp). Adds a
+  // stage to t.
+  std::vector<std::size_t> vote_order(
+      std::size_t found, std::size_t ranked,
+      const std::function<const HypothesisCrop&(std::size_t)>& crop, DetectTimes& t);
   // Refines and verifies every hypothesis' candidates against a point image on the device
   // (one batch for all), keeps each hypothesis' best and ranks them. With a bin found, a pose
   // that sinks the part into its floor scores 0 (below_floor.hpp). sensor: the points are a
@@ -123,7 +131,7 @@ class Detector {
   // verifies and ranks all kept so far. The first `hypotheses` of the `found`, then, if no pose
   // scores `confident` or more, the rest as well, all ranked together. With `instances`, all
   // in one round.
-  // With --stop-at-confident or --budget-ms, one hypothesis a round instead, in height order,
+  // With --stop-at-confident or --budget-ms, one hypothesis a round instead, in vote order,
   // until a confident pose (with the former) or the budget spent (the latter). started: the
   // image's detection began; t: gets the time to the first confident pose.
   std::vector<Detection> in_rounds(std::size_t found,

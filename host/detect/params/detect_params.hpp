@@ -20,6 +20,9 @@ struct DetectParams {
   double flat_region = 1.25;
   double exclusion_ratio = 1.2;
   std::uint32_t instances = 0;
+  // The highest points sought taken in order of a coarse vote (prerank.hpp).
+  bool prerank = true;
+  double prerank_ref_ratio = 0.02;
   // A robot's mode: the hypotheses one at a time, until a confident pose or the budget.
   bool stop_at_confident = false;
   double budget_ms = 0;

@@ -35,13 +35,20 @@ const ParamInfo kTable[] = {
      "detections per image: 0 = one per hypothesis (the paper's); N = the N best verified poses "
      "of different parts (for BOP's recall), from max(hypotheses, N) highest points and every "
      "candidate of each, poses scoring 0 left out"},
+    {"prerank", &P::prerank, {}, "hypotheses",
+     "the highest points sought (--hypotheses + --more-hypotheses) are each voted on coarsely "
+     "(--prerank-ref-ratio) and taken in order of their best pose's votes, most first (a highest "
+     "point on another part or the clutter gathers few); off: in height order, the paper's"},
+    {"prerank-ref-ratio", &P::prerank_ref_ratio, unit_open, "hypotheses",
+     "reference points / subsampled scene points of the coarse vote that ranks the highest "
+     "points (--prerank)"},
     {"stop-at-confident", &P::stop_at_confident, {}, "hypotheses",
-     "a robot's mode: the hypotheses are refined and verified one at a time in height order, "
+     "a robot's mode: the hypotheses are refined and verified one at a time in their order, "
      "and detection stops at the first whose pose's fit scores --confident or more (the time to "
      "it is reported); off: the first --hypotheses together, the rest only if none is confident"},
     {"budget-ms", &P::budget_ms, {0, 1e6}, "hypotheses",
      "a robot's time budget per image, ms of detection: the hypotheses are refined and verified "
-     "one at a time in height order until it is spent (the one under way is finished); 0: none"},
+     "one at a time in their order until it is spent (the one under way is finished); 0: none"},
     // Region.
     {"roi", &P::roi, {}, "region",
      "only this box may hold hypotheses and crops: camera:x0,y0,z0,x1,y1,z1 (camera frame, mm) "

@@ -10,7 +10,7 @@
 #include "host/detect/hypotheses/flat_region.hpp"
 #include "host/eval/metrics/pose_error.hpp"
 #include "host/train/ppf_model.hpp"
-#include "host/train/surface_sampling.hpp"
+#include "tests/support/rendered_parts.hpp"
 #include "tests/support/test_meshes.hpp"
 
 using namespace binpick;
@@ -111,47 +111,6 @@ TEST(FlatRegion, DegenerateClouds) {
   EXPECT_EQ(FlatRegions(c, options(0)).size_from(5), 1u);
 }
 
-namespace {
-
-struct Scene {
-  DepthImage depth;
-  bp_camera cam{};
-  PointCloud cloud;  // the visible samples (the cloud path's input)
-};
-
-// Surface samples of each mesh moved by its pose, z-buffered into a 320 x 240 image (600 px)
-// over a floor at floor_z; the samples that own a pixel are also the visible cloud.
-Scene render(const std::vector<std::pair<Mesh, Eigen::Isometry3f>>& parts, float floor_z) {
-  Scene s;
-  const std::uint32_t w = 320, h = 240;
-  s.cam = {600.0f, 600.0f, (w - 1) / 2.0f, (h - 1) / 2.0f, 0.1f, w, h, 0};
-  std::vector<float> z(w * h, floor_z);
-  std::vector<Eigen::Vector3f> point(w * h), normal(w * h);
-  std::vector<bool> owned(w * h, false);
-  for (const auto& [mesh, T] : parts) {
-    const PointCloud samples = sample_surface(mesh, 300000);
-    for (std::size_t i = 0; i < samples.points.size(); ++i) {
-      const Eigen::Vector3f p = T * samples.points[i];
-      const long u = std::lround(s.cam.fx * p.x() / p.z() + s.cam.cx);
-      const long v = std::lround(s.cam.fy * p.y() / p.z() + s.cam.cy);
-      if (u < 0 || v < 0 || u >= long(w) || v >= long(h) || p.z() >= z[v * w + u]) continue;
-      z[v * w + u] = p.z();
-      point[v * w + u] = p;
-      normal[v * w + u] = T.linear() * samples.normals[i];
-      owned[v * w + u] = true;
-    }
-  }
-  s.depth = {w, h, std::vector<std::uint16_t>(w * h)};
-  for (std::size_t k = 0; k < z.size(); ++k) {
-    s.depth.raw[k] = std::uint16_t(std::lround(z[k] / s.cam.depth_scale));
-    if (!owned[k]) continue;
-    s.cloud.points.push_back(point[k]);
-    s.cloud.normals.push_back(normal[k]);
-  }
-  return s;
-}
-
-}  // namespace
 
 // A 50 x 50 mm sheet lies 40 mm nearer the camera than a shaft, beside it: the highest points
 // come first on the sheet. With the flat-region test those are skipped and the next, on the
@@ -165,7 +124,7 @@ TEST(FlatRegion, AHighestPointOnASheetWiderThanThePartIsSkipped) {
   T.translation() = Eigen::Vector3f(-70, 10, 600);
   Eigen::Isometry3f S = Eigen::Isometry3f::Identity();
   S.translation() = Eigen::Vector3f(60, -25, 560);
-  const Scene scene = render({{part.mesh, T}, {test::box({50, 50, 2}), S}},
+  const test::RenderedScene scene = test::render_parts({{part.mesh, T}, {test::box({50, 50, 2}), S}},
                              600.0f + model.diameter);
   for (int path = 0; path < 2; ++path) {
     SCOPED_TRACE(path == 0 ? "depth image" : "cloud");
@@ -176,6 +135,7 @@ TEST(FlatRegion, AHighestPointOnASheetWiderThanThePartIsSkipped) {
     // second is on the sheet too: there 2 are sought and the first round takes one.
     p.more_hypotheses = path == 0 ? 0 : 1;
     p.confident = 0;  // no second round
+    p.prerank = false;  // height order: the sheet's points come first
     for (const double flat : {0.0, p.flat_region}) {
       DetectParams q = p;
       q.flat_region = flat;
