@@ -7,6 +7,8 @@
 #include <fmt/format.h>
 
 #include "host/core/error.hpp"
+#include "host/detect/params/bin_mesh_interior.hpp"
+#include "host/formats/mesh/load_model.hpp"
 
 namespace binpick {
 namespace {
@@ -69,10 +71,21 @@ BinSpec parse_bin(const std::string& text) {
     spec.mode = BinSpec::Mode::find;
     return spec;
   }
+  if (text.rfind("mesh:", 0) == 0) {  // the size from the bin's model
+    try {
+      spec.size = bin_interior_from_mesh(load_model(text.substr(5), {}));
+    } catch (const InputError& e) {
+      throw InputError(fmt::format("'{}': {}", text, e.what()));
+    }
+    spec.mode = BinSpec::Mode::sized;
+    return spec;
+  }
   std::vector<double> v;
   if (!parse_numbers(text, v) || v.size() != 3 || !(v[0] > 0 && v[1] > 0 && v[2] > 0))
     throw InputError(fmt::format(
-        "'{}': expected none, auto or the interior size W,D,H (three positive numbers, mm)", text));
+        "'{}': expected none, auto, the interior size W,D,H (three positive numbers, mm) or "
+        "mesh:FILE (the bin's model)",
+        text));
   spec.mode = BinSpec::Mode::sized;
   spec.size = {v[0], v[1], v[2]};
   return spec;

@@ -29,7 +29,8 @@ struct BinSpec {
 // Empty text: no ROI. Otherwise InputError("'TEXT': expected ...") for anything malformed: an
 // unknown frame, not six numbers, a NaN or infinite value, or a box with lo >= hi on an axis.
 std::optional<RoiSpec> parse_roi(const std::string& text);
-// InputError("'TEXT': expected ...") for anything but none, auto or three positive sizes.
+// InputError("'TEXT': expected ...") for anything but none, auto, three positive sizes or
+// mesh:FILE (read here: bin_mesh_interior.hpp; its errors prefixed with 'TEXT').
 BinSpec parse_bin(const std::string& text);
 
 }  // namespace binpick

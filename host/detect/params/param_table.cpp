@@ -56,7 +56,8 @@ const ParamInfo kTable[] = {
      "the longer side; needs --bin); empty: everywhere"},
     {"bin", &P::bin, {}, "region",
      "the bin: none; auto (find its floor and rim in each depth image); W,D,H (find a bin of "
-     "this interior size, mm). Its walls, rim and outside are kept out of hypotheses and crops"},
+     "this interior size, mm); mesh:FILE (of its model's interior: synth --bin-mesh's frame). "
+     "Its walls, rim and outside are kept out of hypotheses and crops"},
     {"bin-pose", &P::bin_pose, {}, "region",
      "a fixed cell's bin, given: a JSON file of its pose in the camera frame and its interior "
      "(docs/formats.md), used in every image instead of --bin; empty: --bin"},

@@ -353,9 +353,10 @@ TEST_F(DetectCli, BinAndRoiOptions) {
       {"--roi box:0,0,0,1,1,1", "unknown frame 'box'"},
       {"--roi 0,0,0,1,1,1", "--roi"},
       {"--roi bin:0,0,0,1,1,1 --bin none", "needs --bin auto"},
-      {"--bin maybe", "--bin 'maybe': expected none, auto or"},
+      {"--bin maybe", "--bin 'maybe': expected none, auto, the interior size W,D,H"},
       {"--bin 600,400", "--bin"},
       {"--bin 600,0,300", "--bin"},
+      {"--bin mesh:no_such_bin.stl", "--bin 'mesh:no_such_bin.stl': no_such_bin.stl"},
       {"--bin-margin -1", "--bin-margin -1 must be in [0, 10]"},
       {"--bin-margin nan", "--bin-margin"},
   };

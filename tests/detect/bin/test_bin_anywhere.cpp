@@ -1,11 +1,17 @@
 // A bin found anywhere in view (host/detect/bin/bin_anywhere.cpp, through fit_bin with
-// --bin W,D,H and --bin auto): small in the image, turned, tilted, in front of clutter that stands
+// --bin W,D,H, --bin mesh:FILE and --bin auto): small in the image, turned, tilted, in front of clutter that stands
 // higher than its rim; and no bin said where there is none.
 #include <gtest/gtest.h>
 
 #include "host/detect/bin/bin_fit.hpp"
 #include "tests/detect/bin/bin_fit_check.hpp"
 #include "tests/detect/bin/bin_scene.hpp"
+#include "tests/support/cli_run.hpp"
+#include "host/formats/mesh/mesh_writers.hpp"
+#include "synth/bin/bin_model.hpp"
+#include "host/detect/params/bin_spec.hpp"
+
+#include <filesystem>
 
 using namespace binpick;
 using namespace binpick::test;
@@ -34,6 +40,19 @@ TEST(BinAnywhere, FindsASmallTurnedBinInFrontOfClutterFromItsSize) {
     const BinFit b = fit(scene, {BinSpec::Mode::sized, {s.W, s.D, s.H}});
     expect_matches(b, scene, s, false);
   }
+}
+
+// The same from the bin's mesh (--bin mesh:FILE): synth's built-in bin of that interior, written
+// as a PLY file, gives the sized fit its size.
+TEST(BinAnywhere, FindsASmallTurnedBinInFrontOfClutterFromItsMesh) {
+  const auto dir = fresh_temp_dir("bin_anywhere_mesh");
+  const BinSceneSpec s = cell_spec(25, 25);
+  const auto ply = dir / "bin.ply";
+  write_ply(ply, built_in_bin({s.W, s.D, s.H}, {s.wall, 25.0}).mesh);
+  const BinScene scene = make_bin_scene(s);
+  const BinFit b = fit(scene, parse_bin("mesh:" + ply.string()));
+  expect_matches(b, scene, s, false);
+  std::filesystem::remove_all(dir);
 }
 
 TEST(BinAnywhere, FindsASmallTurnedBinInFrontOfClutterWithoutItsSize) {
