@@ -21,6 +21,7 @@
 #include "host/shards/shard_record.hpp"
 #include "host/core/atomic_file.hpp"
 #include "host/core/read_file.hpp"
+#include "host/train/model_store.hpp"
 #include "host/core/timing.hpp"
 
 namespace binpick {
@@ -191,10 +192,20 @@ std::string batch_fingerprint(const BatchOptions& opt, const DetectParams& param
   // Without --targets the fingerprint is what it was before the option existed (parts resume).
   const std::string targets =
       opt.targets ? fmt::format(", \"targets\": \"{}\"", opt.targets->checksum) : "";
+  // The files the parameters name, by their bytes: an edited bin pose or bin mesh is another run
+  // (absent when none is named, so that other runs' parts resume).
+  std::string files;
+  const auto add = [&](const char* key, const std::string& path) {
+    files += fmt::format("{}\"{}\": \"{}\"", files.empty() ? "" : ", ", key,
+                         checksum_hex(read_file_bytes(path)));
+  };
+  if (!params.bin_pose.empty()) add("bin-pose", params.bin_pose);
+  if (params.bin.rfind("mesh:", 0) == 0) add("bin-mesh", params.bin.substr(5));
+  if (!files.empty()) files = ", \"files\": {" + files + "}";
   return fmt::format(
-      "{{{}, \"split\": \"{}\", \"sensor\": \"{}\", \"dataset\": \"{}\", \"params\": {}{}}}\n",
+      "{{{}, \"split\": \"{}\", \"sensor\": \"{}\", \"dataset\": \"{}\", \"params\": {}{}{}}}\n",
       models, opt.split, opt.sensor, fs::absolute(opt.dataset).string(), params_json(params),
-      targets);
+      targets, files);
 }
 
 ShardRecord batch_shard_record(const BatchOptions& opt, const std::vector<int>& scenes) {

@@ -13,6 +13,7 @@
 #include <string>
 
 #include <fmt/format.h>
+#include <nlohmann/json.hpp>
 
 #include "host/detect/params/bin_pose_file.hpp"
 #include "host/detect/verify/score.hpp"
@@ -477,6 +478,17 @@ TEST_F(DetectCli, BinPoseIsSavedOnceAndGivenToEveryImage) {
   ASSERT_EQ(r.status, 0) << r.err;
   EXPECT_NE(r.out.find("bin: given (--bin-pose)"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("a bin found in 2 of 2 images"), std::string::npos) << r.out;
+  // A rerun with the same file resumes; with the file edited it is another run (its bytes are in
+  // the batch's fingerprint, not only its name).
+  r = test::run_binpick(base + "--bin-pose " + pose.string());
+  EXPECT_NE(r.out.find("(2 done before)"), std::string::npos) << r.out;
+  {
+    nlohmann::json j = nlohmann::json::parse(test::slurp(pose));
+    j["interior_mm"][0] = 410.0;
+    std::ofstream(pose) << j.dump();
+  }
+  r = test::run_binpick(base + "--bin-pose " + pose.string());
+  EXPECT_NE(r.out.find("(0 done before)"), std::string::npos) << r.out;
 
   // Refused: no bin in any image (nothing written), options it does not go with, a bad file.
   const fs::path nowhere = *dir_ / "no_bin.json";
