@@ -20,6 +20,7 @@
 #include "host/detect/params/params_file.hpp"
 #include "host/detect/verify/score.hpp"
 #include "host/formats/bop/png_image.hpp"
+#include "host/formats/bop/results_csv.hpp"
 #include "host/train/ppf_model_file.hpp"
 
 namespace py = pybind11;
@@ -158,6 +159,15 @@ PYBIND11_MODULE(binpick, m) {
           "Detections in a depth image, best first: depth is uint16 (depth_mm = value * "
           "depth_scale, BOP's) or float32 (mm), 0 where there is none; K the 3 x 3 camera matrix.");
 
+  m.attr("RESULTS_CSV_HEADER") = bop::kResultsCsvHeader;
+  m.def(
+      "results_csv_row",
+      [](int scene_id, int im_id, int obj_id, const Detection& d, double seconds) {
+        return bop::format_result_row({scene_id, im_id, obj_id, d.score(), d.R, d.t, seconds});
+      },
+      py::arg("scene_id"), py::arg("im_id"), py::arg("obj_id"), py::arg("detection"),
+      py::arg("seconds"),
+      "One line of BOP's results CSV (without its end), as `binpick detect` writes it.");
   m.def(
       "read_depth_png",
       [](const std::string& path) {

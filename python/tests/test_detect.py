@@ -5,6 +5,7 @@ import csv
 import json
 import os
 import subprocess
+import sys
 import threading
 from pathlib import Path
 
@@ -131,3 +132,20 @@ def test_bad_input_is_refused_with_one_message(bins):
     with pytest.raises(ValueError, match="no_such.ppfm"):
         binpick.Model.load(str(bins / "no_such.ppfm"))
     assert binpick.Detector(model, bin="none").params["bin"] == "none"
+
+
+def test_the_example_writes_the_command_lines_results_csv(bins):
+    """examples/detect_dataset.py: the command line's results CSV byte for byte but the time."""
+    example = Path(__file__).resolve().parents[2] / "examples" / "detect_dataset.py"
+    out = bins / "example.csv"
+    subprocess.run([sys.executable, str(example), str(bins / "bracket.ppfm"), str(bins / "data"),
+                    str(out), "hypotheses=2", "more_hypotheses=0"], check=True, capture_output=True)
+
+    def without_time(path):
+        return [line.rsplit(",", 1)[0] for line in Path(path).read_text().splitlines()]
+
+    assert without_time(out) == without_time(bins / "two.csv")
+    assert len(without_time(out)) == 1 + 2 * 2
+    bad = subprocess.run([sys.executable, str(example), str(bins / "bracket.ppfm"),
+                          str(bins / "data"), str(out), "nope=1"], capture_output=True, text=True)
+    assert bad.returncode == 2 and "nope" in bad.stderr and bad.stderr.count("\n") == 1
