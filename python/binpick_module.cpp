@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <mutex>
 #include <string>
 
@@ -22,6 +23,8 @@
 #include "host/formats/bop/png_image.hpp"
 #include "host/formats/bop/results_csv.hpp"
 #include "host/train/ppf_model_file.hpp"
+#include "host/app/model_options.hpp"
+#include "host/app/train_options.hpp"
 
 namespace py = pybind11;
 using namespace binpick;
@@ -85,6 +88,13 @@ std::pair<DepthImage, double> depth_image(const py::array& depth, double depth_s
   return {std::move(image), scale};
 }
 
+// One detection at a time in the process: the detectors share the OpenCL device and its kernels
+// (their arguments are set per launch).
+std::mutex& device_mutex() {
+  static std::mutex m;
+  return m;
+}
+
 py::dict factors_of(const Detection& d) {
   py::dict f;
   const auto rows = score_factors();
@@ -103,6 +113,28 @@ PYBIND11_MODULE(binpick, m) {
       .def_static(
           "load", [](const std::string& path) { return std::make_shared<PpfModel>(read_ppf_model(path)); },
           py::arg("path"), "Reads a model written by `binpick train`.")
+      .def_static(
+          "train",
+          [](const std::string& part, double unit_scale, std::optional<double> diameter,
+             double voxel_ratio, std::int64_t distance_steps, std::int64_t angle_steps) {
+            const PpfTrainParams params =
+                cli::train_params_of({voxel_ratio, distance_steps, angle_steps});
+            ModelOptions options;
+            options.unit_scale = unit_scale;
+            options.diameter = diameter;
+            const Mesh mesh = cli::load_part({part, options}).mesh;
+            py::gil_scoped_release release;
+            return std::make_shared<PpfModel>(train_ppf_model(mesh, params));
+          },
+          py::arg("part"), py::kw_only(), py::arg("unit_scale") = 1.0,
+          py::arg("diameter") = std::nullopt, py::arg("voxel_ratio") = PpfTrainParams{}.voxel_ratio,
+          py::arg("distance_steps") = std::int64_t(BP_PPF_DEFAULT_DIST_STEPS),
+          py::arg("angle_steps") = std::int64_t(BP_PPF_DEFAULT_ANGLE_STEPS),
+          "Trains the model of a part file (.gltf .glb .ply .stl .obj, mm unless unit_scale) or "
+          "builtin:NAME, as `binpick train` does.")
+      .def(
+          "save", [](const PpfModel& model, const std::string& path) { write_ppf_model(path, model); },
+          py::arg("path"), "Writes the model as `binpick train` does (.ppfm).")
       .def_readonly("diameter", &PpfModel::diameter, "mm")
       .def_readonly("voxel_size", &PpfModel::voxel_size, "mm, the subsampling voxel")
       .def_property_readonly(
@@ -149,15 +181,38 @@ PYBIND11_MODULE(binpick, m) {
               throw InputError("K: a 3 x 3 camera matrix with positive focal lengths expected");
             const bp_camera cam = image_camera(K, scale, image.width, image.height);
             py::gil_scoped_release release;  // other Python threads run meanwhile
-            // One detection at a time in the process: the detectors share the device and its
-            // kernels (their arguments are set per launch).
-            static std::mutex device;
-            const std::lock_guard<std::mutex> lock(device);
+            const std::lock_guard<std::mutex> lock(device_mutex());
             return d.detector->detect(image, cam);
           },
           py::arg("depth"), py::arg("K"), py::arg("depth_scale") = 1.0,
           "Detections in a depth image, best first: depth is uint16 (depth_mm = value * "
-          "depth_scale, BOP's) or float32 (mm), 0 where there is none; K the 3 x 3 camera matrix.");
+          "depth_scale, BOP's) or float32 (mm), 0 where there is none; K the 3 x 3 camera matrix.")
+      .def(
+          "detect_cloud",
+          [](PyDetector& d, const py::array_t<float, py::array::c_style | py::array::forcecast>& points,
+             const std::optional<py::array_t<float, py::array::c_style | py::array::forcecast>>& normals) {
+            const auto cloud_of = [](const auto& a, const char* what) {
+              if (a.ndim() != 2 || a.shape(1) != 3)
+                throw InputError(std::string(what) + ": an (N, 3) array expected");
+              std::vector<Eigen::Vector3f> v(std::size_t(a.shape(0)));
+              for (std::size_t i = 0; i < v.size(); ++i)
+                v[i] = Eigen::Vector3f(a.at(i, 0), a.at(i, 1), a.at(i, 2));
+              return v;
+            };
+            PointCloud cloud;
+            cloud.points = cloud_of(points, "points");
+            if (normals) {
+              cloud.normals = cloud_of(*normals, "normals");
+              if (cloud.normals.size() != cloud.points.size())
+                throw InputError("normals: one per point expected");
+            }
+            py::gil_scoped_release release;
+            const std::lock_guard<std::mutex> lock(device_mutex());
+            return d.detector->detect(cloud);
+          },
+          py::arg("points"), py::arg("normals") = std::nullopt,
+          "Detections in a point cloud in the camera frame (mm, z along the view: highest = "
+          "smallest z), as `detect --cloud`; without normals they are estimated.");
 
   m.attr("RESULTS_CSV_HEADER") = bop::kResultsCsvHeader;
   m.def(

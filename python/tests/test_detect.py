@@ -149,3 +149,58 @@ def test_the_example_writes_the_command_lines_results_csv(bins):
     bad = subprocess.run([sys.executable, str(example), str(bins / "bracket.ppfm"),
                           str(bins / "data"), str(out), "nope=1"], capture_output=True, text=True)
     assert bad.returncode == 2 and "nope" in bad.stderr and bad.stderr.count("\n") == 1
+
+
+def test_a_model_trained_from_python_is_the_command_lines_file(bins, tmp_path):
+    model = binpick.Model.train("builtin:bracket")
+    model.save(str(tmp_path / "py.ppfm"))
+    assert (tmp_path / "py.ppfm").read_bytes() == (bins / "bracket.ppfm").read_bytes()
+    with pytest.raises(ValueError, match="voxel-ratio"):
+        binpick.Model.train("builtin:bracket", voxel_ratio=0)
+    with pytest.raises(ValueError, match="no_such.stl"):
+        binpick.Model.train(str(tmp_path / "no_such.stl"))
+
+
+def test_a_cloud_gives_the_command_lines_detections(bins, tmp_path):
+    """The first image's points (with depth) as a PLY cloud: `detect --cloud` and detect_cloud."""
+    _, _, depth, K, scale = next(images(bins / "data"))
+    v, u = np.nonzero(depth)
+    z = depth[v, u].astype(np.float64) * scale
+    points = np.stack([(u - K[0, 2]) * z / K[0, 0], (v - K[1, 2]) * z / K[1, 1], z], axis=1)
+    points = points[::7].astype(np.float32)  # a sparser cloud: quicker, still the parts
+    ply = tmp_path / "cloud.ply"
+    with open(ply, "w") as f:
+        f.write(f"ply\nformat ascii 1.0\nelement vertex {len(points)}\n"
+                "property float x\nproperty float y\nproperty float z\nend_header\n")
+        f.writelines(f"{x!r} {y!r} {w!r}\n" for x, y, w in points.tolist())
+    run("detect", "--model", bins / "bracket.ppfm", "--cloud", ply, "--out", tmp_path / "c.csv")
+    found = binpick.Detector(binpick.Model.load(str(bins / "bracket.ppfm"))).detect_cloud(points)
+    assert found
+    assert_same(found, cli_rows(tmp_path / "c.csv")[(0, 0)])
+    detector = binpick.Detector(binpick.Model.load(str(bins / "bracket.ppfm")))
+    for bad, message in ((np.zeros((5, 2), np.float32), r"\(N, 3\)"),
+                         (np.zeros((0, 3), np.float32), "empty"),
+                         (np.full((5, 3), np.nan, np.float32), "NaN")):
+        with pytest.raises(ValueError, match=message):
+            detector.detect_cloud(bad)
+    with pytest.raises(ValueError, match="one per point"):
+        detector.detect_cloud(points, np.zeros((3, 3), np.float32))
+
+
+def test_the_stubs_name_what_the_module_has():
+    """python/binpick.pyi (for editors and type checkers) lists the module's names, no more."""
+    import ast
+    stub = ast.parse((Path(__file__).resolve().parents[1] / "binpick.pyi").read_text())
+    for node in stub.body:
+        if isinstance(node, ast.ClassDef):
+            assert hasattr(binpick, node.name), node.name
+            for item in node.body:
+                if isinstance(item, (ast.FunctionDef, ast.AnnAssign)):
+                    name = item.name if isinstance(item, ast.FunctionDef) else item.target.id
+                    assert hasattr(getattr(binpick, node.name), name), f"{node.name}.{name}"
+        elif isinstance(node, ast.FunctionDef):
+            assert hasattr(binpick, node.name), node.name
+    public = {n for n in dir(binpick) if not n.startswith("_")}
+    named = {getattr(n, "name", None) or getattr(getattr(n, "target", None), "id", None)
+             for n in stub.body}
+    assert public <= named, public - named
