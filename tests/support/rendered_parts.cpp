@@ -3,6 +3,7 @@
 #include <cmath>
 #include <cstdint>
 
+#include "host/app/model_options.hpp"
 #include "host/train/surface_sampling.hpp"
 
 namespace binpick::test {
@@ -36,6 +37,24 @@ RenderedScene render_parts(const std::vector<std::pair<Mesh, Eigen::Isometry3f>>
     s.cloud.normals.push_back(normal[k]);
   }
   return s;
+}
+
+ShaftBeside shaft_beside(const Eigen::Vector3f& at, const Mesh& other,
+                         const Eigen::Isometry3f& other_pose) {
+  ShaftBeside s;
+  s.part = cli::load_part({"builtin:shaft", {}});
+  s.model = train_ppf_model(s.part.mesh, {});
+  s.pose = Eigen::Isometry3f::Identity();
+  s.pose.linear() = Eigen::AngleAxisf(0.3f, Eigen::Vector3f(0.2f, 0.5f, 0.8f).normalized())
+                        .toRotationMatrix();
+  s.pose.translation() = at;
+  s.scene = render_parts({{s.part.mesh, s.pose}, {other, other_pose}}, 600.0f + s.model.diameter);
+  return s;
+}
+
+eval::PoseError ShaftBeside::error_of(const Detection& d) const {
+  return eval::symmetric_pose_error(pose.linear().cast<double>(), pose.translation().cast<double>(),
+                                    d.R, d.t, part.symmetries);
 }
 
 }  // namespace binpick::test

@@ -10,6 +10,10 @@
 
 #include "host/core/mesh.hpp"
 #include "host/detect/scene/depth_to_points.hpp"
+#include "host/detect/select/detection.hpp"
+#include "host/eval/metrics/pose_error.hpp"
+#include "host/formats/mesh/load_model.hpp"
+#include "host/train/ppf_model.hpp"
 
 namespace binpick::test {
 
@@ -23,5 +27,19 @@ struct RenderedScene {
 // over a floor at floor_z; the samples that own a pixel are also the visible cloud.
 RenderedScene render_parts(const std::vector<std::pair<Mesh, Eigen::Isometry3f>>& parts,
                            float floor_z);
+
+// The built-in shaft (its model trained with the defaults), tilted, its origin at `at` (mm,
+// camera frame), beside `other` at `other_pose`, over a floor a diameter beyond 600 mm: the
+// hypothesis tests' scenes, where something else lies highest.
+struct ShaftBeside {
+  Model part;
+  PpfModel model;
+  Eigen::Isometry3f pose;
+  RenderedScene scene;
+  // A detection's error from the shaft's pose (its symmetries counted).
+  eval::PoseError error_of(const Detection& d) const;
+};
+ShaftBeside shaft_beside(const Eigen::Vector3f& at, const Mesh& other,
+                         const Eigen::Isometry3f& other_pose);
 
 }  // namespace binpick::test

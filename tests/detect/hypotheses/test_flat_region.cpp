@@ -116,16 +116,11 @@ TEST(FlatRegion, DegenerateClouds) {
 // come first on the sheet. With the flat-region test those are skipped and the next, on the
 // shaft, voted on; without it the one hypothesis of the first round votes on the sheet.
 TEST(FlatRegion, AHighestPointOnASheetWiderThanThePartIsSkipped) {
-  const Model part = cli::load_part({"builtin:shaft", {}});
-  const PpfModel model = train_ppf_model(part.mesh, {});
-  Eigen::Isometry3f T = Eigen::Isometry3f::Identity();
-  T.linear() = Eigen::AngleAxisf(0.3f, Eigen::Vector3f(0.2f, 0.5f, 0.8f).normalized())
-                   .toRotationMatrix();
-  T.translation() = Eigen::Vector3f(-70, 10, 600);
   Eigen::Isometry3f S = Eigen::Isometry3f::Identity();
   S.translation() = Eigen::Vector3f(60, -25, 560);
-  const test::RenderedScene scene = test::render_parts({{part.mesh, T}, {test::box({50, 50, 2}), S}},
-                             600.0f + model.diameter);
+  const test::ShaftBeside shaft = test::shaft_beside({-70, 10, 600}, test::box({50, 50, 2}), S);
+  const test::RenderedScene& scene = shaft.scene;
+  const PpfModel& model = shaft.model;
   for (int path = 0; path < 2; ++path) {
     SCOPED_TRACE(path == 0 ? "depth image" : "cloud");
     DetectParams p;
@@ -143,9 +138,7 @@ TEST(FlatRegion, AHighestPointOnASheetWiderThanThePartIsSkipped) {
       const auto found =
           path == 0 ? detector.detect(scene.depth, scene.cam) : detector.detect(scene.cloud);
       ASSERT_EQ(found.size(), 1u);
-      const eval::PoseError e =
-          eval::symmetric_pose_error(T.linear().cast<double>(), T.translation().cast<double>(),
-                                     found[0].R, found[0].t, part.symmetries);
+      const eval::PoseError e = shaft.error_of(found[0]);
       if (flat == 0) {
         EXPECT_GT(e.translation_mm, 0.5 * model.diameter);  // on the sheet
         EXPECT_TRUE(detector.skipped().empty());
