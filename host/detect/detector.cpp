@@ -152,8 +152,8 @@ DetectTimes& DetectTimes::operator+=(const DetectTimes& o) {
 
 Detector::Detector(const PpfModel& model, const DetectParams& params, ocl::Device& dev)
     : dev_(dev), model_(model), params_(params) {
-  check(params_);
-  bin_spec_ = params_.bin_pose.empty() ? parse_bin(params_.bin) : read_bin_pose(params_.bin_pose);
+  const BinSpec bin = check(params_);
+  bin_spec_ = params_.bin_pose.empty() ? bin : read_bin_pose(params_.bin_pose);
   require(model.diameter > 0 && model.voxel_size > 0 && !model.cloud.points.empty(),
           "the PPF model is empty");
   program_build_s_ = dev_.prebuild({"depth_to_points.cl", "scene_lowpass.cl", "scene_normals.cl",
@@ -535,9 +535,8 @@ std::vector<Detection> Detector::detect(const DepthImage& depth, const bp_camera
   std::optional<ocl::Buffer<float>> search_points;
   if (plane_search_model_.probes > 0 && params_.plane_search > 0 &&
       search_reads_lowpass(noise, thinnest_extent_) && !hyps.empty()) {
-    float farthest = 0;  // of the hypotheses voted on first
-    for (std::size_t i = 0; i < std::min(order.size(), hypotheses_sought(params_)); ++i)
-      farthest = std::max(farthest, hyps[order[i]].depth);
+    float farthest = 0;
+    for (const Hypothesis& h : hyps) farthest = std::max(farthest, h.depth);
     const int radius =
         search_lowpass_radius(kEdgeMarginVoxels * model_.voxel_size / kProbeVoxelDivisor,
                               farthest / std::max(cam.fx, cam.fy));

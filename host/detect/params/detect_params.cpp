@@ -20,7 +20,7 @@ bool in_range(double v, const ParamRange& r) {
 
 }  // namespace
 
-std::optional<ParamProblem> find_param_problem(const DetectParams& p) {
+std::optional<ParamProblem> find_param_problem(const DetectParams& p, BinSpec* parsed_bin) {
   for (const ParamInfo& info : detect_param_table()) {
     if (is_flag(info) || is_text(info)) continue;
     const double v = number_of(info, p);
@@ -38,6 +38,7 @@ std::optional<ParamProblem> find_param_problem(const DetectParams& p) {
   } catch (const InputError& e) {
     return ParamProblem{"bin", 0, "", e.what()};
   }
+  if (parsed_bin) *parsed_bin = bin;
   if (p.instances > 0 && (p.stop_at_confident || p.budget_ms > 0))
     return ParamProblem{"instances", double(p.instances), "",
                         "--instances ranks every hypothesis' poses together: it does not go with "
@@ -56,9 +57,11 @@ std::string describe(const ParamProblem& bad) {
   return fmt::format("{} must be in {}", bad.value, bad.range);
 }
 
-void check(const DetectParams& p) {
-  if (const auto bad = find_param_problem(p))
+BinSpec check(const DetectParams& p) {
+  BinSpec bin;
+  if (const auto bad = find_param_problem(p, &bin))
     throw InputError(fmt::format("detection parameter {} {}", bad->name, describe(*bad)));
+  return bin;
 }
 
 std::size_t hypotheses_sought(const DetectParams& p) {

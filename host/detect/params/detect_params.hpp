@@ -9,6 +9,8 @@
 #include <optional>
 #include <string>
 
+#include "host/detect/params/bin_spec.hpp"
+
 namespace binpick {
 
 struct DetectParams {
@@ -74,11 +76,13 @@ struct ParamProblem {
   std::string range;
   std::string message;  // a text parameter's complaint ("'x': expected ..."); then no value/range
 };
-std::optional<ParamProblem> find_param_problem(const DetectParams& params);
+// bin: gets --bin's spec when it parses (a bin mesh is read once, here).
+std::optional<ParamProblem> find_param_problem(const DetectParams& params, BinSpec* bin = nullptr);
 // The complaint after the parameter's name: "V must be in RANGE", or a text parameter's message.
 std::string describe(const ParamProblem& problem);
 // InputError naming the parameter ("detection parameter ref-ratio ...") for a value out of range.
-void check(const DetectParams& params);
+// Returns --bin's spec (BinSpec: parse_bin), parsed on the way.
+BinSpec check(const DetectParams& params);
 
 // Highest points sought in an image: hypotheses + more_hypotheses, or max(hypotheses,
 // instances) with instances.
