@@ -13,7 +13,7 @@ BUILD_PACKAGES=(
   libtinyobjloader-dev libcli11-dev libspdlog-dev libpng-dev libmeshoptimizer-dev libgtest-dev
   libbenchmark-dev
   gnuplot-nox fonts-dejavu-core
-  python3-dev pybind11-dev python3-numpy python3-pytest
+  python3-dev pybind11-dev python3-numpy python3-pytest python3-venv python3-matplotlib
 )
 BENCH_PACKAGES=(libopencv-contrib-dev)
 FUZZ_PACKAGES=(clang)  # libFuzzer and its sanitizers come with Debian's clang

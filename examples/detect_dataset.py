@@ -28,7 +28,7 @@ def value(text):
     return text
 
 
-def main(model_path, dataset, out, *params, obj_id=1):
+def main(model_path, dataset, out, *params):
     detector = binpick.Detector(binpick.Model.load(model_path),
                                 **{k: value(v) for k, v in (p.split("=", 1) for p in params)})
     lines = [binpick.RESULTS_CSV_HEADER]
@@ -40,7 +40,7 @@ def main(model_path, dataset, out, *params, obj_id=1):
             start = time.perf_counter()
             found = detector.detect(depth, np.reshape(cam["cam_K"], (3, 3)), cam["depth_scale"])
             seconds = time.perf_counter() - start
-            lines += [binpick.results_csv_row(int(scene.name), int(im), obj_id, d, seconds)
+            lines += [binpick.results_csv_row(int(scene.name), int(im), d, seconds)
                       for d in found]
             print(f"scene {scene.name} image {im}: {len(found)} detections", file=sys.stderr)
     Path(out).write_text("\n".join(lines) + "\n")

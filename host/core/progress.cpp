@@ -3,6 +3,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <string>
+#include <utility>
 
 #include <fmt/format.h>
 #include <unistd.h>
@@ -14,7 +15,14 @@ namespace {
 
 constexpr int kBarWidth = 28;
 
+thread_local ProgressListener current_listener;
+
 }  // namespace
+
+ScopedProgressListener::ScopedProgressListener(ProgressListener listener)
+    : previous_(std::exchange(current_listener, std::move(listener))) {}
+
+ScopedProgressListener::~ScopedProgressListener() { current_listener = std::move(previous_); }
 
 bool Progress::enabled() {
   const char* quiet = std::getenv("BINPICK_QUIET");
@@ -26,11 +34,12 @@ Progress::Progress(std::string label, std::size_t total)
       start_(std::chrono::steady_clock::now()), last_draw_(start_) {}
 
 Progress::~Progress() {
-  if (!finished_ && terminal_ && enabled()) std::fputs("\n", stderr);
+  if (!finished_ && !current_listener && terminal_ && enabled()) std::fputs("\n", stderr);
 }
 
 void Progress::update(std::size_t done, std::string_view status) {
   done_ = done;
+  if (current_listener) return current_listener({label_, done_, total_, status, false});
   draw(status, false);
 }
 
@@ -58,6 +67,7 @@ void Progress::draw(std::string_view status, bool force) {
 
 void Progress::finish(std::string_view summary) {
   finished_ = true;
+  if (current_listener) return current_listener({label_, total_, total_, summary, true});
   if (!enabled()) return;
   std::fputs(fmt::format("{}{} {} ({:.1f}s)\n", terminal_ ? "\r\033[K" : "", label_, summary,
                          seconds_since(start_)).c_str(), stderr);

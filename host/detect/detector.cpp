@@ -361,7 +361,7 @@ void Detector::set_instances(std::uint32_t n) {
   params_.instances = n;
 }
 
-std::vector<Detection> Detector::detect(const DepthImage& depth, const bp_camera& cam,
+std::vector<Detection> Detector::detect(DepthView depth, const bp_camera& cam,
                                         DetectTimes* times,
                                         std::vector<PointCloud>* neighbourhoods,
                                         SharedScene* shared) {

@@ -80,7 +80,7 @@ class Detector {
   // another detector) and for pictures.
   // If shared is given, the image's preparation and bin fit are taken from it when another
   // model made them, and left there for the next (shared_scene.hpp): the detections are the same.
-  std::vector<Detection> detect(const DepthImage& depth, const bp_camera& cam,
+  std::vector<Detection> detect(DepthView depth, const bp_camera& cam,
                                 DetectTimes* times = nullptr,
                                 std::vector<PointCloud>* neighbourhoods = nullptr,
                                 SharedScene* shared = nullptr);

@@ -4,7 +4,7 @@
 
 namespace binpick {
 
-PreparedScene SharedScene::scene_for_model(ocl::Device& dev, const DepthImage& depth,
+PreparedScene SharedScene::scene_for_model(ocl::Device& dev, DepthView depth,
                                            const bp_camera& cam, const ScenePrepOptions& opt) {
   const bool first = !prepared_;
   if (first) prepared_ = prepare_scene(dev, depth, cam, opt);

@@ -19,7 +19,7 @@ class SharedScene {
  public:
   // The prepared scene for one model: prepared here on the first call (its timings then carry
   // the preparation's stages; later calls' carry none), a copy sharing the points afterwards.
-  PreparedScene scene_for_model(ocl::Device& dev, const DepthImage& depth, const bp_camera& cam,
+  PreparedScene scene_for_model(ocl::Device& dev, DepthView depth, const bp_camera& cam,
                                 const ScenePrepOptions& opt);
   // The bin fitted with this spec ("auto", "W,D,H") for a part of this diameter (the bin's
   // least height and width follow from it), if a model fitted it.

@@ -63,7 +63,7 @@ void TuneMeasurer::warm_up(Detector& detector) {
   warm_ = true;
   const auto& [key, image] = *dataset_.images.begin();
   const auto png = read_png16(image.files.depth(key.im_id));
-  detector.detect(DepthImage{png.width, png.height, png.pixels},
+  detector.detect(DepthView{png.width, png.height, png.pixels},
                   image_camera(image.camera.K, image.camera.depth_scale, png.width, png.height));
 }
 

@@ -1,9 +1,6 @@
-"""binpick from Python (python/binpick_module.cpp): the same detections as the command line on a
+"""Detection from Python (python/module/): the same detections as the command line on a
 fixed-seed dataset, the same parameters by the same names, and bad input refused with one
 message (ValueError)."""
-import csv
-import json
-import os
 import subprocess
 import sys
 import threading
@@ -13,51 +10,7 @@ import numpy as np
 import pytest
 
 import binpick
-
-EXE = os.environ["BINPICK_EXE"]
-
-
-def run(*args):
-    subprocess.run([EXE, *map(str, args)], check=True, capture_output=True, text=True)
-
-
-@pytest.fixture(scope="module")
-def bins(tmp_path_factory):
-    """Two fixed-seed bins of 35 brackets, the bracket's model, and the command line's results
-    at the defaults and with two hypotheses."""
-    d = tmp_path_factory.mktemp("bins")
-    run("synth", "--model", "builtin:bracket", "--out", d / "data", "--bins", "2", "--objects", "35",
-        "--width", "640", "--height", "360")
-    run("train", "--model", "builtin:bracket", "--out", d / "bracket.ppfm")
-    run("detect", "--model", d / "bracket.ppfm", "--dataset", d / "data", "--out", d / "r.csv")
-    run("detect", "--model", d / "bracket.ppfm", "--dataset", d / "data", "--out", d / "two.csv",
-        "--hypotheses", "2", "--more-hypotheses", "0")
-    return d
-
-
-def images(data):
-    """(scene, image, depth, K, depth_scale) of every image, as BOP stores them."""
-    for scene in sorted((data / "test").iterdir()):
-        cams = json.loads((scene / "scene_camera.json").read_text())
-        for im, cam in sorted(cams.items(), key=lambda kv: int(kv[0])):
-            depth = binpick.read_depth_png(str(scene / "depth" / f"{int(im):06d}.png"))
-            yield int(scene.name), int(im), depth, np.array(cam["cam_K"]).reshape(3, 3), cam["depth_scale"]
-
-
-def cli_rows(csv_path):
-    rows = {}
-    with open(csv_path) as f:
-        for r in csv.DictReader(f):
-            rows.setdefault((int(r["scene_id"]), int(r["im_id"])), []).append(r)
-    return rows
-
-
-def assert_same(found, rows):
-    assert len(found) == len(rows)
-    for d, r in zip(found, rows):
-        assert d.score == pytest.approx(float(r["score"]), rel=1e-12, abs=1e-15)
-        assert np.allclose(d.R, np.array(r["R"].split(), dtype=float).reshape(3, 3), rtol=0, atol=1e-12)
-        assert np.allclose(d.t, np.array(r["t"].split(), dtype=float), rtol=0, atol=1e-9)
+from conftest import assert_same, cli_rows, images, run
 
 
 def test_the_same_detections_as_the_command_line(bins):
@@ -204,3 +157,89 @@ def test_the_stubs_name_what_the_module_has():
     named = {getattr(n, "name", None) or getattr(getattr(n, "target", None), "id", None)
              for n in stub.body}
     assert public <= named, public - named
+
+
+def test_several_models_give_the_command_lines_rows_by_obj_id(bins, tmp_path):
+    """A dict of models detects as `detect --model A --model B` does: rows by obj_id, then score."""
+    run("train", "--model", "builtin:bolt", "--out", tmp_path / "bolt.ppfm")
+    run("detect", "--model", bins / "bracket.ppfm", "--obj-id", "3", "--model", tmp_path / "bolt.ppfm",
+        "--obj-id", "5", "--dataset", bins / "data", "--out", tmp_path / "both.csv",
+        "--hypotheses", "2", "--more-hypotheses", "0")
+    detector = binpick.Detector({5: binpick.Model.load(str(tmp_path / "bolt.ppfm")),
+                                 3: binpick.Model.load(str(bins / "bracket.ppfm"))},
+                                hypotheses=2, more_hypotheses=0)
+    assert detector.obj_ids == [3, 5]
+    rows = cli_rows(tmp_path / "both.csv")
+    for scene, im, depth, K, scale in images(bins / "data"):
+        found = detector.detect(depth, K, scale)
+        assert [d.obj_id for d in found] == [int(r["obj_id"]) for r in rows[(scene, im)]]
+        assert {3, 5} <= {d.obj_id for d in found}
+        assert_same(found, rows[(scene, im)])
+        line = binpick.results_csv_row(scene, im, found[-1], 0.0)
+        assert line.split(",")[:3] == [str(scene), str(im), "5"]
+    with pytest.raises(ValueError, match="none given"):
+        binpick.Detector([])
+
+
+def test_an_image_not_in_row_order_gives_the_same_detections(bins):
+    """uint16 depth is read in place when C-contiguous; any other layout is the same image."""
+    detector = binpick.Detector(binpick.Model.load(str(bins / "bracket.ppfm")))
+    _, _, depth, K, scale = next(images(bins / "data"))
+    fortran = np.asfortranarray(depth)
+    readonly = depth.copy()
+    readonly.flags.writeable = False
+    expected = [d.score for d in detector.detect(depth, K, scale)]
+    assert [d.score for d in detector.detect(fortran, K, scale)] == expected
+    assert [d.score for d in detector.detect(readonly, K, scale)] == expected
+
+
+def test_a_model_trained_from_arrays_is_the_command_lines_file_of_them(tmp_path):
+    """vertices and faces train the model `binpick train` makes of the same mesh in a PLY file."""
+    x, y, z = 60.0, 40.0, 10.0  # a box
+    vertices = np.array([[0, 0, 0], [x, 0, 0], [x, y, 0], [0, y, 0],
+                         [0, 0, z], [x, 0, z], [x, y, z], [0, y, z]], dtype=np.float64)
+    faces = np.array([[0, 2, 1], [0, 3, 2], [4, 5, 6], [4, 6, 7], [0, 1, 5], [0, 5, 4],
+                      [1, 2, 6], [1, 6, 5], [2, 3, 7], [2, 7, 6], [3, 0, 4], [3, 4, 7]])
+    ply = tmp_path / "slab.ply"
+    with open(ply, "w") as f:
+        f.write(f"ply\nformat ascii 1.0\nelement vertex 8\nproperty float x\nproperty float y\n"
+                f"property float z\nelement face 12\nproperty list uchar int vertex_indices\n"
+                f"end_header\n")
+        f.writelines(" ".join(str(c) for c in v) + "\n" for v in vertices.tolist())
+        f.writelines("3 " + " ".join(map(str, t)) + "\n" for t in faces.tolist())
+    run("train", "--model", ply, "--out", tmp_path / "cli.ppfm")
+    model = binpick.Model.train(vertices=vertices, faces=faces)
+    model.save(str(tmp_path / "py.ppfm"))
+    assert (tmp_path / "py.ppfm").read_bytes() == (tmp_path / "cli.ppfm").read_bytes()
+    # A box's symmetries: three half turns about its axes through its centre.
+    assert len(model.symmetries["discrete"]) == 3 and model.symmetries["continuous"] == []
+    for S in model.symmetries["discrete"]:
+        assert S.shape == (4, 4) and np.allclose(S[:3, :3] @ S[:3, :3].T, np.eye(3), atol=1e-6)
+    for bad, message in ((dict(vertices=vertices), "vertices and faces"),
+                         (dict(vertices=vertices[:, :2], faces=faces), r"\(N, 3\)"),
+                         (dict(vertices=vertices, faces=faces + 8), "vertex index 8"),
+                         (dict(vertices=vertices * np.nan, faces=faces), "NaN")):
+        with pytest.raises(ValueError, match=message):
+            binpick.Model.train(**bad)
+    with pytest.raises(ValueError, match="a part file, or vertices"):
+        binpick.Model.train("builtin:bolt", vertices=vertices, faces=faces)
+
+
+def test_a_plates_lookalike_is_its_turn_over():
+    model = binpick.Model.train("builtin:plate")
+    assert model.lookalikes and all(S.shape == (4, 4) for S in model.lookalikes)
+    assert any(np.trace(S[:3, :3]) < -0.9 for S in model.lookalikes)  # a half turn: trace -1
+    assert binpick.Model.train("builtin:shaft").symmetries["continuous"]
+
+
+def test_the_frame_example_draws_the_top_pose(bins, tmp_path):
+    """examples/detect_frame.py: the detector's top pose, drawn into a picture."""
+    example = Path(__file__).resolve().parents[2] / "examples" / "detect_frame.py"
+    out = tmp_path / "top.png"
+    done = subprocess.run([sys.executable, str(example), str(bins / "bracket.ppfm"),
+                           str(bins / "data" / "test" / "000000"), "0", str(out)],
+                          check=True, capture_output=True, text=True)
+    _, _, depth, K, scale = next(images(bins / "data"))
+    top = binpick.Detector(binpick.Model.load(str(bins / "bracket.ppfm"))).detect(depth, K, scale)[0]
+    assert f"score {top.score:.3f}" in done.stdout
+    assert out.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n" and out.stat().st_size > 10000

@@ -219,7 +219,7 @@ namespace {
 // `several`: the batch has several models (the details' obj_id column), even when --targets
 // leaves one of them for this image.
 void detect_image(const std::vector<ObjectDetector>& detectors, bool several,
-                  const DepthImage& depth, const bp_camera& cam, const fs::path& depth_path,
+                  DepthView depth, const bp_camera& cam, const fs::path& depth_path,
                   int scene, int im_id, std::chrono::steady_clock::time_point start,
                   std::vector<bop::ResultRow>& rows, std::string& details, BatchSummary& summary,
                   std::ostream* log) {
@@ -335,7 +335,7 @@ BatchSummary detect_dataset(const std::vector<ObjectDetector>& detectors, const 
       }
       const fs::path depth_path = files.depth(im_id);
       const GrayImage<std::uint16_t> png = read_png16(depth_path);
-      const DepthImage depth{png.width, png.height, png.pixels};
+      const DepthView depth{png.width, png.height, png.pixels};
       detect_image(targeted, detectors.size() > 1, depth, image_camera(cam.K, cam.depth_scale, png.width, png.height),
                    depth_path, scene, im_id, start, rows, details, summary,
                    opt.verbose ? log : nullptr);

@@ -8,7 +8,7 @@
 
 namespace binpick {
 
-double depth_noise_mm(const DepthImage& depth, const bp_camera& cam) {
+double depth_noise_mm(DepthView depth, const bp_camera& cam) {
   if (depth.raw.size() != std::size_t(depth.width) * depth.height)
     throw InputError("depth noise: the image's size does not match its pixels");
   std::vector<double> second;

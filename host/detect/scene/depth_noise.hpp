@@ -27,7 +27,7 @@ inline constexpr std::size_t kMinNoiseSamples = 1000;
 // distribution's MAD factor) ignores the depth steps between parts, which are a small share of
 // the samples. A sample of the image (kNoiseRowStep, kNoiseColumnStep) is enough: the figure
 // is one number for the whole image. 0 with fewer than kMinNoiseSamples samples.
-double depth_noise_mm(const DepthImage& depth, const bp_camera& cam);
+double depth_noise_mm(DepthView depth, const bp_camera& cam);
 
 // How many times longer along the camera's axis than the model's voxel the scene's are: 1 up
 // to a sigma of kNoiseVoxelStart voxels, max_factor from kNoiseVoxelFull voxels on, linear

@@ -6,7 +6,7 @@
 
 namespace binpick {
 
-void check_depth_camera(const DepthImage& depth, const bp_camera& cam) {
+void check_depth_camera(DepthView depth, const bp_camera& cam) {
   if (depth.width != cam.width || depth.height != cam.height ||
       depth.raw.size() != std::size_t(depth.width) * depth.height)
     throw InputError("depth image of " + std::to_string(depth.width) + " x " +
@@ -16,7 +16,7 @@ void check_depth_camera(const DepthImage& depth, const bp_camera& cam) {
     throw InputError("camera focal lengths and depth_scale must be positive");
 }
 
-PointImage depth_to_points(ocl::Device& dev, const DepthImage& depth, const bp_camera& cam) {
+PointImage depth_to_points(ocl::Device& dev, DepthView depth, const bp_camera& cam) {
   check_depth_camera(depth, cam);
   const std::size_t n = depth.raw.size();
   ocl::Buffer<std::uint16_t> in(dev, std::span<const std::uint16_t>(depth.raw), CL_MEM_READ_ONLY);
@@ -26,7 +26,7 @@ PointImage depth_to_points(ocl::Device& dev, const DepthImage& depth, const bp_c
   return {depth.width, depth.height, out.read(dev)};
 }
 
-PointImage depth_to_points_reference(const DepthImage& depth, const bp_camera& cam) {
+PointImage depth_to_points_reference(DepthView depth, const bp_camera& cam) {
   check_depth_camera(depth, cam);
   PointImage img{depth.width, depth.height, std::vector<float>(4 * depth.raw.size(), 0.0f)};
   for (std::uint32_t v = 0; v < depth.height; ++v)

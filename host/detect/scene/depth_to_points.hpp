@@ -2,6 +2,7 @@
 #pragma once
 
 #include <cstdint>
+#include <span>
 #include <vector>
 
 #include "host/runtime/cl/cl_device.hpp"
@@ -14,6 +15,16 @@ struct DepthImage {
   std::vector<std::uint16_t> raw;  // row-major, width * height
 };
 
+// The same held elsewhere (a PNG's pixels, a numpy array): what detection reads, never copied.
+struct DepthView {
+  std::uint32_t width = 0, height = 0;
+  std::span<const std::uint16_t> raw;  // row-major, width * height
+
+  DepthView(std::uint32_t w, std::uint32_t h, std::span<const std::uint16_t> r)
+      : width(w), height(h), raw(r) {}
+  DepthView(const DepthImage& image) : width(image.width), height(image.height), raw(image.raw) {}
+};
+
 // Camera-frame points, one per pixel: xyz in mm and w = 1 where there is data, all 0 elsewhere.
 struct PointImage {
   std::uint32_t width = 0, height = 0;
@@ -22,11 +33,11 @@ struct PointImage {
 
 // InputError unless the image has the camera's size and the camera positive focal lengths and
 // depth scale.
-void check_depth_camera(const DepthImage& depth, const bp_camera& cam);
+void check_depth_camera(DepthView depth, const bp_camera& cam);
 
 // Routine: the depth_to_points kernel on dev.
-PointImage depth_to_points(ocl::Device& dev, const DepthImage& depth, const bp_camera& cam);
+PointImage depth_to_points(ocl::Device& dev, DepthView depth, const bp_camera& cam);
 // Reference: the same in plain C++.
-PointImage depth_to_points_reference(const DepthImage& depth, const bp_camera& cam);
+PointImage depth_to_points_reference(DepthView depth, const bp_camera& cam);
 
 }  // namespace binpick

@@ -9,21 +9,21 @@
 namespace binpick {
 namespace {
 
-void check(const DepthImage& depth, const bp_camera& cam, const ScenePrepOptions& opt) {
+void check(DepthView depth, const bp_camera& cam, const ScenePrepOptions& opt) {
   check_depth_camera(depth, cam);
   check(opt.normals);
   check_lowpass_radius(opt.lowpass_radius);
 }
 
 // depth_to_points gives a point (w = 1) exactly where the raw depth is not 0.
-std::size_t valid_pixels(const DepthImage& depth) {
+std::size_t valid_pixels(DepthView depth) {
   return std::size_t(std::count_if(depth.raw.begin(), depth.raw.end(),
                                    [](std::uint16_t r) { return r != 0; }));
 }
 
 }  // namespace
 
-PreparedScene prepare_scene(ocl::Device& dev, const DepthImage& depth, const bp_camera& cam,
+PreparedScene prepare_scene(ocl::Device& dev, DepthView depth, const bp_camera& cam,
                             const ScenePrepOptions& opt) {
   check(depth, cam, opt);
   const std::size_t n = depth.raw.size();
@@ -68,7 +68,7 @@ PreparedScene prepare_scene(ocl::Device& dev, const DepthImage& depth, const bp_
   return s;
 }
 
-PreparedScene prepare_scene_reference(const DepthImage& depth, const bp_camera& cam,
+PreparedScene prepare_scene_reference(DepthView depth, const bp_camera& cam,
                                       const ScenePrepOptions& opt) {
   check(depth, cam, opt);
   PreparedScene s;

@@ -53,10 +53,10 @@ struct PreparedScene {
 
 // Routine: the kernels depth_to_points, normals_from_points, lowpass_rows/cols in one queue.
 // Throws InputError for a depth image that does not match the camera or bad options.
-PreparedScene prepare_scene(ocl::Device& dev, const DepthImage& depth, const bp_camera& cam,
+PreparedScene prepare_scene(ocl::Device& dev, DepthView depth, const bp_camera& cam,
                             const ScenePrepOptions& opt = {});
 // Reference: the C++ references of the same stages (host vectors only, no device).
-PreparedScene prepare_scene_reference(const DepthImage& depth, const bp_camera& cam,
+PreparedScene prepare_scene_reference(DepthView depth, const bp_camera& cam,
                                       const ScenePrepOptions& opt = {});
 
 }  // namespace binpick
