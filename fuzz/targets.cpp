@@ -8,6 +8,7 @@
 
 #include "host/core/error.hpp"
 #include "host/detect/params/bin_pose_file.hpp"
+#include "host/formats/grasps/grasp_json.hpp"
 #include "host/detect/params/bin_spec.hpp"
 #include "host/detect/params/params_file.hpp"
 #include "host/formats/bop/bop_files.hpp"
@@ -101,6 +102,9 @@ void parse_params(std::string_view bytes) {
 
 void parse_bin_pose(std::string_view bytes) { binpick::parse_bin_pose(bytes, "bin_pose.json"); }
 
+void parse_grasps(std::string_view bytes) { parse_grasps_json(bytes, "grasps.json"); }
+void parse_gripper(std::string_view bytes) { parse_gripper_json(bytes, "gripper.json"); }
+
 void parse_test_targets(std::string_view bytes) {
   bop::parse_test_targets(std::string(bytes), "test_targets_bop19.json");
 }
@@ -121,6 +125,8 @@ const std::vector<Target>& all_targets() {
       {"results_csv", parse_results_csv},
       {"params", parse_params},
       {"bin_pose", parse_bin_pose},
+      {"grasps", parse_grasps},
+      {"gripper", parse_gripper},
       {"test_targets", parse_test_targets},
   };
   return targets;

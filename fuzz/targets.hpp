@@ -28,6 +28,8 @@ void parse_png(std::string_view bytes);           // read_png16, then read_png8
 void parse_results_csv(std::string_view bytes);   // bop::parse_results_csv
 void parse_params(std::string_view bytes);        // apply_params_file (detect --params)
 void parse_bin_pose(std::string_view bytes);      // parse_bin_pose (detect --bin-pose)
+void parse_grasps(std::string_view bytes);        // parse_grasps_json (train/detect --grasps)
+void parse_gripper(std::string_view bytes);       // parse_gripper_json (detect --gripper FILE)
 void parse_test_targets(std::string_view bytes);  // bop::parse_test_targets (detect --targets, eval)
 
 struct Target {

@@ -23,7 +23,8 @@ class Model:
     def train(part: Optional[str] = None, *, vertices: Optional[npt.ArrayLike] = None,
               faces: Optional[npt.ArrayLike] = None, unit_scale: float = 1.0,
               diameter: Optional[float] = None, voxel_ratio: float = 0.05,
-              distance_steps: int = 20, angle_steps: int = 30) -> "Model": ...
+              distance_steps: int = 20, angle_steps: int = 30,
+              cup_diameter: float = 0.0) -> "Model": ...
     def save(self, path: str) -> None: ...
 
 class Detection:

@@ -30,6 +30,11 @@ void add_train_options(CLI::App* verb, TrainArgs& args, const std::string& what)
                    help("angle bins of a full turn (30 = 12 degrees), in [4, 360]; feature "
                         "angles in [0, pi] get half as many"))
       ->capture_default_str();
+  verb->add_option("--cup-diameter", args.cup_diameter,
+                   help(fmt::format("the suction cup the grasps generated from the part's flat "
+                                    "faces are for, mm (0: {:g} % of the diameter)",
+                                    100 * kDefaultCupRatio)))
+      ->capture_default_str();
 }
 
 PpfTrainParams train_params_of(const TrainArgs& a) {
@@ -40,6 +45,10 @@ PpfTrainParams train_params_of(const TrainArgs& a) {
   p.voxel_ratio = a.voxel_ratio;
   p.distance_steps = steps(a.distance_steps, "--distance-steps", 1, 1000);
   p.angle_steps = steps(a.angle_steps, "--angle-steps", 4, 360);
+  if (!(std::isfinite(a.cup_diameter) && a.cup_diameter >= 0 && a.cup_diameter < 1e6))
+    throw InputError(fmt::format("--cup-diameter {} must be positive (mm), or 0 for {:g} % of "
+                                 "the diameter", a.cup_diameter, 100 * kDefaultCupRatio));
+  p.cup_diameter = a.cup_diameter;
   check_train_params(p);
   return p;
 }

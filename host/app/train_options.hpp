@@ -1,5 +1,5 @@
 // The training options, registered once for every verb that trains a model (train, run, tune):
-// --voxel-ratio, --distance-steps, --angle-steps (docs/parameters.md).
+// --voxel-ratio, --distance-steps, --angle-steps, --cup-diameter (docs/parameters.md).
 #pragma once
 
 #include <cstdint>
@@ -17,9 +17,10 @@ struct TrainArgs {
   // what is allowed) instead of a conversion error.
   std::int64_t distance_steps = BP_PPF_DEFAULT_DIST_STEPS;
   std::int64_t angle_steps = BP_PPF_DEFAULT_ANGLE_STEPS;
+  double cup_diameter = 0;  // 0: kDefaultCupRatio of the diameter
 };
 
-// Adds the three options to verb; `what` starts each help text ("training", "starting point").
+// Adds the options to verb; `what` starts each help text ("training", "starting point").
 void add_train_options(CLI::App* verb, TrainArgs& args, const std::string& what);
 
 // The parameters the options give; InputError naming the option for a value out of range.

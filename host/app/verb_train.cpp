@@ -22,6 +22,7 @@
 #include "host/train/ppf_model_file.hpp"
 #include "host/train/symmetry_describe.hpp"
 #include "host/core/timing.hpp"
+#include "host/formats/grasps/grasp_json.hpp"
 
 namespace binpick::cli {
 namespace {
@@ -40,12 +41,25 @@ struct TrainVerbArgs {
   ModelArgs model;
   std::string out;
   TrainArgs train;
+  std::string grasps;  // a grasps JSON file, stored instead of the generated suction grasps
 };
+
+// "N suction, M parallel (from FILE | from the flat faces, cup D mm)".
+std::string describe_grasps(const PpfModel& m, const std::string& file) {
+  std::size_t suction = 0;
+  for (const Grasp& g : m.grasps) suction += g.kind == Grasp::Kind::suction;
+  const double cup = m.grasps.empty() ? 0 : m.grasps.front().size;
+  return fmt::format("{} suction, {} parallel ({})", suction, m.grasps.size() - suction,
+                     file.empty() ? fmt::format("from the faces, cup {:.1f} mm", cup)
+                                  : "from " + file);
+}
 
 double ms(double s) { return s * 1e3; }
 
 void run_train(const TrainVerbArgs& args) {
   const PpfTrainParams params = train_params_of(args.train);  // before the (slow) load: fail fast
+  const std::vector<Grasp> given = args.grasps.empty() ? std::vector<Grasp>{}
+                                                       : read_grasps_json(args.grasps);
   check_output_file(args.out);
   const OutputLock lock = OutputLock::file(args.out);
   const auto start = std::chrono::steady_clock::now();
@@ -53,7 +67,8 @@ void run_train(const TrainVerbArgs& args) {
   const double load_s =
       seconds_since(start);
   PpfTrainStats st;
-  const PpfModel model = train_ppf_model(mesh, params, &st);
+  PpfModel model = train_ppf_model(mesh, params, &st);
+  if (!given.empty()) model.grasps = given;
   const auto write_start = std::chrono::steady_clock::now();
   write_ppf_model(args.out, model);
   const auto end = std::chrono::steady_clock::now();
@@ -70,20 +85,22 @@ void run_train(const TrainVerbArgs& args) {
       "  distinct keys    {:>12}   of {} ({} distance x {}^3 angle bins; alpha in {} bins)\n"
       "  symmetry: {}\n"
       "  look-alikes: {}\n"
+      "  grasps: {}\n"
       "  edge probes: {}, {} of them continuing its faces (points just beyond the part's edges, "
       "for the edge test of thin parts)\n"
       "  time (ms): load {:.1f}, diameter {:.1f}, sampling {:.1f}, subsampling {:.1f}, "
       "table count {:.1f}, offsets {:.1f}, scatter {:.1f}, read back {:.1f}, symmetry {:.1f}, "
-      "write {:.1f}; total {:.1f}\n"
+      "grasps {:.1f}, write {:.1f}; total {:.1f}\n"
       "wrote {} ({:.2f} MB)\n",
       args.model.model, model.diameter, model.voxel_size, params.voxel_ratio, st.surface_samples,
       st.points, st.pairs, st.entries, st.distinct_keys, model.table.offsets.size() - 1,
       model.quant.n_dist, model.quant.n_angle, model.quant.n_alpha,
       describe_symmetries(model.symmetries), describe_look_alikes(model),
+      describe_grasps(model, args.grasps),
       model.edge_probes.points.size(), model.edge_face_probes(), ms(load_s), ms(st.diameter_s),
       ms(st.sample_s),
       ms(st.subsample_s), ms(t.count_s), ms(t.scan_s), ms(t.scatter_s), ms(t.read_s),
-      ms(st.symmetry_s), ms(write_s), ms(total_s), args.out,
+      ms(st.symmetry_s), ms(st.grasp_s), ms(write_s), ms(total_s), args.out,
       double(std::filesystem::file_size(args.out)) / 1e6);
 }
 
@@ -95,10 +112,14 @@ void add_train_verb(CLI::App& app) {
       "train",
       "Build the point pair feature model of a part: sample its surface uniformly, voxel "
       "subsample, hash all point pair features on the OpenCL device, find the part's "
-      "rotational symmetries, write a .ppfm file");
+      "rotational symmetries and the suction grasps its flat faces offer, write a .ppfm file");
   add_model_options(verb, args->model);
   verb->add_option("--out", args->out, "model file to write (.ppfm)")->required();
   add_train_options(verb, args->train, "model");
+  verb->add_option("--grasps", args->grasps,
+                   "grasps JSON file (suction and parallel-jaw grasps in the model frame, "
+                   "docs/picks.md) stored in the model instead of the suction grasps "
+                   "generated from its flat faces");
   verb->callback([args] { run_train(*args); });
 }
 

@@ -1,4 +1,7 @@
 #include "host/detect/detector.hpp"
+
+#include "host/detect/pick/plan_picks.hpp"
+#include "host/formats/grasps/grasp_json.hpp"
 #include "host/detect/verify/below_floor.hpp"
 #include "host/detect/verify/seen_area.hpp"
 #include "host/detect/hypotheses/flat_region.hpp"
@@ -141,6 +144,7 @@ DetectTimes& DetectTimes::operator+=(const DetectTimes& o) {
   vote_ms += o.vote_ms;
   cluster_ms += o.cluster_ms;
   refine_ms += o.refine_ms;
+  pick_ms += o.pick_ms;
   hypotheses += o.hypotheses;
   bin_sought += o.bin_sought;
   bin_found += o.bin_found;
@@ -162,6 +166,19 @@ Detector::Detector(const PpfModel& model, const DetectParams& params, ocl::Devic
                                     "pose_fit.cl"});
   if (!params_.roi.empty() || bin_spec_.mode != BinSpec::Mode::none)
     program_build_s_ += dev_.prebuild({"scene_mask.cl", "bin_planes.cl"});
+  if (picks_wanted(params_)) {
+    grasps_ = params_.grasps.empty() ? model_.grasps : read_grasps_json(params_.grasps);
+    if (params_.gripper != "auto") {
+      gripper_ = parse_gripper(params_.gripper);
+    } else {
+      const auto cup = std::find_if(grasps_.begin(), grasps_.end(),
+                                    [](const Grasp& g) { return g.kind == Grasp::Kind::suction; });
+      gripper_ = default_suction_gripper(model_.diameter, cup != grasps_.end()
+                                                              ? cup->size
+                                                              : kDefaultCupRatio * model_.diameter);
+    }
+    program_build_s_ += dev_.prebuild({"pick_clearance.cl"});
+  }
   device_model_ = upload_model(
       dev_, model_, bucket_cap_entries(params_.bucket_cap, model_.cloud.points.size()));
   // The denser refinement points where the model file has them (version 3 on).
@@ -563,6 +580,20 @@ std::vector<Detection> Detector::detect(DepthView depth, const bp_camera& cam,
   };
   std::vector<Detection> detections =
       in_rounds(std::min(hyps.size(), hypotheses_sought(params_)), vote, rank, started, t);
+  if (gripper_) {
+    Stopwatch pick_clock;
+    PickOptions po;
+    po.min_score = params_.confident;
+    po.approach_cone = params_.approach_cone;
+    po.tolerance = std::max(params_.pick_tolerance * model_.diameter, 3 * image_noise_);
+    po.part_diameter = model_.diameter;
+    const std::vector<PlannedPick> picks =
+        plan_picks(dev_, scene.device->points, cam, detections, grasps_, *gripper_,
+                   masked.bin ? &*masked.bin : nullptr, po);
+    for (std::size_t i = 0; i < detections.size(); ++i) detections[i].pick = picks[i];
+    t.pick_ms += pick_clock.lap();
+    t.stages.push_back({"picks", t.pick_ms});
+  }
   if (times) *times += t;
   return detections;
 }
@@ -580,6 +611,9 @@ std::vector<Detection> Detector::detect(const PointCloud& input, DetectTimes* ti
       bin_spec_.mode == BinSpec::Mode::given)
     throw InputError("--roi, --bin W,D,H and --bin-pose apply to depth images (--dataset), not "
                      "to a point cloud");
+  if (gripper_)
+    throw InputError("--picks, --grasps and --gripper apply to depth images (--dataset), not to a "
+                     "point cloud");
   check_cloud(input);
   require(!input.points.empty(), "the point cloud is empty");
   PointCloud cloud = input;

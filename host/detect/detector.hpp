@@ -30,6 +30,7 @@
 #include "host/detect/verify/lookalike_holes.hpp"
 #include "host/detect/verify/verify_candidates.hpp"
 #include "host/core/timing.hpp"
+#include "host/core/gripper.hpp"
 #include "host/core/mesh.hpp"
 #include "host/train/ppf_model.hpp"
 #include "host/detect/scene/depth_to_points.hpp"
@@ -45,6 +46,7 @@ struct DetectTimes {
   double vote_ms = 0;     // features, votes, peaks
   double cluster_ms = 0;  // poses, compatibility, grouping
   double refine_ms = 0;   // refinement and verification
+  double pick_ms = 0;     // pick planning (--picks)
   std::size_t hypotheses = 0;
   std::size_t bin_sought = 0, bin_found = 0;  // images a bin was looked for in, and found in
   // Per image with a confident pose (fit >= --confident): ms from the start of its detection to
@@ -52,7 +54,7 @@ struct DetectTimes {
   std::vector<double> first_confident_ms;
   StageTimings stages;    // every stage in order, for --verbose
   DetectTimes& operator+=(const DetectTimes& o);
-  double total_ms() const { return prepare_ms + vote_ms + cluster_ms + refine_ms; }
+  double total_ms() const { return prepare_ms + vote_ms + cluster_ms + refine_ms + pick_ms; }
 };
 
 class Detector {
@@ -159,6 +161,9 @@ class Detector {
   DetectParams params_;
   // The bin asked for: --bin, or the one --bin-pose gives (read once, here).
   BinSpec bin_spec_;
+  // --picks: the grasps (the model's or --grasps') and the gripper; none without picks.
+  std::vector<Grasp> grasps_;
+  std::optional<Gripper> gripper_;
   // What identifies it among the fits an image's models share (shared_scene.hpp).
   std::string bin_key() const {
     return params_.bin_pose.empty() ? params_.bin : "pose:" + params_.bin_pose;

@@ -7,6 +7,7 @@
 
 #include <Eigen/Geometry>
 
+#include "host/core/grasp.hpp"
 #include "host/core/mesh.hpp"
 #include "host/core/symmetry.hpp"
 #include "host/train/ppf_table.hpp"
@@ -42,6 +43,9 @@ struct PpfModel {
   // empty in version 5 files, where every probe counts as a face probe.
   PointCloud edge_probes;
   std::vector<std::uint8_t> edge_probe_rim;
+  // Where a gripper may take the part (grasp.hpp): from a grasps file given to train, else the
+  // suction grasps its flat faces offer (suction_grasps.hpp). Empty in files before version 7.
+  std::vector<Grasp> grasps;
 
   // How many edge probes are face probes (all, without kinds).
   std::size_t edge_face_probes() const {
@@ -55,7 +59,16 @@ struct PpfTrainParams {
   double voxel_ratio = 0.05;  // voxel size / diameter
   std::uint32_t distance_steps = BP_PPF_DEFAULT_DIST_STEPS;
   std::uint32_t angle_steps = BP_PPF_DEFAULT_ANGLE_STEPS;
+  // The suction cup the generated grasps are for (mm); 0: kDefaultCupRatio of the diameter, a
+  // cup that fits a bolt's shank or a tube lying on its side as well as the flat faces.
+  double cup_diameter = 0;
 };
+
+inline constexpr double kDefaultCupRatio = 0.1;
+// How far from flat the surface under a cup may be (the lip's give), a fraction of the cup.
+inline constexpr double kGraspFlatnessRatio = 0.15;
+// Generated grasps on one face lie at least this fraction of the diameter apart (or a cup).
+inline constexpr double kGraspApartRatio = 0.15;
 
 struct PpfTrainStats {
   std::size_t surface_samples = 0;
@@ -63,7 +76,7 @@ struct PpfTrainStats {
   std::size_t pairs = 0;        // ordered pairs considered, points * (points - 1)
   std::size_t entries = 0;      // pairs in the table
   std::size_t distinct_keys = 0;
-  double diameter_s = 0, symmetry_s = 0, sample_s = 0, subsample_s = 0;
+  double diameter_s = 0, symmetry_s = 0, sample_s = 0, subsample_s = 0, grasp_s = 0;
   PpfTableTimes table;
 };
 

@@ -143,6 +143,36 @@ bool take_symmetries(std::string_view& in, std::uint32_t continuous, std::uint32
   return true;
 }
 
+// Version 7: a grasp is its kind (uint32) and 10 doubles: point, approach, closing, size.
+constexpr std::uint64_t kGraspBytes = 4 + 80;
+constexpr std::uint32_t kMaxFileGrasps = 100000;
+
+void append_grasp(std::string& out, const Grasp& g) {
+  const auto kind = static_cast<std::uint32_t>(g.kind);
+  append(out, &kind, 1);
+  const double v[10] = {g.point.x(),   g.point.y(),   g.point.z(),   g.approach.x(),
+                        g.approach.y(), g.approach.z(), g.closing.x(), g.closing.y(),
+                        g.closing.z(),  g.size};
+  append(out, v, 10);
+}
+
+// False unless what append_grasp wrote is a grasp: a known kind, finite, unit directions across
+// each other, a positive size.
+bool take_grasp(std::string_view& in, Grasp& g) {
+  std::uint32_t kind = 0;
+  take(in, &kind, 1);
+  double v[10];
+  take(in, v, 10);
+  g.kind = static_cast<Grasp::Kind>(kind);
+  g.point = {v[0], v[1], v[2]};
+  g.approach = {v[3], v[4], v[5]};
+  g.closing = {v[6], v[7], v[8]};
+  g.size = v[9];
+  return kind <= 1 && g.point.allFinite() && std::abs(g.approach.norm() - 1) < 1e-6 &&
+         std::abs(g.closing.norm() - 1) < 1e-6 && std::abs(g.approach.dot(g.closing)) < 1e-6 &&
+         std::isfinite(g.size) && g.size > 0;
+}
+
 }  // namespace
 
 std::string serialize_ppf_model(const PpfModel& m, std::uint32_t version) {
@@ -190,6 +220,11 @@ std::string serialize_ppf_model(const PpfModel& m, std::uint32_t version) {
     if (rim.size() != m.edge_probes.points.size())
       throw std::logic_error("serialize_ppf_model: one kind per edge probe");
     append(payload, rim.data(), rim.size());
+  }
+  if (version >= 7) {
+    const auto count = static_cast<std::uint32_t>(m.grasps.size());
+    append(payload, &count, 1);
+    for (const Grasp& g : m.grasps) append_grasp(payload, g);
   }
 
   Header h{};
@@ -282,6 +317,12 @@ PpfModel parse_ppf_model(std::string_view bytes, const std::string& name) {
     expected += 4 + std::uint64_t(edge_count) * 24;
   }
   if (h.version >= 6) expected += edge_count;  // one kind (a byte) per edge probe
+  std::uint32_t grasp_count = 0;
+  if (h.version >= 7) {
+    grasp_count = count_at(expected);
+    if (grasp_count > kMaxFileGrasps) throw corrupt("grasp count");
+    expected += 4 + grasp_count * kGraspBytes;
+  }
   if (bytes.size() < expected)
     throw InputError(file + " is truncated (" + std::to_string(bytes.size()) + " of " +
                      std::to_string(expected) + " bytes)");
@@ -350,6 +391,12 @@ PpfModel parse_ppf_model(std::string_view bytes, const std::string& name) {
       for (std::size_t i = 0; i < edge_count; ++i)
         if (m.edge_probe_rim[i] > 1) throw corrupt("edge probe kind " + std::to_string(i));
     }
+  }
+  if (h.version >= 7) {
+    payload.remove_prefix(4);
+    m.grasps.resize(grasp_count);
+    for (std::size_t i = 0; i < grasp_count; ++i)
+      if (!take_grasp(payload, m.grasps[i])) throw corrupt("grasp " + std::to_string(i));
   }
 
   // A consistent table, so that detection can index it without checks.

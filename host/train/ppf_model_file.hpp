@@ -15,8 +15,11 @@
 //   their probes (lookalike_probes.hpp): count (uint32), points (3 floats each), normals (3 floats
 //   each), the look-alike of each (uint32 each); from version 5 on, the edge probes
 //   (edge_probes.hpp): count (uint32), points (3 floats each), normals (3 floats each); from
-//   version 6 on, each edge probe's kind (1 byte each: 0 a face probe, 1 a rim probe).
-// Version 1 to 5 files (before symmetries, refinement points, probes, edge probes, their kinds)
+//   version 6 on, each edge probe's kind (1 byte each: 0 a face probe, 1 a rim probe); from
+//   version 7 on, the grasps (grasp.hpp): count (uint32), each as its kind (uint32: 0 suction,
+//   1 parallel) and 10 doubles (point, approach, closing axis, size).
+// Version 1 to 6 files (before symmetries, refinement points, probes, edge probes, their kinds,
+// grasps)
 // are still read, without them (the look-alikes found again from the points; a version 5 file's
 // edge probes all face probes): the table is the same.
 // Readers refuse other versions: a changed format or feature
@@ -32,7 +35,7 @@
 
 namespace binpick {
 
-inline constexpr std::uint32_t kPpfModelFormatVersion = 6;
+inline constexpr std::uint32_t kPpfModelFormatVersion = 7;
 inline constexpr std::uint32_t kPpfModelOldestReadVersion = 1;
 
 // The file's bytes; identical for identical models. Older versions (tests of old files) leave

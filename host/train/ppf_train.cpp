@@ -1,3 +1,4 @@
+#include <algorithm>
 #include <cmath>
 #include <string>
 
@@ -5,6 +6,7 @@
 #include "host/core/timing.hpp"
 #include "host/core/diameter.hpp"
 #include "host/core/cloud_input.hpp"
+#include "host/train/suction_grasps.hpp"
 #include "host/train/ppf_model.hpp"
 #include "host/train/lookalikes.hpp"
 #include "host/train/surface_sampling.hpp"
@@ -19,6 +21,10 @@ void check_train_params(const PpfTrainParams& p) {
     throw InputError("voxel ratio " + std::to_string(p.voxel_ratio) +
                      " must be in (0, 1] (a fraction of the diameter; the paper uses 0.05)");
   make_ppf_quant(1.0f, p.distance_steps, p.angle_steps);
+  if (!(std::isfinite(p.cup_diameter) && p.cup_diameter >= 0 && p.cup_diameter < 1e6))
+    throw InputError("cup diameter " + std::to_string(p.cup_diameter) +
+                     " must be positive (mm), or 0 for " +
+                     std::to_string(int(100 * kDefaultCupRatio)) + " % of the diameter");
 }
 
 PpfModel train_ppf_model(const Mesh& mesh, const PpfTrainParams& params, PpfTrainStats* stats,
@@ -68,6 +74,13 @@ PpfModel train_ppf_model(const Mesh& mesh, const PpfTrainParams& params, PpfTrai
   model.edge_probes = edges.cloud;
   model.edge_probe_rim = edges.rim;
   st.symmetry_s = clock.lap_seconds();
+  SuctionGraspOptions grasp;
+  grasp.cup_diameter = params.cup_diameter > 0 ? params.cup_diameter : kDefaultCupRatio * model.diameter;
+  grasp.flatness = kGraspFlatnessRatio * grasp.cup_diameter;
+  grasp.spacing = 0.75 * model.voxel_size / kFitVoxelDivisor;
+  grasp.apart = std::max(grasp.cup_diameter, kGraspApartRatio * model.diameter);
+  model.grasps = find_suction_grasps(model.fit_cloud, grasp);
+  st.grasp_s = clock.lap_seconds();
   st.points = model.cloud.points.size();
   st.pairs = st.points * (st.points > 0 ? st.points - 1 : 0);
   st.entries = model.table.entries.size();

@@ -63,12 +63,13 @@ void bind_model(py::module_& m) {
           "train",
           [](std::optional<std::string> part, std::optional<py::array> vertices,
              std::optional<py::array> faces, double unit_scale, std::optional<double> diameter,
-             double voxel_ratio, std::int64_t distance_steps, std::int64_t angle_steps) {
+             double voxel_ratio, std::int64_t distance_steps, std::int64_t angle_steps,
+             double cup_diameter) {
             if (part.has_value() == (vertices.has_value() || faces.has_value()) ||
                 vertices.has_value() != faces.has_value())
               throw InputError("Model.train: a part file, or vertices and faces");
             const PpfTrainParams params =
-                cli::train_params_of({voxel_ratio, distance_steps, angle_steps});
+                cli::train_params_of({voxel_ratio, distance_steps, angle_steps, cup_diameter});
             ModelOptions options;
             options.unit_scale = unit_scale;
             options.diameter = diameter;
@@ -85,6 +86,7 @@ void bind_model(py::module_& m) {
           py::arg("diameter") = std::nullopt, py::arg("voxel_ratio") = PpfTrainParams{}.voxel_ratio,
           py::arg("distance_steps") = std::int64_t(BP_PPF_DEFAULT_DIST_STEPS),
           py::arg("angle_steps") = std::int64_t(BP_PPF_DEFAULT_ANGLE_STEPS),
+          py::arg("cup_diameter") = 0.0,
           "Trains the model of a part as `binpick train` does: a part file (.gltf .glb .ply .stl "
           ".obj, mm unless unit_scale) or builtin:NAME, or vertices (N, 3) and faces (M, 3) "
           "(triangles, vertex indices).")

@@ -148,8 +148,8 @@ TEST(EdgeProbes, TheModelFileKeepsThemAndTheirKindsAndOlderVersionsReadAsTheyWer
   PpfModel bad = m;
   bad.edge_probes.normals[5].y() = std::nanf("");
   EXPECT_THROW(parse_ppf_model(serialize_ppf_model(bad), "bad.ppfm"), InputError);
-  std::string huge = bytes;
-  const std::size_t count_at = bytes.size() - 25 * m.edge_probes.points.size() - 4;
+  std::string huge = serialize_ppf_model(m, 6);  // the probes and their kinds last
+  const std::size_t count_at = huge.size() - 25 * m.edge_probes.points.size() - 4;
   huge[count_at + 3] = 0x7f;
   expect_corrupt(huge, "edge probe count");
   EXPECT_THROW(parse_ppf_model(bytes.substr(0, bytes.size() - 10), "cut.ppfm"), InputError);

@@ -352,9 +352,9 @@ TEST(PpfModelFile, RoundTripAndRefusals) {
   wrong[0] = 'X';
   EXPECT_NE(parse_message(wrong).find("not a binpick PPF model"), std::string::npos);
   wrong = bytes;
-  wrong[8] = 7;  // version 7
+  wrong[8] = 8;  // version 8
   EXPECT_NE(parse_message(wrong).find(
-                "was written by format version 7, this binpick reads versions 1 to 6: retrain"),
+                "was written by format version 8, this binpick reads versions 1 to 7: retrain"),
             std::string::npos)
       << parse_message(wrong);
   wrong = bytes;
@@ -416,8 +416,9 @@ TEST(PpfModelFile, SymmetriesRoundTripAndVersionOneIsStillRead) {
   without.probe_lookalike = {};
   without.edge_probes = {};
   without.edge_probe_rim = {};
+  without.grasps = {};
   EXPECT_TRUE(serialize_ppf_model(old) == serialize_ppf_model(without));  // (no byte dump)
-  EXPECT_THROW(serialize_ppf_model(m, 7), std::logic_error);
+  EXPECT_THROW(serialize_ppf_model(m, 8), std::logic_error);
   EXPECT_THROW(serialize_ppf_model(m, 0), std::logic_error);
 
   // Cut inside the symmetries, or right after the table (no counts): truncated.

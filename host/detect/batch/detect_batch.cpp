@@ -1,5 +1,7 @@
 #include "host/detect/batch/detect_batch.hpp"
 
+#include "host/core/csv_quote.hpp"
+
 #include <algorithm>
 #include <charconv>
 #include <chrono>
@@ -18,6 +20,7 @@
 #include "host/detect/params/params_file.hpp"
 #include "host/detect/batch/detect_parts.hpp"
 #include "host/detect/shared_scene.hpp"
+#include "host/detect/batch/picks_csv.hpp"
 #include "host/shards/shard_record.hpp"
 #include "host/core/atomic_file.hpp"
 #include "host/core/read_file.hpp"
@@ -31,12 +34,6 @@ namespace {
 bool parse_int(std::string_view s, int& value) {
   auto [end, ec] = std::from_chars(s.data(), s.data() + s.size(), value);
   return !s.empty() && ec == std::errc() && end == s.data() + s.size() && value >= 0;
-}
-
-std::string csv_quoted(const std::string& text) {
-  std::string q = "\"";
-  for (char c : text) q += c == '"' ? std::string("\"\"") : std::string(1, c);
-  return q + "\"";
 }
 
 }  // namespace
@@ -200,6 +197,8 @@ std::string batch_fingerprint(const BatchOptions& opt, const DetectParams& param
                          checksum_hex(read_file_bytes(path)));
   };
   if (!params.bin_pose.empty()) add("bin-pose", params.bin_pose);
+  if (!params.grasps.empty()) add("grasps", params.grasps);
+  if (params.gripper.ends_with(".json")) add("gripper", params.gripper);
   if (params.bin.rfind("mesh:", 0) == 0) add("bin-mesh", params.bin.substr(5));
   if (!files.empty()) files = ", \"files\": {" + files + "}";
   return fmt::format(
@@ -221,8 +220,8 @@ namespace {
 void detect_image(const std::vector<ObjectDetector>& detectors, bool several,
                   DepthView depth, const bp_camera& cam, const fs::path& depth_path,
                   int scene, int im_id, std::chrono::steady_clock::time_point start,
-                  std::vector<bop::ResultRow>& rows, std::string& details, BatchSummary& summary,
-                  std::ostream* log) {
+                  std::vector<bop::ResultRow>& rows, std::string& details, std::string& picks,
+                  BatchSummary& summary, std::ostream* log) {
   std::vector<std::vector<Detection>> found(detectors.size());
   SharedScene shared;  // the image prepared and its bin fitted once, for every model
   for (std::size_t m = 0; m < detectors.size(); ++m) {
@@ -237,6 +236,7 @@ void detect_image(const std::vector<ObjectDetector>& detectors, bool several,
     const std::optional<int> column = several ? std::optional<int>(obj_id) : std::nullopt;
     details += detail_rows(found[m], scene, im_id, column);
     details += skipped_rows(detector.skipped(), scene, im_id, column);
+    if (picks_wanted(detector.params())) picks += pick_rows(found[m], scene, im_id, obj_id);
     if (log) {
       std::string line = fmt::format("scene {} image {}{}: {} hypotheses;", scene, im_id,
                                      several ? fmt::format(" obj_id {}", obj_id) : "",
@@ -300,6 +300,8 @@ BatchSummary detect_dataset(const std::vector<ObjectDetector>& detectors, const 
   const std::vector<int> scenes = batch_scenes(opt);
   prepare_parts(opt.out, batch_fingerprint(opt, detectors.front().detector->params()));
   write_details_header(opt.out, details_header(detectors.size() > 1));
+  const bool picks_on = picks_wanted(detectors.front().detector->params());
+  write_picks_marker(opt.out, picks_on);
   // Shards of one batch share OUT.parts; the record tells the merge which scenes make it whole.
   const ShardRecord record = batch_shard_record(opt, scenes);
   const auto done = [&](int scene) { return scene_done(opt.out, scene); };
@@ -325,7 +327,7 @@ BatchSummary detect_dataset(const std::vector<ObjectDetector>& detectors, const 
     const bop::SceneFiles files{dir, opt.sensor};
     const bop::SceneCameras cameras = bop::read_scene_cameras(files.scene_camera());
     std::vector<bop::ResultRow> rows;
-    std::string details;
+    std::string details, picks;
     for (const auto& [im_id, cam] : cameras) {
       const auto start = std::chrono::steady_clock::now();
       const std::vector<ObjectDetector> targeted = image_detectors(detectors, opt, scene, im_id);
@@ -337,7 +339,7 @@ BatchSummary detect_dataset(const std::vector<ObjectDetector>& detectors, const 
       const GrayImage<std::uint16_t> png = read_png16(depth_path);
       const DepthView depth{png.width, png.height, png.pixels};
       detect_image(targeted, detectors.size() > 1, depth, image_camera(cam.K, cam.depth_scale, png.width, png.height),
-                   depth_path, scene, im_id, start, rows, details, summary,
+                   depth_path, scene, im_id, start, rows, details, picks, summary,
                    opt.verbose ? log : nullptr);
       ++summary.images;
       if (!opt.save_bin_pose.empty() && !summary.bin_pose_saved)
@@ -345,6 +347,8 @@ BatchSummary detect_dataset(const std::vector<ObjectDetector>& detectors, const 
     }
     // The results part last: its presence marks the scene done.
     write_file_atomically(details_part_file(opt.out, scene), [&](std::ostream& o) { o << details; });
+    if (picks_on)
+      write_file_atomically(picks_part_file(opt.out, scene), [&](std::ostream& o) { o << picks; });
     bop::write_results_csv(part_file(opt.out, scene), rows);
     progress.update(step, fmt::format("scene {}", scene));
   }

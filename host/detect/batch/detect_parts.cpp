@@ -6,6 +6,7 @@
 #include "host/core/error.hpp"
 #include "host/core/read_file.hpp"
 #include "host/detect/batch/detect_batch.hpp"
+#include "host/detect/batch/picks_csv.hpp"
 #include "host/formats/bop/results_csv.hpp"
 #include "host/shards/shard_record.hpp"
 
@@ -22,11 +23,16 @@ fs::path details_part_file(const fs::path& out, int scene) {
   return parts_dir(out) / fmt::format("scene_{:06d}.details.csv", scene);
 }
 
+fs::path picks_part_file(const fs::path& out, int scene) {
+  return parts_dir(out) / fmt::format("scene_{:06d}.picks.csv", scene);
+}
+
 fs::path shard_record_file(const fs::path& out) { return parts_dir(out) / "shards.json"; }
 
 namespace {
 
 fs::path details_header_file(const fs::path& out) { return parts_dir(out) / "details_header.csv"; }
+fs::path picks_marker_file(const fs::path& out) { return parts_dir(out) / "picks_header.csv"; }
 
 }  // namespace
 
@@ -36,6 +42,13 @@ void write_details_header(const fs::path& out, const std::string& header) {
   std::error_code ec;
   if (header == details_header(false)) fs::remove(file, ec);
   else write_file_atomically(file, [&](std::ostream& s) { s << header; });
+}
+
+void write_picks_marker(const fs::path& out, bool picks) {
+  const fs::path file = picks_marker_file(out);
+  std::error_code ec;
+  if (!picks) fs::remove(file, ec);
+  else write_file_atomically(file, [&](std::ostream& s) { s << kPicksCsvHeader; });
 }
 
 void prepare_parts(const fs::path& out, const std::string& fingerprint) {
@@ -74,6 +87,11 @@ std::size_t merge_detect_parts(const fs::path& out, const std::vector<int>& scen
   std::string details = fs::is_regular_file(header) ? read_file_bytes(header) : details_header(false);
   for (int scene : scenes) details += read_file_bytes(details_part_file(out, scene));
   write_file_atomically(details_path(out), [&](std::ostream& o) { o << details; });
+  if (fs::is_regular_file(picks_marker_file(out))) {
+    std::string picks = kPicksCsvHeader;
+    for (int scene : scenes) picks += read_file_bytes(picks_part_file(out, scene));
+    write_file_atomically(picks_path(out), [&](std::ostream& o) { o << picks; });
+  }
   bop::write_results_csv(out, all);
   return all.size();
 }

@@ -65,7 +65,18 @@ struct DetectParams {
   double verify_edge = 1.0;
   double verify_rival = 2.0;
   double verify_lookalike = 1.0;
+  // Picks: where to grasp the detections (host/detect/pick/).
+  bool picks = false;
+  std::string grasps;            // a grasps JSON file; "": the model's own
+  std::string gripper = "auto";  // suction:..., parallel:..., a JSON file, or auto
+  double approach_cone = 45.0;
+  double pick_tolerance = 0.02;
 };
+
+// Whether detection plans picks: --picks, or a --grasps file or --gripper given.
+inline bool picks_wanted(const DetectParams& p) {
+  return p.picks || !p.grasps.empty() || p.gripper != "auto";
+}
 
 // The first parameter out of its range: its name (as in a --params file), its value and the
 // range allowed ("(0, 1]"). The caller that knows where the value came from (an option, a

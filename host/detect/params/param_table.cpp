@@ -143,6 +143,25 @@ const ParamInfo kTable[] = {
     {"verify-lookalike", &P::verify_lookalike, unit_closed, "verification",
      "look-alike share: a pose's score s is multiplied by s / (s + w a), a the best score of the "
      "same candidate turned another way round at its place (a tie keeps half); 0: off"},
+    // Picks.
+    {"picks", &P::picks, {}, "picks",
+     "plan a pick (also with --grasps or --gripper given) for every detection scoring "
+     "--confident or more: its clearest grasp that the "
+     "gripper reaches within --approach-cone without touching the bin or anything the camera "
+     "sees; picks ordered by score, clearance and height (written to OUT.picks.csv)"},
+    {"grasps", &P::grasps, {}, "picks",
+     "a grasps JSON file (suction and parallel-jaw grasps in the model frame, docs/"
+     "picks.md); empty: the model's own (train's, from its flat faces or its --grasps)"},
+    {"gripper", &P::gripper, {}, "picks",
+     "suction:CUP,STANDOFF,BODY_D,BODY_L or parallel:FINGER_W,FINGER_D,FINGER_L,PALM_H (mm), a "
+     "gripper JSON file, or auto (a suction tool with the grasps' cup, a stand-off of a tenth of "
+     "the diameter and a body as wide as the cup, two diameters long)"},
+    {"approach-cone", &P::approach_cone, {0, 90}, "picks",
+     "degrees a grasp's approach may lie from straight down into the bin (the camera's view "
+     "axis without a bin)"},
+    {"pick-tolerance", &P::pick_tolerance, {0, 1}, "picks",
+     "a measured point deeper inside the gripper than this (or three times the image's depth "
+     "noise, if more) is a collision"},
 };
 
 std::string number_text(double v) { return fmt::format("{}", v); }

@@ -1,5 +1,7 @@
 #include "host/eval/report/report_tables.hpp"
 
+#include "host/core/csv_quote.hpp"
+
 #include <cmath>
 
 #include <fmt/format.h>
@@ -77,12 +79,6 @@ json summary_json(const DatasetEvaluation& e) {
 
 const char* landing_name(Landing l) {
   return l == Landing::part ? "part" : l == Landing::distractor ? "distractor" : "none";
-}
-
-std::string csv_quoted(const std::string& s) {
-  std::string out = "\"";
-  for (char c : s) out += c == '"' ? std::string("\"\"") : std::string(1, c);
-  return out + "\"";
 }
 
 }  // namespace

@@ -1,0 +1,22 @@
+// OUT.picks.csv of `detect --picks` (docs/picks.md): per detection its pick (the order a
+// robot takes them in, the grasp, the grasp's frame and approach in the camera frame, the
+// clearance) or the reason it has none.
+#pragma once
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "host/detect/select/detection.hpp"
+
+namespace binpick {
+
+std::filesystem::path picks_path(const std::filesystem::path& out);  // OUT with .picks.csv
+
+inline constexpr const char* kPicksCsvHeader =
+    "scene_id,im_id,obj_id,rank,order,grasp,R,t,approach,clearance,score,reason\n";
+
+// The rows of one model's detections in one image (rank: the detection's in the results).
+std::string pick_rows(const std::vector<Detection>& detections, int scene_id, int im_id, int obj_id);
+
+}  // namespace binpick
