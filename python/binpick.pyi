@@ -38,6 +38,8 @@ class Detection:
     votes: int
     hypothesis: int
     reason: str
+    pick: Optional[dict[str, Any]]
+    pick_reason: str
 
 class Detector:
     """Detection with one model or several; keyword arguments are detect's parameters."""

@@ -179,6 +179,20 @@ void bind_detector(py::module_& m) {
       .def_property_readonly("hypothesis", [](const FoundPart& f) { return f.detection.index; },
                              "the highest point's rank by height (0 = highest)")
       .def_property_readonly("reason", [](const FoundPart& f) { return f.detection.reason; })
+      .def_property_readonly(
+          "pick",
+          [](const FoundPart& f) -> py::object {
+            const PlannedPick& p = f.detection.pick;
+            if (!p.picked) return py::none();
+            return py::dict(py::arg("order") = p.order, py::arg("grasp") = p.grasp,
+                            py::arg("pose") = Eigen::Matrix4d(p.pose.matrix()),
+                            py::arg("approach") = Eigen::Vector3d(p.pose.linear().col(2)),
+                            py::arg("clearance") = p.clearance);
+          },
+          "with picks=True: the pick (order: 1 first; grasp: its index; pose: the grasp's frame "
+          "in the camera frame, 4 x 4, mm; approach; clearance, mm), or None")
+      .def_property_readonly("pick_reason", [](const FoundPart& f) { return f.detection.pick.reason; },
+                             "why the detection has no pick (picks=True), else \"\"")
       .def("__repr__", [](const FoundPart& f) {
         return "<binpick.Detection obj_id " + std::to_string(f.obj_id) + " score " +
                std::to_string(f.detection.score()) + " hypothesis " +

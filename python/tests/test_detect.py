@@ -1,6 +1,7 @@
 """Detection from Python (python/module/): the same detections as the command line on a
 fixed-seed dataset, the same parameters by the same names, and bad input refused with one
 message (ValueError)."""
+import csv
 import subprocess
 import sys
 import threading
@@ -243,3 +244,29 @@ def test_the_frame_example_draws_the_top_pose(bins, tmp_path):
     top = binpick.Detector(binpick.Model.load(str(bins / "bracket.ppfm"))).detect(depth, K, scale)[0]
     assert f"score {top.score:.3f}" in done.stdout
     assert out.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n" and out.stat().st_size > 10000
+
+
+def test_picks_from_python_are_the_command_lines(bins, tmp_path):
+    """picks=True plans the picks `detect --picks` writes to OUT.picks.csv."""
+    run("detect", "--model", bins / "bracket.ppfm", "--dataset", bins / "data", "--out",
+        tmp_path / "p.csv", "--picks")
+    rows = {}
+    with open(tmp_path / "p.picks.csv") as f:
+        for r in csv.DictReader(f):
+            rows.setdefault((int(r["scene_id"]), int(r["im_id"])), []).append(r)
+    detector = binpick.Detector(binpick.Model.load(str(bins / "bracket.ppfm")), picks=True)
+    picked = 0
+    for scene, im, depth, K, scale in images(bins / "data"):
+        found = detector.detect(depth, K, scale)
+        assert len(found) == len(rows[(scene, im)])
+        for d, r in zip(found, rows[(scene, im)]):
+            if d.pick is None:
+                assert r["order"] == "" and d.pick_reason == r["reason"]
+                continue
+            picked += 1
+            assert d.pick_reason == ""
+            assert (d.pick["order"], d.pick["grasp"]) == (int(r["order"]), int(r["grasp"]))
+            assert np.allclose(d.pick["pose"][:3, 3], np.array(r["t"].split(), dtype=float), atol=1e-3)
+            assert np.allclose(d.pick["approach"], np.array(r["approach"].split(), dtype=float), atol=1e-6)
+            assert d.pick["clearance"] == pytest.approx(float(r["clearance"]), abs=1e-3)
+    assert picked >= 2
