@@ -381,11 +381,12 @@ std::string summary_line(const BatchSummary& s) {
   if (!t.first_confident_ms.empty())
     confident = fmt::format("; a confident pose in {} images, the first after {:.0f} ms (median)",
                             t.first_confident_ms.size(), quantile(t.first_confident_ms, 0.5));
+  const std::string picks = t.pick_ms > 0 ? fmt::format(", picks {:.1f}", t.pick_ms / h) : "";
   return fmt::format(
       "{} scenes ({} done before), {} images{}, {} hypotheses, {} rows; ms per hypothesis: "
-      "preparation {:.1f}, voting {:.1f}, clustering {:.1f}, refinement {:.1f}, total {:.1f}{}{}{}",
+      "preparation {:.1f}, voting {:.1f}, clustering {:.1f}, refinement {:.1f}{}, total {:.1f}{}{}{}",
       s.scenes, s.skipped, s.images, untargeted, t.hypotheses, s.rows, t.prepare_ms / h, t.vote_ms / h,
-      t.cluster_ms / h, t.refine_ms / h, t.total_ms() / h, bins, confident, builds);
+      t.cluster_ms / h, t.refine_ms / h, picks, t.total_ms() / h, bins, confident, builds);
 }
 
 }  // namespace binpick
