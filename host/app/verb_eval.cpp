@@ -77,6 +77,20 @@ void print_summary(const std::vector<eval::DatasetEvaluation>& evaluations,
     std::cout << fmt::format("{:<24} {}\n", e.dataset.label,
                              eval::calibration_line(e.summary.score_loose, o.loose));
   for (const auto& e : evaluations) {
+    if (!e.picks) continue;
+    std::size_t wrong = 0, off = 0, hit = 0;
+    for (const auto& f : e.picks->firsts) {
+      wrong += !f.right;
+      off += f.right && !f.on_grasp;
+      hit += f.right && f.on_grasp && !f.collision.empty();
+    }
+    std::cout << fmt::format(
+        "{:<24} picks: the first pick succeeds in {} of {} images ({:.1f} %); {} without a pick; "
+        "failed: {} on a wrong detection, {} off the true grasp, {} colliding at the true poses\n",
+        e.dataset.label, e.picks->success, e.picks->images, 100 * e.picks->rate(),
+        e.picks->images - e.picks->picked, wrong, off, hit);
+  }
+  for (const auto& e : evaluations) {
     const auto& s = e.summary;
     if (s.all_on_nothing == 0 && s.all_on_distractor == 0) continue;
     std::cout << fmt::format(

@@ -22,6 +22,31 @@ double signed_distance(const GripperSolid& s, const Eigen::Vector3d& p) {
   return outside > 0 ? outside : out.maxCoeff();
 }
 
+std::vector<Eigen::Vector3d> surface_samples(const GripperSolid& s) {
+  constexpr double kPi = 3.14159265358979323846;
+  std::vector<Eigen::Vector3d> out;
+  if (s.shape == GripperSolid::Shape::cylinder) {
+    for (const double z : {-s.half.z(), s.half.z()}) {
+      out.push_back(s.centre + Eigen::Vector3d(0, 0, z));
+      for (int k = 0; k < 16; ++k) {
+        const double a = 2 * kPi * k / 16;
+        out.push_back(s.centre + Eigen::Vector3d(s.half.x() * std::cos(a), s.half.x() * std::sin(a), z));
+      }
+    }
+    return out;
+  }
+  for (int k = 0; k < 8; ++k)
+    out.push_back(s.centre + Eigen::Vector3d((k & 1 ? 1 : -1) * s.half.x(), (k & 2 ? 1 : -1) * s.half.y(),
+                                             (k & 4 ? 1 : -1) * s.half.z()));
+  for (int a = 0; a < 3; ++a)
+    for (const double sign : {-1.0, 1.0}) {
+      Eigen::Vector3d p = s.centre;
+      p[a] += sign * s.half[a];
+      out.push_back(p);
+    }
+  return out;
+}
+
 Gripper Gripper::suction(double cup_diameter, double standoff, double body_diameter,
                          double body_length) {
   return {Grasp::Kind::suction, cup_diameter, standoff, body_diameter, body_length};
@@ -52,6 +77,23 @@ std::string Gripper::describe() const {
   return kind == Grasp::Kind::suction
              ? fmt::format("suction:{:g},{:g},{:g},{:g}", a, b, c, d)
              : fmt::format("parallel:{:g},{:g},{:g},{:g}", a, b, c, d);
+}
+
+std::string bin_contact(const std::vector<GripperSolid>& solids,
+                        const Eigen::Isometry3d& grasp_in_frame, const Eigen::Matrix3d& axes,
+                        const Eigen::Vector3d& origin, const Eigen::Vector3d& interior,
+                        double tolerance) {
+  bool wall = false, floor = false;
+  for (const GripperSolid& s : solids)
+    for (const Eigen::Vector3d& q : surface_samples(s)) {
+      const Eigen::Vector3d b = axes.transpose() * (grasp_in_frame * q - origin);
+      if (b.z() < -tolerance) floor = true;
+      if (b.z() < interior.z() && (std::abs(b.x()) > interior.x() / 2 + tolerance ||
+                                   std::abs(b.y()) > interior.y() / 2 + tolerance))
+        wall = true;
+    }
+  if (wall) return "the bin's wall";
+  return floor ? "the bin's floor" : "";
 }
 
 Gripper default_suction_gripper(double part_diameter, double cup_diameter) {

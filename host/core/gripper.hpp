@@ -8,6 +8,7 @@
 #include <vector>
 
 #include <Eigen/Core>
+#include <Eigen/Geometry>
 
 #include "host/core/grasp.hpp"
 
@@ -24,6 +25,9 @@ struct GripperSolid {
 
 // Signed distance (mm) from p to the solid: negative inside.
 double signed_distance(const GripperSolid& solid, const Eigen::Vector3d& p);
+// Points on the solid's surface that stand for it against planes (a bin's walls and floor): a
+// box's corners and face centres, a cylinder's two rims at 16 points each and its end centres.
+std::vector<Eigen::Vector3d> surface_samples(const GripperSolid& solid);
 
 struct Gripper {
   Grasp::Kind kind = Grasp::Kind::suction;
@@ -44,8 +48,17 @@ struct Gripper {
   std::string describe() const;
 };
 
-// The suction tool a part of this diameter gets without --gripper: cup 20 % of the diameter
-// (train's default cup), stand-off 10 %, a body as wide as the cup and two diameters long.
+// What of a bin the solids at grasp_in_frame hit, in the frame of a bin whose interior floor
+// centre is `origin` with axes `axes` (columns x, y, z up) and interior W, D, H: "the bin's wall"
+// (a sample point below the rim outside the interior), "the bin's floor" (below it), or "".
+// Within tolerance (mm) of the interior is inside.
+std::string bin_contact(const std::vector<GripperSolid>& solids,
+                        const Eigen::Isometry3d& grasp_in_frame, const Eigen::Matrix3d& axes,
+                        const Eigen::Vector3d& origin, const Eigen::Vector3d& interior,
+                        double tolerance);
+
+// The suction tool a part of this diameter gets without --gripper: the cup given (the grasps'),
+// a stand-off of 10 % of the diameter, a body as wide as the cup and two diameters long.
 Gripper default_suction_gripper(double part_diameter, double cup_diameter);
 
 }  // namespace binpick

@@ -104,6 +104,8 @@ class Detector {
   const std::string& region_report() const { return region_report_; }
   // Of the last detect() on a depth image: the bin fitted or given, when one was asked for.
   const std::optional<BinFit>& last_bin() const { return last_bin_; }
+  // With picks planned (picks_wanted): the gripper they are planned for.
+  const std::optional<Gripper>& gripper() const { return gripper_; }
   // Of the last detect(): when the first confident pose came and why detection stopped, or "".
   const std::string& rounds_report() const { return rounds_report_; }
   static constexpr std::size_t kMinCropPoints = 10;

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <iostream>
+#include <set>
 
 #include <fmt/format.h>
 
@@ -29,6 +30,17 @@ std::vector<DatasetEvaluation> evaluate_inputs(const std::vector<EvalInput>& inp
       e.summary = evaluate(e.dataset, rows, options);
       e.objects = per_object(e.dataset, e.summary, options);
       e.bop = bop_scores(e.dataset, rows, {options.vsd, options.vsd_delta_mm});
+      // detect --picks wrote its picks beside the results: judged at the true poses.
+      std::filesystem::path picks = in.results;
+      picks.replace_extension(".picks.csv");
+      if (std::filesystem::is_regular_file(picks)) {
+        std::set<int> obj_ids;
+        for (const auto& [key, image] : e.dataset.images)
+          for (const auto& gt : image.gt) obj_ids.insert(gt.obj_id);
+        e.picks = evaluate_picks(e.dataset, e.summary, read_first_picks(picks),
+                                 load_eval_vertices(in.dataset, obj_ids),
+                                 synth_bin_interior(in.dataset), options.loose);
+      }
     } catch (const InputError& err) {
       throw InputError(in.results.string() + ": " + err.what());
     }

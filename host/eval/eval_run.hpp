@@ -5,11 +5,13 @@
 
 #include <array>
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "host/eval/metrics/bop_scores.hpp"
 #include "host/eval/metrics/evaluate.hpp"
+#include "host/eval/metrics/pick_success.hpp"
 #include "host/eval/metrics/precision_curves.hpp"
 
 namespace binpick::eval {
@@ -27,6 +29,7 @@ struct DatasetEvaluation {
   ScoreCurve score_curve;                 // score_curve(summary.results, options.loose)
   BopScores bop;                          // BOP's MSSD / MSPD recalls, next to the paper's
   std::vector<ObjectSummary> objects;     // the paper's figures per obj_id, when several
+  std::optional<PickSummary> picks;       // with RESULTS.picks.csv beside the results
 };
 
 // Loads and evaluates each pair; InputError names the failing pair. With every dataset's noise

@@ -236,7 +236,8 @@ void detect_image(const std::vector<ObjectDetector>& detectors, bool several,
     const std::optional<int> column = several ? std::optional<int>(obj_id) : std::nullopt;
     details += detail_rows(found[m], scene, im_id, column);
     details += skipped_rows(detector.skipped(), scene, im_id, column);
-    if (picks_wanted(detector.params())) picks += pick_rows(found[m], scene, im_id, obj_id);
+    if (detector.gripper())
+      picks += pick_rows(found[m], scene, im_id, obj_id, detector.gripper()->describe());
     if (log) {
       std::string line = fmt::format("scene {} image {}{}: {} hypotheses;", scene, im_id,
                                      several ? fmt::format(" obj_id {}", obj_id) : "",

@@ -12,53 +12,17 @@ namespace binpick {
 namespace {
 
 constexpr double kPi = 3.14159265358979323846;
+
 // Clearance and height each add up to this to a pick's value, so they order picks whose scores
 // are close, never one far less sure above one far surer.
 constexpr double kOrderWeight = 0.1;
-
-// Points on a solid's surface (grasp frame): a box's corners and face centres, a cylinder's two
-// rims at 16 points each and its end centres.
-std::vector<Eigen::Vector3d> solid_samples(const GripperSolid& s) {
-  std::vector<Eigen::Vector3d> out;
-  if (s.shape == GripperSolid::Shape::cylinder) {
-    for (const double z : {-s.half.z(), s.half.z()}) {
-      out.push_back(s.centre + Eigen::Vector3d(0, 0, z));
-      for (int k = 0; k < 16; ++k) {
-        const double a = 2 * kPi * k / 16;
-        out.push_back(s.centre + Eigen::Vector3d(s.half.x() * std::cos(a), s.half.x() * std::sin(a), z));
-      }
-    }
-    return out;
-  }
-  for (int k = 0; k < 8; ++k)
-    out.push_back(s.centre + Eigen::Vector3d((k & 1 ? 1 : -1) * s.half.x(), (k & 2 ? 1 : -1) * s.half.y(),
-                                             (k & 4 ? 1 : -1) * s.half.z()));
-  for (int a = 0; a < 3; ++a)
-    for (const double sign : {-1.0, 1.0}) {
-      Eigen::Vector3d p = s.centre;
-      p[a] += sign * s.half[a];
-      out.push_back(p);
-    }
-  return out;
-}
 
 }  // namespace
 
 std::string bin_collision(const std::vector<GripperSolid>& solids,
                           const Eigen::Isometry3d& grasp_in_camera, const BinFit& bin,
                           double tolerance) {
-  const Eigen::Vector3d half(bin.interior.x() / 2, bin.interior.y() / 2, bin.interior.z());
-  bool wall = false, floor = false;
-  for (const GripperSolid& s : solids)
-    for (const Eigen::Vector3d& q : solid_samples(s)) {
-      const Eigen::Vector3d b = bin.axes.transpose() * (grasp_in_camera * q - bin.origin);
-      if (b.z() < -tolerance) floor = true;
-      if (b.z() < half.z() &&
-          (std::abs(b.x()) > half.x() + tolerance || std::abs(b.y()) > half.y() + tolerance))
-        wall = true;
-    }
-  if (wall) return "the bin's wall";
-  return floor ? "the bin's floor" : "";
+  return bin_contact(solids, grasp_in_camera, bin.axes, bin.origin, bin.interior, tolerance);
 }
 
 std::vector<PlannedPick> plan_picks(ocl::Device& dev, const ocl::Buffer<float>& points,

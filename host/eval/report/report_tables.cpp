@@ -65,6 +65,16 @@ json summary_json(const DatasetEvaluation& e) {
   j["results"] = e.results.string();
   j["noise"] = e.dataset.noise >= 0 ? json(e.dataset.noise) : json(nullptr);
   j["bop"] = bop_json(e.bop);
+  if (e.picks) {
+    json firsts = json::array();
+    for (const PickOutcome& o : e.picks->firsts)
+      firsts.push_back({{"scene_id", o.scene_id}, {"im_id", o.im_id}, {"obj_id", o.obj_id},
+                        {"right", o.right}, {"on_grasp", o.on_grasp},
+                        {"collision", o.collision}, {"success", o.success()}});
+    j["picks"] = {{"images", e.picks->images}, {"picked", e.picks->picked},
+                  {"success", e.picks->success}, {"rate", e.picks->rate()},
+                  {"first_picks", std::move(firsts)}};
+  }
   if (!e.objects.empty()) {
     json objects = json::array();
     for (const ObjectSummary& o : e.objects) {

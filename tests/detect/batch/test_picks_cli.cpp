@@ -63,12 +63,15 @@ TEST_F(PicksCli, WritesAPickPerDetectionTheFirstOnAPartNothingLiesOn) {
   ASSERT_EQ(run.status, 0) << run.err;
   const std::vector<std::string> picks = lines(test::slurp(d / "r.picks.csv"));
   const std::vector<std::string> results = lines(test::slurp(d / "r.csv"));
-  ASSERT_EQ(picks.front(), "scene_id,im_id,obj_id,rank,order,grasp,R,t,approach,clearance,score,reason");
+  ASSERT_EQ(picks.front(),
+            "scene_id,im_id,obj_id,rank,order,grasp,R,t,approach,clearance,score,gripper,reason");
   ASSERT_EQ(picks.size(), results.size());  // a row per detection
   int first = 0;
   for (std::size_t i = 1; i < picks.size(); ++i) {
     const auto f = fields(picks[i]);
-    ASSERT_GE(f.size(), 11u) << picks[i];
+    ASSERT_GE(f.size(), 15u) << picks[i];  // the gripper's text holds 3 commas
+    EXPECT_EQ(f[11] + "," + f[12] + "," + f[13] + "," + f[14], "\"suction:5.2,5.2,5.2,104\"")
+        << "the default tool: the grasps' cup";
     if (f[4].empty()) {
       EXPECT_EQ(picks[i].back(), '"') << "a detection without a pick says why: " << picks[i];
       continue;
@@ -98,6 +101,13 @@ TEST_F(PicksCli, WritesAPickPerDetectionTheFirstOnAPartNothingLiesOn) {
     EXPECT_GT(numbers(f[8])[2], 0.7) << picks[i];
   }
   EXPECT_EQ(first, 2);  // a first pick in each image
+  // eval judges them at the true poses: both succeed (the floor of this fixed-seed bin).
+  const test::CliRun eval = test::run_binpick("eval --dataset " + (d / "data").string() +
+                                              " --results " + (d / "r.csv").string() + " --out " +
+                                              (d / "eval").string() + " --pictures 0 --no-vsd");
+  ASSERT_EQ(eval.status, 0) << eval.err;
+  EXPECT_NE(eval.out.find("picks: the first pick succeeds in 2 of 2 images (100.0 %)"),
+            std::string::npos) << eval.out;
   // A rerun finds every scene done and writes the same picks.
   ASSERT_EQ(test::run_binpick(args).status, 0);
   EXPECT_EQ(lines(test::slurp(d / "r.picks.csv")), picks);

@@ -1,0 +1,63 @@
+// Pick success (docs/picks.md, "Evaluation"): whether the robot would take a part with each
+// image's first pick (order 1 of each obj_id in OUT.picks.csv). It does when the pick's detection
+// is right (eval's loose operating point), its grasp lies within 5 % of the diameter and 15 degrees
+// of the same grasp on the true part (the part's symmetries considered), and the gripper at the
+// planned grasp meets nothing at the true poses: no other part's surface deeper than 2 % of the
+// diameter inside it, its own part only at the contact, and not the bin (from synth.json where the
+// dataset has one).
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <Eigen/Geometry>
+
+#include "host/eval/metrics/eval_dataset.hpp"
+#include "host/eval/metrics/eval_vertices.hpp"
+#include "host/eval/metrics/evaluate.hpp"
+
+namespace binpick::eval {
+
+// A first pick as OUT.picks.csv states it.
+struct PickRow {
+  int scene_id = 0, im_id = 0, obj_id = 1, rank = 0;
+  Eigen::Isometry3d grasp = Eigen::Isometry3d::Identity();  // camera frame
+  std::string gripper;                                      // --gripper's text
+};
+
+// The rows of OUT.picks.csv with order 1; InputError naming the file and line for a malformed one.
+std::vector<PickRow> read_first_picks(const std::filesystem::path& path);
+
+// The bin in the world frame of synth (interior floor centre at the origin, z up), if the
+// dataset's synth.json states it.
+std::optional<Eigen::Vector3d> synth_bin_interior(const std::filesystem::path& dataset_root);
+
+struct PickOutcome {
+  int scene_id = 0, im_id = 0, obj_id = 1;
+  bool right = false;       // the detection is right (loose)
+  bool on_grasp = false;    // the grasp is the true part's, within the tolerances
+  std::string collision;    // what the gripper meets at the true poses ("" nothing)
+  bool success() const { return right && on_grasp && collision.empty(); }
+};
+
+struct PickSummary {
+  std::size_t images = 0;  // images of the dataset with ground truth
+  std::size_t picked = 0;  // of them, images with a first pick
+  std::size_t success = 0; // first picks that succeed
+  std::vector<PickOutcome> firsts;
+  // success / images: an image without a pick counts as a failure.
+  double rate() const { return images ? double(success) / double(images) : 0.0; }
+};
+
+// InputError for a pick of a detection the results do not have, or of an obj_id without
+// vertices. Only suction picks are judged (a parallel gripper's opening is not in the file).
+// right: where a detection is right (eval's loose operating point).
+PickSummary evaluate_picks(const Dataset& dataset, const EvalSummary& summary,
+                           const std::vector<PickRow>& picks, const EvalVertices& vertices,
+                           const std::optional<Eigen::Vector3d>& bin_interior,
+                           const OperatingPoint& right);
+
+}  // namespace binpick::eval

@@ -1,0 +1,137 @@
+// Pick success (host/eval/metrics/pick_success.hpp) on a hand-made scene: a 40 x 40 x 10 mm tile
+// seen from above, a suction pick on its top; the same pick with another tile lying over it, off
+// its grasp, on a wrong detection, against the bin's wall; and the picks file's reader.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+
+#include "host/core/error.hpp"
+#include "host/eval/metrics/pick_success.hpp"
+
+using namespace binpick;
+using namespace binpick::eval;
+
+namespace {
+
+// The tile's surface every 2 mm, model frame: x, y in [-20, 20], z in [-5, 5] (top at z = -5,
+// towards the camera, which looks along +z).
+std::vector<Eigen::Vector3d> tile_points() {
+  std::vector<Eigen::Vector3d> out;
+  for (double x = -20; x <= 20; x += 2)
+    for (double y = -20; y <= 20; y += 2)
+      for (double z : {-5.0, 5.0}) out.emplace_back(x, y, z);
+  return out;
+}
+
+struct Scene {
+  Dataset dataset;
+  EvalSummary summary;
+  EvalVertices vertices;
+};
+
+// One tile at (0, 0, 600) (the pick's part), and `over` more tiles at the given positions.
+Scene scene(const std::vector<Eigen::Vector3d>& over = {}) {
+  Scene s;
+  s.dataset.models[1].diameter = 58;
+  EvalImage& image = s.dataset.images[{0, 0}];
+  bop::GroundTruth gt;
+  gt.model_to_camera.t = {0, 0, 600};
+  image.gt.push_back(gt);
+  for (const auto& t : over) {
+    gt.model_to_camera.t = t;
+    image.gt.push_back(gt);
+  }
+  // The bin: 200 x 200 x 100 interior, floor 5 mm under the tile, up towards the camera.
+  image.camera.world_to_camera.R = Eigen::Vector3d(1, -1, -1).asDiagonal();
+  image.camera.world_to_camera.t = {0, 0, 605};
+  HypothesisResult h;
+  h.gt_index = 0;
+  h.row.t = {0, 0, 600};
+  s.summary.results.push_back(h);
+  s.vertices.by_object[1] = tile_points();
+  return s;
+}
+
+PickRow pick_at(const Eigen::Vector3d& point) {
+  PickRow p;
+  p.grasp.translation() = point;  // approach = the camera's +z: down onto the tile's top
+  p.gripper = "suction:10,5,10,100";
+  return p;
+}
+
+const OperatingPoint kRight{10, 15};
+const Eigen::Vector3d kBin(200, 200, 100);
+
+TEST(PickSuccess, AClearPickOnItsGraspSucceeds) {
+  const Scene s = scene();
+  const PickSummary r = evaluate_picks(s.dataset, s.summary, {pick_at({0, 0, 595})}, s.vertices, kBin, kRight);
+  ASSERT_EQ(r.firsts.size(), 1u);
+  EXPECT_TRUE(r.firsts[0].right);
+  EXPECT_TRUE(r.firsts[0].on_grasp);
+  EXPECT_EQ(r.firsts[0].collision, "");
+  EXPECT_EQ(r.success, 1u);
+  EXPECT_EQ(r.images, 1u);
+  EXPECT_DOUBLE_EQ(r.rate(), 1.0);
+}
+
+TEST(PickSuccess, ATileLyingOverThePickedOneIsHit) {
+  const Scene s = scene({{10, 0, 580}});  // 20 mm above, across the cup's axis
+  const PickSummary r = evaluate_picks(s.dataset, s.summary, {pick_at({0, 0, 595})}, s.vertices, kBin, kRight);
+  EXPECT_EQ(r.firsts[0].collision, "part 1 (obj_id 1)");
+  EXPECT_EQ(r.success, 0u);
+  // Beside it, out of the gripper's way: nothing is hit.
+  const Scene beside = scene({{70, 0, 580}});
+  EXPECT_EQ(evaluate_picks(beside.dataset, beside.summary, {pick_at({0, 0, 595})}, beside.vertices,
+                           kBin, kRight).success, 1u);
+}
+
+TEST(PickSuccess, OffTheGraspOrOnAWrongDetectionFails) {
+  Scene s = scene();
+  // The detection says the tile is 8 mm to the side: the grasp, right for that pose, lies 8 mm
+  // off the true one (more than 5 % of 58 mm).
+  s.summary.results[0].row.t = {8, 0, 600};
+  PickSummary r = evaluate_picks(s.dataset, s.summary, {pick_at({8, 0, 595})}, s.vertices, kBin, kRight);
+  EXPECT_FALSE(r.firsts[0].on_grasp);
+  EXPECT_EQ(r.success, 0u);
+  s.summary.results[0].translation_pct = 30;  // and eval found the pose wrong
+  r = evaluate_picks(s.dataset, s.summary, {pick_at({8, 0, 595})}, s.vertices, kBin, kRight);
+  EXPECT_FALSE(r.firsts[0].right);
+}
+
+TEST(PickSuccess, TheBinsWallIsHitAndMissingRowsAreRefused) {
+  const Scene s = scene();
+  // The tile by the wall (x = 100): the cup over its edge at x = 97 reaches 102.
+  Scene by_wall = s;
+  by_wall.dataset.images[{0, 0}].camera.world_to_camera.t = {-97, 0, 605};
+  const PickSummary r = evaluate_picks(by_wall.dataset, by_wall.summary, {pick_at({0, 0, 595})},
+                                       by_wall.vertices, kBin, kRight);
+  EXPECT_EQ(r.firsts[0].collision, "the bin's wall");
+  EXPECT_EQ(evaluate_picks(by_wall.dataset, by_wall.summary, {pick_at({0, 0, 595})}, by_wall.vertices,
+                           std::nullopt, kRight).success, 1u);  // no bin known: not checked
+  PickRow missing = pick_at({0, 0, 595});
+  missing.rank = 3;
+  EXPECT_THROW(evaluate_picks(s.dataset, s.summary, {missing}, s.vertices, kBin, kRight), InputError);
+}
+
+TEST(PickSuccess, ReadsTheFirstPicksOfAPicksFile) {
+  const auto file = std::filesystem::temp_directory_path() / "binpick_test_first_picks.csv";
+  std::ofstream(file)
+      << "scene_id,im_id,obj_id,rank,order,grasp,R,t,approach,clearance,score,gripper,reason\n"
+      << "0,0,1,0,2,3,1 0 0 0 1 0 0 0 1,1 2 3,0 0 1,5.000,0.9,\"suction:10,5,10,100\",\n"
+      << "0,0,1,1,1,4,1 0 0 0 1 0 0 0 1,4 5 6,0 0 1,5.000,0.8,\"suction:10,5,10,100\",\n"
+      << "0,0,1,2,,,,,,,0.5,\"suction:10,5,10,100\",\"score 0.50 below --confident 0.70\"\n";
+  const auto rows = read_first_picks(file);
+  ASSERT_EQ(rows.size(), 1u);
+  EXPECT_EQ(rows[0].rank, 1);
+  EXPECT_TRUE(rows[0].grasp.translation().isApprox(Eigen::Vector3d(4, 5, 6)));
+  EXPECT_EQ(rows[0].gripper, "suction:10,5,10,100");
+  std::ofstream(file) << "scene_id,im_id,obj_id,rank,order,grasp,R,t,approach,clearance,score,gripper,reason\n"
+                      << "0,0,1,1,1,4,1 0 0 0 1 0 0 0,4 5 6,0 0 1,5.000,0.8,\"suction:10,5,10,100\",\n";
+  EXPECT_THROW(read_first_picks(file), InputError);
+  std::ofstream(file) << "scene_id,im_id,score\n";
+  EXPECT_THROW(read_first_picks(file), InputError);
+  std::filesystem::remove(file);
+}
+
+}  // namespace
