@@ -583,7 +583,7 @@ std::vector<Detection> Detector::detect(DepthView depth, const bp_camera& cam,
   if (gripper_) {
     Stopwatch pick_clock;
     PickOptions po;
-    po.min_score = params_.confident;
+    po.min_score = params_.pick_score;
     po.approach_cone = params_.approach_cone;
     po.tolerance = std::max(params_.pick_tolerance * model_.diameter, 3 * image_noise_);
     po.part_diameter = model_.diameter;

@@ -120,7 +120,7 @@ TEST(PickSuccess, ReadsTheFirstPicksOfAPicksFile) {
       << "scene_id,im_id,obj_id,rank,order,grasp,R,t,approach,clearance,score,gripper,reason\n"
       << "0,0,1,0,2,3,1 0 0 0 1 0 0 0 1,1 2 3,0 0 1,5.000,0.9,\"suction:10,5,10,100\",\n"
       << "0,0,1,1,1,4,1 0 0 0 1 0 0 0 1,4 5 6,0 0 1,5.000,0.8,\"suction:10,5,10,100\",\n"
-      << "0,0,1,2,,,,,,,0.5,\"suction:10,5,10,100\",\"score 0.50 below --confident 0.70\"\n";
+      << "0,0,1,2,,,,,,,0.5,\"suction:10,5,10,100\",\"score 0.50 below --pick-score 0.70\"\n";
   const auto rows = read_first_picks(file);
   ASSERT_EQ(rows.size(), 1u);
   EXPECT_EQ(rows[0].rank, 1);

@@ -146,9 +146,12 @@ const ParamInfo kTable[] = {
     // Picks.
     {"picks", &P::picks, {}, "picks",
      "plan a pick (also with --grasps or --gripper given) for every detection scoring "
-     "--confident or more: its clearest grasp that the "
+     "--pick-score or more: its clearest grasp that the "
      "gripper reaches within --approach-cone without touching the bin or anything the camera "
      "sees; picks ordered by score, clearance and height (written to OUT.picks.csv)"},
+    {"pick-score", &P::pick_score, unit_closed, "picks",
+     "the verified score a detection needs to be picked (a robot's threshold: the score of a "
+     "right pose drops with the sensor's noise, so this lies below --confident)"},
     {"grasps", &P::grasps, {}, "picks",
      "a grasps JSON file (suction and parallel-jaw grasps in the model frame, docs/"
      "picks.md); empty: the model's own (train's, from its flat faces or its --grasps)"},

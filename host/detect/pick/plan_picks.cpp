@@ -50,7 +50,7 @@ std::vector<PlannedPick> plan_picks(ocl::Device& dev, const ocl::Buffer<float>& 
   for (std::size_t i = 0; i < detections.size(); ++i) {
     const Detection& d = detections[i];
     if (!(d.score() >= o.min_score)) {
-      picks[i].reason = fmt::format("score {:.2f} below --confident {:.2f}", d.score(), o.min_score);
+      picks[i].reason = fmt::format("score {:.2f} below --pick-score {:.2f}", d.score(), o.min_score);
       continue;
     }
     Eigen::Isometry3d part = Eigen::Isometry3d::Identity();

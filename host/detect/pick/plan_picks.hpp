@@ -1,4 +1,4 @@
-// Pick planning (docs/picks.md): for the detections scoring --confident or more, each
+// Pick planning (docs/picks.md): for the detections scoring --pick-score or more, each
 // grasp of the gripper's kind at the detected pose, kept if its approach lies within the cone
 // about the bin's down, the gripper stays inside the bin's walls and above its floor, and no
 // measured point lies inside the gripper; each detection's clearest grasp is its pick, and the
@@ -21,7 +21,7 @@
 namespace binpick {
 
 struct PickOptions {
-  double min_score = 0.7;       // --confident: a detection scoring less is not picked
+  double min_score = 0.3;       // --pick-score: a detection scoring less is not picked
   double approach_cone = 45;    // degrees about the bin's down (or the camera's view axis)
   double tolerance = 1;         // mm: a point deeper than this inside the gripper collides
   double part_diameter = 0;     // mm: the clearance that counts fully is a quarter of it

@@ -1,6 +1,6 @@
 // Pick planning (host/detect/pick/plan_picks.hpp) on a hand-made scene: a floor seen straight
 // down, detections whose one suction grasp is clear, under something, outside the approach cone
-// or against the bin's wall; and the order of the picks.
+// or against the bin's wall; and the order of the picks (--pick-score 0.7 here).
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -98,7 +98,7 @@ TEST(PlanPicks, EachDetectionItsClearGraspOrTheReasonWhyNot) {
   EXPECT_FALSE(picks[2].picked);
   EXPECT_EQ(picks[2].reason, "every grasp's approach is more than 45 degrees from down");
   EXPECT_FALSE(picks[3].picked);
-  EXPECT_EQ(picks[3].reason, "score 0.50 below --confident 0.70");
+  EXPECT_EQ(picks[3].reason, "score 0.50 below --pick-score 0.70");
 }
 
 TEST(PlanPicks, AGripperThatWouldHitTheWallIsRefusedWithThatReason) {
