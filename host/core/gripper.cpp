@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 #include <stdexcept>
 
 #include <fmt/format.h>
@@ -23,13 +24,12 @@ double signed_distance(const GripperSolid& s, const Eigen::Vector3d& p) {
 }
 
 std::vector<Eigen::Vector3d> surface_samples(const GripperSolid& s) {
-  constexpr double kPi = 3.14159265358979323846;
   std::vector<Eigen::Vector3d> out;
   if (s.shape == GripperSolid::Shape::cylinder) {
     for (const double z : {-s.half.z(), s.half.z()}) {
       out.push_back(s.centre + Eigen::Vector3d(0, 0, z));
       for (int k = 0; k < 16; ++k) {
-        const double a = 2 * kPi * k / 16;
+        const double a = 2 * std::numbers::pi * k / 16;
         out.push_back(s.centre + Eigen::Vector3d(s.half.x() * std::cos(a), s.half.x() * std::sin(a), z));
       }
     }

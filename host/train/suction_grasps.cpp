@@ -1,10 +1,12 @@
 #include "host/train/suction_grasps.hpp"
 
+#include "host/core/point_grid.hpp"
+
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 #include <numeric>
 #include <stdexcept>
-#include <unordered_map>
 
 namespace binpick {
 namespace {
@@ -12,37 +14,7 @@ namespace {
 constexpr double kSupportCos = 0.7071067811865476;  // cos 45 degrees: a face a cup's lip follows
 constexpr double kSameFaceCos = 0.984807753012208;  // cos 10 degrees: grasps spread on one face
 constexpr int kRimPoints = 8, kInnerPoints = 4;    // where the cup's lip and middle must find surface
-constexpr double kPi = 3.14159265358979323846;
-
-// Points in cubic cells of side `cell`, for the neighbours within that distance.
-class CellIndex {
- public:
-  CellIndex(const PointCloud& cloud, double cell) : cell_(cell) {
-    for (std::uint32_t i = 0; i < cloud.points.size(); ++i) cells_[key(cell_of(cloud.points[i]))].push_back(i);
-  }
-  template <class F>
-  void near(const Eigen::Vector3f& p, F&& f) const {
-    const Eigen::Vector3i c = cell_of(p);
-    for (int dx = -1; dx <= 1; ++dx)
-      for (int dy = -1; dy <= 1; ++dy)
-        for (int dz = -1; dz <= 1; ++dz) {
-          const auto it = cells_.find(key(c + Eigen::Vector3i(dx, dy, dz)));
-          if (it != cells_.end())
-            for (const std::uint32_t i : it->second) f(i);
-        }
-  }
-
- private:
-  Eigen::Vector3i cell_of(const Eigen::Vector3f& p) const {
-    return (p.cast<double>() / cell_).array().floor().cast<int>();
-  }
-  static std::uint64_t key(const Eigen::Vector3i& c) {
-    return (std::uint64_t(std::uint32_t(c.x()) & 0x1fffff) << 42) |
-           (std::uint64_t(std::uint32_t(c.y()) & 0x1fffff) << 21) | (std::uint32_t(c.z()) & 0x1fffff);
-  }
-  double cell_;
-  std::unordered_map<std::uint64_t, std::vector<std::uint32_t>> cells_;
-};
+constexpr double kPi = std::numbers::pi;
 
 // Where q lies relative to the cup on p's plane: height above it, distance from the axis.
 struct CupCoords {
@@ -66,7 +38,8 @@ std::vector<Grasp> find_suction_grasps(const PointCloud& surface, const SuctionG
   const auto& nrm = surface.normals;
   if (pts.empty() || nrm.size() != pts.size()) return {};
   const double r = o.cup_diameter / 2;
-  const CellIndex index(surface, r + o.spacing + o.flatness);
+  const float reach = float(r + o.spacing + o.flatness);  // a lip point's support lies within
+  const PointGrid index(surface, reach, 3);
   Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
   for (const auto& p : pts) centroid += p.cast<double>();
   centroid /= double(pts.size());
@@ -83,7 +56,7 @@ std::vector<Grasp> find_suction_grasps(const PointCloud& surface, const SuctionG
     for (const auto& l : lip) at.push_back(l.x() * (std::cos(l.y()) * u + std::sin(l.y()) * v));
     std::vector<bool> held(lip.size(), false);
     bool blocked = false;
-    index.near(pts[i], [&](std::uint32_t j) {
+    index.near(pts[i], reach, [&](std::uint32_t j) {
       const CupCoords c = cup_coords(p, n, pts[j].cast<double>());
       if (blocked || c.radial > r + o.spacing) return;
       if (c.height > o.flatness && c.radial <= r) {
@@ -116,7 +89,7 @@ std::vector<Grasp> find_suction_grasps(const PointCloud& surface, const SuctionG
     // other leg over this one).
     const bool covered = std::any_of(pts.begin(), pts.end(), [&](const Eigen::Vector3f& q) {
       const CupCoords c = cup_coords(p, n, q.cast<double>());
-      return c.height > o.flatness && c.radial < r;
+      return c.height > o.flatness && c.radial <= r;
     });
     if (covered) continue;
     Grasp g;

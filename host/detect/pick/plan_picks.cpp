@@ -6,24 +6,17 @@
 
 #include <fmt/format.h>
 
+#include "host/core/angles.hpp"
 #include "host/detect/pick/pick_clearance.hpp"
 
 namespace binpick {
 namespace {
-
-constexpr double kPi = 3.14159265358979323846;
 
 // Clearance and height each add up to this to a pick's value, so they order picks whose scores
 // are close, never one far less sure above one far surer.
 constexpr double kOrderWeight = 0.1;
 
 }  // namespace
-
-std::string bin_collision(const std::vector<GripperSolid>& solids,
-                          const Eigen::Isometry3d& grasp_in_camera, const BinFit& bin,
-                          double tolerance) {
-  return bin_contact(solids, grasp_in_camera, bin.axes, bin.origin, bin.interior, tolerance);
-}
 
 std::vector<PlannedPick> plan_picks(ocl::Device& dev, const ocl::Buffer<float>& points,
                                     const bp_camera& cam, const std::vector<Detection>& detections,
@@ -34,7 +27,7 @@ std::vector<PlannedPick> plan_picks(ocl::Device& dev, const ocl::Buffer<float>& 
   // Down: into the bin, or along the camera's view.
   const Eigen::Vector3d down = bin_known ? Eigen::Vector3d(-bin->axes.col(2).normalized())
                                          : Eigen::Vector3d::UnitZ();
-  const double cone_cos = std::cos(o.approach_cone * kPi / 180);
+  const double cone_cos = std::cos(o.approach_cone * kDeg);
   const double cap = std::max(1e-3, 0.25 * o.part_diameter);
 
   struct Tried {
@@ -67,7 +60,8 @@ std::vector<PlannedPick> plan_picks(ocl::Device& dev, const ocl::Buffer<float>& 
       }
       const std::vector<GripperSolid> solids = gripper.solids(grasps[g]);
       if (bin_known) {
-        const std::string hit = bin_collision(solids, pose, *bin, o.tolerance);
+        const std::string hit =
+            bin_contact(solids, pose, bin->axes, bin->origin, bin->interior, o.tolerance);
         if (!hit.empty()) {
           ++hits_bin[i];
           bin_part[i] = hit;

@@ -36,10 +36,4 @@ std::vector<PlannedPick> plan_picks(ocl::Device& dev, const ocl::Buffer<float>& 
                                     const std::vector<Grasp>& grasps, const Gripper& gripper,
                                     const BinFit* bin, const PickOptions& options);
 
-// Whether the gripper's solids at grasp_in_camera stay inside the bin's walls below its rim and
-// above its floor (within tolerance): "" if so, else which it would hit.
-std::string bin_collision(const std::vector<GripperSolid>& solids,
-                          const Eigen::Isometry3d& grasp_in_camera, const BinFit& bin,
-                          double tolerance);
-
 }  // namespace binpick

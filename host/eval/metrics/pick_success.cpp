@@ -3,11 +3,13 @@
 #include <cmath>
 #include <fstream>
 #include <map>
+#include <numbers>
 #include <sstream>
 
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
+#include "host/core/angles.hpp"
 #include "host/core/error.hpp"
 #include "host/core/gripper.hpp"
 #include "host/core/read_file.hpp"
@@ -16,7 +18,6 @@
 namespace binpick::eval {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 constexpr double kGraspPointRatio = 0.05;  // of the diameter: the grasp's position tolerance
 constexpr double kGraspAngleDeg = 15;      // the grasp's approach tolerance
 constexpr double kTouchRatio = 0.02;       // of the diameter: deeper inside the gripper collides
@@ -37,18 +38,11 @@ std::vector<Eigen::Isometry3d> symmetry_transforms(const PartSymmetries& s) {
   for (const ContinuousSymmetry& c : s.continuous)
     for (int k = 1; k < kTurnSteps; ++k) {
       Eigen::Isometry3d t = Eigen::Isometry3d::Identity();
-      t.linear() = Eigen::AngleAxisd(2 * kPi * k / kTurnSteps, c.axis.normalized()).toRotationMatrix();
+      t.linear() = Eigen::AngleAxisd(2 * std::numbers::pi * k / kTurnSteps, c.axis.normalized()).toRotationMatrix();
       t.translation() = c.offset - t.linear() * c.offset;
       out.push_back(t);
     }
   return out;
-}
-
-Eigen::Isometry3d pose_of(const Eigen::Matrix3d& R, const Eigen::Vector3d& t) {
-  Eigen::Isometry3d p = Eigen::Isometry3d::Identity();
-  p.linear() = R;
-  p.translation() = t;
-  return p;
 }
 
 }  // namespace
@@ -101,7 +95,7 @@ std::vector<PickRow> read_first_picks(const std::filesystem::path& path) {
     for (int k = 0; k < 9; ++k) m(k / 3, k % 3) = R[std::size_t(k)];
     if (!m.allFinite() || !(m.transpose() * m).isApprox(Eigen::Matrix3d::Identity(), 1e-4))
       throw bad("R is not a rotation");
-    r.grasp = pose_of(m, Eigen::Vector3d(t[0], t[1], t[2]));
+    r.grasp = bop::Pose{m, Eigen::Vector3d(t[0], t[1], t[2])}.isometry();
     r.gripper = f[11];
     rows.push_back(r);
   }
@@ -150,20 +144,20 @@ PickSummary evaluate_picks(const Dataset& dataset, const EvalSummary& summary,
     // The grasp in the model frame (from the detection's pose), at the true pose, the nearest of
     // the part's symmetric equivalents.
     Grasp g;
-    const Eigen::Isometry3d in_model = pose_of(h.row.R, h.row.t).inverse() * p.grasp;
+    const Eigen::Isometry3d in_model = bop::Pose{h.row.R, h.row.t}.isometry().inverse() * p.grasp;
     g.point = in_model.translation();
     g.approach = in_model.linear().col(2);
     g.closing = in_model.linear().col(0);
     g.size = gripper.a;
     if (h.gt_index >= 0) {
       const bop::GroundTruth& gt = image.gt[std::size_t(h.gt_index)];
-      const Eigen::Isometry3d truth = pose_of(gt.model_to_camera.R, gt.model_to_camera.t);
+      const Eigen::Isometry3d truth = gt.model_to_camera.isometry();
       for (const Eigen::Isometry3d& s : symmetry_transforms(info->second.symmetries)) {
         const Eigen::Vector3d point = truth * (s * g.point);
         const Eigen::Vector3d approach = truth.linear() * s.linear() * g.approach;
         const double angle = std::acos(std::clamp(approach.dot(p.grasp.linear().col(2)), -1.0, 1.0));
         if ((point - p.grasp.translation()).norm() <= kGraspPointRatio * d &&
-            angle <= kGraspAngleDeg * kPi / 180)
+            angle <= kGraspAngleDeg * kDeg)
           o.on_grasp = true;
       }
     }
