@@ -19,7 +19,7 @@
 #include "host/formats/bop/png_image.hpp"
 #include "host/detect/batch/detect_batch.hpp"
 #include "host/detect/detector.hpp"
-#include "host/app/model_options.hpp"
+#include "host/app/options/model_options.hpp"
 #include "host/formats/mesh/load_model.hpp"
 #include "host/train/ppf_model.hpp"
 #include "synth/synthesize.hpp"

@@ -5,7 +5,7 @@
 
 #include <fmt/format.h>
 
-#include "host/app/verbs.hpp"
+#include "host/app/verbs/verbs.hpp"
 #include "host/core/error.hpp"
 
 namespace binpick::cli {

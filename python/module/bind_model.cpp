@@ -8,8 +8,8 @@
 #include <pybind11/numpy.h>
 #include <pybind11/stl.h>
 
-#include "host/app/model_options.hpp"
-#include "host/app/train_options.hpp"
+#include "host/app/options/model_options.hpp"
+#include "host/app/options/train_options.hpp"
 #include "host/core/error.hpp"
 #include "host/train/ppf_model_file.hpp"
 #include "python/module/bindings.hpp"

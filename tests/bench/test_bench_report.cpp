@@ -10,7 +10,7 @@
 #include "bench/lib/scaling_bench.hpp"
 #include "bench/lib/throughput.hpp"
 #include "host/detect/vote/ppf_vote.hpp"
-#include "host/app/model_options.hpp"
+#include "host/app/options/model_options.hpp"
 #include "host/formats/mesh/load_model.hpp"
 #include "host/train/ppf_features.hpp"
 

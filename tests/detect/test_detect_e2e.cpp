@@ -15,7 +15,7 @@
 #include "host/formats/bop/results_csv.hpp"
 #include "host/detect/detector.hpp"
 #include "host/eval/metrics/pose_error.hpp"
-#include "host/app/model_options.hpp"
+#include "host/app/options/model_options.hpp"
 #include "host/formats/mesh/load_model.hpp"
 #include "host/train/ppf_model.hpp"
 #include "host/train/surface_sampling.hpp"

@@ -11,7 +11,7 @@
 #include "host/formats/bop/png_image.hpp"
 #include "host/formats/bop/results_csv.hpp"
 #include "host/formats/bop/bop_models.hpp"
-#include "host/app/model_options.hpp"
+#include "host/app/options/model_options.hpp"
 #include "host/formats/mesh/load_model.hpp"
 #include "tests/support/cli_run.hpp"
 

@@ -18,7 +18,7 @@
 #include "host/eval/report/precision_plot.hpp"
 #include "host/eval/report/scene_pictures.hpp"
 #include "host/formats/bop/bop_models.hpp"
-#include "host/app/model_options.hpp"
+#include "host/app/options/model_options.hpp"
 #include "host/formats/mesh/load_model.hpp"
 #include "tests/support/cli_run.hpp"
 

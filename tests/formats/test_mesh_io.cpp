@@ -19,7 +19,7 @@
 #include "host/formats/mesh/point_cloud_ply.hpp"
 #include "host/core/read_file.hpp"
 #include "host/core/diameter.hpp"
-#include "host/app/model_options.hpp"
+#include "host/app/options/model_options.hpp"
 #include "host/formats/mesh/load_model.hpp"
 #include "host/core/mesh_geometry.hpp"
 #include "host/core/mesh_topology.hpp"

@@ -3,7 +3,7 @@
 #include <cmath>
 #include <cstdint>
 
-#include "host/app/model_options.hpp"
+#include "host/app/options/model_options.hpp"
 #include "host/train/surface_sampling.hpp"
 
 namespace binpick::test {

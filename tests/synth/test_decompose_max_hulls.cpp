@@ -4,7 +4,7 @@
 // cap counts the hulls after merging.
 #include <gtest/gtest.h>
 
-#include "host/app/model_options.hpp"
+#include "host/app/options/model_options.hpp"
 #include "host/formats/mesh/load_model.hpp"
 #include "synth/decompose/decompose.hpp"
 #include "synth/decompose/hull_cover.hpp"

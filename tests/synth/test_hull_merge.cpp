@@ -6,7 +6,7 @@
 #include <Eigen/Geometry>
 #include <cmath>
 
-#include "host/app/model_options.hpp"
+#include "host/app/options/model_options.hpp"
 #include "host/formats/mesh/load_model.hpp"
 #include "synth/decompose/decompose.hpp"
 #include "synth/decompose/hull_cover.hpp"

@@ -11,7 +11,7 @@
 
 #include "host/core/error.hpp"
 #include "host/core/diameter.hpp"
-#include "host/app/model_options.hpp"
+#include "host/app/options/model_options.hpp"
 #include "host/formats/mesh/load_model.hpp"
 #include "host/core/mesh_geometry.hpp"
 #include "host/core/mesh_topology.hpp"

@@ -1,5 +1,5 @@
 // The one table of detection parameters: name, member, type, range, group and help of each.
-// The command line's options (host/app/detect_options.cpp), the --params file's reader and
+// The command line's options (host/app/options/detect_options.cpp), the --params file's reader and
 // writer (params_file.hpp), validation (detect_params.hpp) and the table in docs/parameters.md
 // (checked by tests/detect/params/test_param_table.cpp) all come from it; the defaults are
 // DetectParams' own.

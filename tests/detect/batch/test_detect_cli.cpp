@@ -21,7 +21,7 @@
 #include "host/formats/bop/png_image.hpp"
 #include "host/formats/bop/results_csv.hpp"
 #include "host/core/error.hpp"
-#include "host/app/model_options.hpp"
+#include "host/app/options/model_options.hpp"
 #include "host/formats/mesh/load_model.hpp"
 #include "host/train/surface_sampling.hpp"
 #include "tests/detect/bin/bin_fit_check.hpp"

@@ -5,7 +5,7 @@
 #include <cmath>
 #include <numbers>
 
-#include "host/app/model_options.hpp"
+#include "host/app/options/model_options.hpp"
 #include "host/detect/detector.hpp"
 #include "host/detect/hypotheses/flat_region.hpp"
 #include "host/eval/metrics/pose_error.hpp"

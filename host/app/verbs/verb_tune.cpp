@@ -10,12 +10,12 @@
 
 #include <fmt/format.h>
 
-#include "host/app/dataset_options.hpp"
-#include "host/app/detect_options.hpp"
-#include "host/app/model_options.hpp"
-#include "host/app/shard_options.hpp"
-#include "host/app/train_options.hpp"
-#include "host/app/verbs.hpp"
+#include "host/app/options/dataset_options.hpp"
+#include "host/app/options/detect_options.hpp"
+#include "host/app/options/model_options.hpp"
+#include "host/app/options/shard_options.hpp"
+#include "host/app/options/train_options.hpp"
+#include "host/app/verbs/verbs.hpp"
 #include "host/core/error.hpp"
 #include "host/core/output_lock.hpp"
 #include "host/tune/tune_run.hpp"

@@ -5,8 +5,8 @@
 #include <iostream>
 #include <memory>
 
-#include "host/app/model_options.hpp"
-#include "host/app/verbs.hpp"
+#include "host/app/options/model_options.hpp"
+#include "host/app/verbs/verbs.hpp"
 #include "host/core/error.hpp"
 #include "host/formats/mesh/mesh_writers.hpp"
 #include "host/core/diameter.hpp"

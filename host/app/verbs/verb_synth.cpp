@@ -8,11 +8,11 @@
 
 #include <fmt/format.h>
 
-#include "host/app/dataset_options.hpp"
-#include "host/app/model_options.hpp"
-#include "host/app/verbs.hpp"
-#include "host/app/scene_options.hpp"
-#include "host/app/shard_options.hpp"
+#include "host/app/options/dataset_options.hpp"
+#include "host/app/options/model_options.hpp"
+#include "host/app/verbs/verbs.hpp"
+#include "host/app/options/scene_options.hpp"
+#include "host/app/options/shard_options.hpp"
 #include "host/shards/slurm_run.hpp"
 #include "synth/synth_shards.hpp"
 #include "host/core/output_lock.hpp"

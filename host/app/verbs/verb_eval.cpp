@@ -11,8 +11,8 @@
 
 #include <fmt/format.h>
 
-#include "host/app/shard_options.hpp"
-#include "host/app/verbs.hpp"
+#include "host/app/options/shard_options.hpp"
+#include "host/app/verbs/verbs.hpp"
 #include "host/core/error.hpp"
 #include "host/core/output_lock.hpp"
 #include "host/eval/eval_run.hpp"

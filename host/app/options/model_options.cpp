@@ -1,4 +1,4 @@
-#include "host/app/model_options.hpp"
+#include "host/app/options/model_options.hpp"
 
 #include <CLI/CLI.hpp>
 #include <string_view>

@@ -10,7 +10,7 @@
 
 #include <fmt/format.h>
 
-#include "host/app/verbs.hpp"
+#include "host/app/verbs/verbs.hpp"
 #include "host/core/error.hpp"
 #include "host/detect/batch/detect_parts.hpp"
 #include "host/shards/shard_record.hpp"

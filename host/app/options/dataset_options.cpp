@@ -1,4 +1,4 @@
-#include "host/app/dataset_options.hpp"
+#include "host/app/options/dataset_options.hpp"
 #include <CLI/CLI.hpp>
 
 namespace binpick::cli {

@@ -8,9 +8,9 @@
 #include <fmt/format.h>
 
 #include "bench/lib/bench_run.hpp"
-#include "host/app/dataset_options.hpp"
-#include "host/app/model_options.hpp"
-#include "host/app/verbs.hpp"
+#include "host/app/options/dataset_options.hpp"
+#include "host/app/options/model_options.hpp"
+#include "host/app/verbs/verbs.hpp"
 #include "host/core/error.hpp"
 #include "host/core/output_lock.hpp"
 #include "host/tune/experiment.hpp"

@@ -1,4 +1,4 @@
-#include "host/app/detect_options.hpp"
+#include "host/app/options/detect_options.hpp"
 
 #include <CLI/CLI.hpp>
 #include <set>

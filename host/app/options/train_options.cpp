@@ -1,4 +1,4 @@
-#include "host/app/train_options.hpp"
+#include "host/app/options/train_options.hpp"
 
 #include <CLI/CLI.hpp>
 #include <cmath>

@@ -1,4 +1,4 @@
-#include "host/app/scene_options.hpp"
+#include "host/app/options/scene_options.hpp"
 #include <CLI/CLI.hpp>
 
 #include "synth/part_mix.hpp"

@@ -12,10 +12,10 @@
 
 #include <fmt/format.h>
 
-#include "host/app/model_options.hpp"
-#include "host/app/train_options.hpp"
+#include "host/app/options/model_options.hpp"
+#include "host/app/options/train_options.hpp"
 #include "host/app/output_file.hpp"
-#include "host/app/verbs.hpp"
+#include "host/app/verbs/verbs.hpp"
 #include "host/core/output_lock.hpp"
 #include "host/core/error.hpp"
 #include "host/train/ppf_model.hpp"

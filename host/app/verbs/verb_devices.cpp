@@ -7,7 +7,7 @@
 #include <fmt/format.h>
 
 #include "host/runtime/cl/cl_device.hpp"
-#include "host/app/verbs.hpp"
+#include "host/app/verbs/verbs.hpp"
 #include "host/core/error.hpp"
 #include "host/runtime/vk/vk_context.hpp"
 

@@ -12,8 +12,8 @@
 #include <fmt/format.h>
 
 #include "host/runtime/cl/cl_device.hpp"
-#include "host/app/model_options.hpp"
-#include "host/app/verbs.hpp"
+#include "host/app/options/model_options.hpp"
+#include "host/app/verbs/verbs.hpp"
 #include "host/core/error.hpp"
 #include "host/core/output_lock.hpp"
 #include "host/tune/experiment.hpp"

@@ -1,4 +1,4 @@
-#include "host/app/shard_options.hpp"
+#include "host/app/options/shard_options.hpp"
 
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
