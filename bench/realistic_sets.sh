@@ -204,7 +204,7 @@ BINS=${BINS:-4}
 mkdir -p "$WORK/assets" "$WORK/data" "$WORK/models" "$WORK/$TAG"
 stamp=$(md5sum "$BINPICK" | cut -c1-12)  # a model per binary: a new build retrains
 summary=$WORK/$TAG/summary.tsv
-printf 'set\timages\ttop\tstrict\tall\thypotheses\tms_per_hypothesis\tbin_found\n' >"$summary"
+printf 'set\timages\ttop\tstrict\tall\thypotheses\tms_per_hypothesis\tbin_found\tpicks\n' >"$summary"
 for set in "${wanted[@]}"; do
   opts=$(options_of "$set") || exit 1
   read -r -a synth_opts <<<"$opts"
@@ -257,9 +257,12 @@ found = re.search(r"a bin found in (\d+) of (\d+) images", open(sys.argv[3]).rea
 loose, strict = row["precision"]["loose"], row["precision"]["strict"]
 n, h = row["images"], row["hypotheses"]
 ms = row["ms_per_hypothesis"]
+# With --picks in $DETECT: the images whose first pick succeeds (docs/picks.md).
+picks = row.get("picks")
 print("\t".join(str(x) for x in (sys.argv[2], n, round(loose["top"] * n), round(strict["top"] * n),
                                  round(loose["all"] * h), h, "-" if ms is None else round(ms),
-                                 found.group(1) if found else "-")))
+                                 found.group(1) if found else "-",
+                                 picks["success"] if picks else "-")))
 PY
   tail -1 "$summary"
 done
@@ -267,5 +270,8 @@ python3 - "$summary" <<'PY'
 import sys
 rows = [l.rstrip("\n").split("\t") for l in open(sys.argv[1])][1:]
 tot = [sum(int(r[i]) for r in rows) for i in range(1, 6)]
-print("total\t%d images\ttop %d\tstrict %d\tall %d of %d" % tuple(tot))
+line = "total\t%d images\ttop %d\tstrict %d\tall %d of %d" % tuple(tot)
+if rows and all(r[8] != "-" for r in rows):
+    line += "\tpicks %d" % sum(int(r[8]) for r in rows)
+print(line)
 PY

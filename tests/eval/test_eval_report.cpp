@@ -16,6 +16,7 @@
 #include "host/eval/eval_run.hpp"
 #include "host/eval/report/gnuplot.hpp"
 #include "host/eval/report/precision_plot.hpp"
+#include "host/eval/report/pick_picture.hpp"
 #include "host/eval/report/scene_pictures.hpp"
 #include "host/formats/bop/bop_models.hpp"
 #include "host/app/options/model_options.hpp"
@@ -273,6 +274,46 @@ TEST(EvalPictures, DepthIsDarkNearAndBlackWithoutData) {
   // Far away from it the picture is the dimmed intensity image: grey.
   const Rgb far = hyps.get(300, 230);
   EXPECT_EQ(far[0], far[2]);
+}
+
+// Pixels clearly of one colour: green (a succeeding pick) or red (a failing one).
+std::pair<int, int> green_and_red(const Canvas& c) {
+  int green = 0, red = 0;
+  for (std::uint32_t y = 0; y < c.height(); ++y)
+    for (std::uint32_t x = 0; x < c.width(); ++x) {
+      const Rgb p = c.get(int(x), int(y));
+      green += p[1] > p[0] + 60 && p[1] > p[2] + 60;
+      red += p[0] > p[1] + 60 && p[0] > p[2] + 60;
+    }
+  return {green, red};
+}
+
+TEST(EvalPictures, APickIsItsGripperGreenWhereItSucceedsRedWhereItFails) {
+  const fs::path dir = test::fresh_temp_dir("eval_pick_picture");
+  write_toy_dataset(dir / "ds", -1);
+  const Dataset d = load_dataset(dir / "ds");
+  const SceneView view = load_scene_view(d, {0, 0});
+  PickOutcome o;
+  o.pick.grasp.translation() = Eigen::Vector3d(-60, 0, 780);  // down onto the first part
+  o.pick.gripper = "suction:20,10,20,100";
+  o.right = o.on_grasp = true;
+  const Canvas good = picks_picture(view, {&o}, {}, {}, 100.0);
+  // A crop around the pick (three diameters at 780 mm: ~150 pixels), magnified.
+  EXPECT_GE(good.width(), 400u);
+  EXPECT_LE(good.width(), 700u);
+  const auto [green, red] = green_and_red(good);
+  EXPECT_GT(green, 200);  // the cup's footprint (~20 mm across: ~10 pixels, magnified) and outline
+  EXPECT_EQ(red, 0);
+  o.collision = "part 1 (obj_id 1)";
+  EXPECT_EQ(o.verdict(), "hits part 1 (obj_id 1)");
+  const auto [green2, red2] = green_and_red(picks_picture(view, {&o}, {}, {}, 100.0));
+  EXPECT_EQ(green2, 0);
+  EXPECT_EQ(red2, green);  // the same drawing in the other colour
+  // A pick behind the camera draws nothing and shows the whole image.
+  o.pick.grasp.translation() = Eigen::Vector3d(0, 0, -100);
+  const Canvas none = picks_picture(view, {&o}, {}, {}, 100.0);
+  EXPECT_EQ(none.width(), kW * 2);
+  EXPECT_EQ(green_and_red(none), std::make_pair(0, 0));
 }
 
 }  // namespace

@@ -114,6 +114,13 @@ std::optional<Eigen::Vector3d> synth_bin_interior(const std::filesystem::path& r
   }
 }
 
+std::string PickOutcome::verdict() const {
+  if (!right) return "on a wrong detection";
+  if (!on_grasp) return "off the true grasp";
+  if (!collision.empty()) return "hits " + collision;
+  return "succeeds";
+}
+
 PickSummary evaluate_picks(const Dataset& dataset, const EvalSummary& summary,
                            const std::vector<PickRow>& picks, const EvalVertices& vertices,
                            const std::optional<Eigen::Vector3d>& bin_interior,
@@ -138,7 +145,8 @@ PickSummary evaluate_picks(const Dataset& dataset, const EvalSummary& summary,
     if (gripper.kind != Grasp::Kind::suction) continue;  // not judged (see the header)
     const EvalImage& image = dataset.images.at({p.scene_id, p.im_id});
     const double d = info->second.diameter;
-    PickOutcome o{p.scene_id, p.im_id, p.obj_id};
+    PickOutcome o;
+    o.pick = p;
     o.right = h.gt_index >= 0 && h.translation_pct <= right.translation_pct &&
               h.rotation_deg <= right.rotation_deg;
     // The grasp in the model frame (from the detection's pose), at the true pose, the nearest of

@@ -36,11 +36,14 @@ std::vector<PickRow> read_first_picks(const std::filesystem::path& path);
 std::optional<Eigen::Vector3d> synth_bin_interior(const std::filesystem::path& dataset_root);
 
 struct PickOutcome {
-  int scene_id = 0, im_id = 0, obj_id = 1;
+  PickRow pick;             // the pick judged
   bool right = false;       // the detection is right (loose)
   bool on_grasp = false;    // the grasp is the true part's, within the tolerances
   std::string collision;    // what the gripper meets at the true poses ("" nothing)
   bool success() const { return right && on_grasp && collision.empty(); }
+  // "succeeds", or the first reason it fails ("on a wrong detection", "off the true grasp",
+  // "hits part 3 (obj_id 1)").
+  std::string verdict() const;
 };
 
 struct PickSummary {

@@ -73,6 +73,39 @@ void Canvas::cross(double cx, double cy, int half, int thickness, Rgb c) {
     for (int t = -(thickness / 2); t <= thickness / 2; ++t) blend(x + d, y + t, c), blend(x + t, y + d, c);
 }
 
+void Canvas::line(double x0, double y0, double x1, double y1, double thickness, Rgb c, double alpha) {
+  // Every pixel whose centre lies within half the thickness of the segment, once.
+  const double r = std::max(0.5, thickness / 2);
+  const int xa = int(std::floor(std::min(x0, x1) - r)), xb = int(std::ceil(std::max(x0, x1) + r));
+  const int ya = int(std::floor(std::min(y0, y1) - r)), yb = int(std::ceil(std::max(y0, y1) + r));
+  const double dx = x1 - x0, dy = y1 - y0, length2 = dx * dx + dy * dy;
+  for (int y = std::max(0, ya); y <= std::min(int(height()) - 1, yb); ++y)
+    for (int x = std::max(0, xa); x <= std::min(int(width()) - 1, xb); ++x) {
+      const double s = length2 > 0 ? std::clamp(((x - x0) * dx + (y - y0) * dy) / length2, 0.0, 1.0) : 0.0;
+      const double ex = x - (x0 + s * dx), ey = y - (y0 + s * dy);
+      if (ex * ex + ey * ey <= r * r) blend(x, y, c, alpha);
+    }
+}
+
+void Canvas::polygon(const std::vector<Eigen::Vector2d>& v, Rgb c, double alpha) {
+  if (v.size() < 3) return;
+  double y0 = v[0].y(), y1 = y0;
+  for (const auto& p : v) y0 = std::min(y0, p.y()), y1 = std::max(y1, p.y());
+  // Scanlines through the pixel centres: the crossings of each edge, filled between pairs.
+  for (int y = std::max(0, int(std::floor(y0))); y <= std::min(int(height()) - 1, int(std::ceil(y1))); ++y) {
+    std::vector<double> xs;
+    for (std::size_t i = 0; i < v.size(); ++i) {
+      const Eigen::Vector2d& a = v[i];
+      const Eigen::Vector2d& b = v[(i + 1) % v.size()];
+      if ((a.y() <= y) != (b.y() <= y)) xs.push_back(a.x() + (y - a.y()) * (b.x() - a.x()) / (b.y() - a.y()));
+    }
+    std::sort(xs.begin(), xs.end());
+    for (std::size_t k = 0; k + 1 < xs.size(); k += 2)
+      for (int x = std::max(0, int(std::ceil(xs[k]))); x <= std::min(int(width()) - 1, int(std::floor(xs[k + 1]))); ++x)
+        blend(x, y, c, alpha);
+  }
+}
+
 void Canvas::text(int x, int y, std::string_view digits, int scale, Rgb c) {
   // Outline first (every lit cell grown by one scaled pixel in black), then the glyphs.
   for (int pass = 0; pass < 2; ++pass)

@@ -1,8 +1,11 @@
 // Minimal 2D drawing into an RgbImage for the report's pictures: blended pixels, discs, rings,
-// crosses and small digit labels. Everything clips at the image border.
+// crosses, lines and small digit labels. Everything clips at the image border.
 #pragma once
 
 #include <string_view>
+#include <vector>
+
+#include <Eigen/Core>
 
 #include "host/formats/bop/png_image.hpp"
 #include "host/eval/report/colormap.hpp"
@@ -25,6 +28,10 @@ class Canvas {
   void disc(double cx, double cy, double radius, Rgb c, double alpha = 1.0);
   void ring(double cx, double cy, double radius, double thickness, Rgb c);
   void cross(double cx, double cy, int half, int thickness, Rgb c);
+  // A segment of the given thickness (pixels) from (x0, y0) to (x1, y1).
+  void line(double x0, double y0, double x1, double y1, double thickness, Rgb c, double alpha = 1.0);
+  // The inside of a closed polygon (even-odd rule), vertices in pixels.
+  void polygon(const std::vector<Eigen::Vector2d>& vertices, Rgb c, double alpha = 1.0);
   // Digits and spaces in a 5 x 7 pixel font scaled by `scale`, top-left at (x, y), with a dark
   // outline so they read on any background. Other characters draw as spaces.
   void text(int x, int y, std::string_view digits, int scale, Rgb c);

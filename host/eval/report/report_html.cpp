@@ -151,6 +151,15 @@ std::string pictures_section(const std::vector<DatasetEvaluation>& evaluations,
                                          "cloud {}, seen from the camera (left) and from 60&deg; "
                                          "aside (right).",
                                          swatch(kModelPoints), swatch(kScenePoints)));
+    if (!p.picks.empty()) {
+      std::string verdicts;
+      for (const PickOutcome* pick : p.judged)
+        verdicts += fmt::format(" Detection {}: {}.", pick->pick.rank + 1, html_escaped(pick->verdict()));
+      s += figure(p.picks, "first picks", fmt::format("First pick: the gripper's outline at the planned "
+                  "grasp, the cup's footprint filled, the arrow down the approach; {} succeeds at the "
+                  "true poses, {} fails; the picked detection's model points {}.{}",
+                  swatch(kCorrect), swatch(kWrong), swatch(kModelPoints), verdicts));
+    }
     s += hypotheses_table(e, p.key, o.loose);
   }
   return s;

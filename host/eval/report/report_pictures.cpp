@@ -6,6 +6,7 @@
 #include <fmt/format.h>
 
 #include "host/core/error.hpp"
+#include "host/eval/report/pick_picture.hpp"
 
 namespace binpick::eval {
 namespace {
@@ -67,6 +68,10 @@ std::vector<PicturedImage> write_pictures(const DatasetEvaluation& e, std::size_
     p.hypotheses = write("hypotheses", hypotheses_picture(view, hyps, diameter));
     p.detections = write("detections", detections_picture(view, hyps, models, diameter, options.eval.loose));
     if (!hyps.empty()) p.closeup = write("closeup", closeup_picture(view, hyps, models, diameter));
+    if (e.picks)
+      for (const PickOutcome& o : e.picks->firsts)
+        if (o.pick.scene_id == key.scene_id && o.pick.im_id == key.im_id) p.judged.push_back(&o);
+    if (!p.judged.empty()) p.picks = write("picks", picks_picture(view, p.judged, hyps, models, diameter));
     out.push_back(p);
   }
   return out;

@@ -1,5 +1,6 @@
 // The pictures of the report: for the first few images of each dataset that have results,
-// depth in false colour, intensity, hypotheses, detections and the top detection's close-up.
+// depth in false colour, intensity, hypotheses, detections, the top detection's close-up and
+// the first picks where eval judged them.
 #pragma once
 
 #include <string>
@@ -16,6 +17,8 @@ struct PicturedImage {
   DepthRange depth_range;
   // Paths relative to the report directory, in the order shown.
   std::string depth, intensity, hypotheses, detections, closeup;
+  std::string picks;                      // with judged picks in the image
+  std::vector<const PickOutcome*> judged;  // those picks, into the evaluation
 };
 
 // Writes options.pictures images' pictures of evaluation (index d) into options.out/pictures.

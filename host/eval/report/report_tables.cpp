@@ -68,7 +68,7 @@ json summary_json(const DatasetEvaluation& e) {
   if (e.picks) {
     json firsts = json::array();
     for (const PickOutcome& o : e.picks->firsts)
-      firsts.push_back({{"scene_id", o.scene_id}, {"im_id", o.im_id}, {"obj_id", o.obj_id},
+      firsts.push_back({{"scene_id", o.pick.scene_id}, {"im_id", o.pick.im_id}, {"obj_id", o.pick.obj_id},
                         {"right", o.right}, {"on_grasp", o.on_grasp},
                         {"collision", o.collision}, {"success", o.success()}});
     j["picks"] = {{"images", e.picks->images}, {"picked", e.picks->picked},

@@ -104,10 +104,15 @@ TEST_F(PicksCli, WritesAPickPerDetectionTheFirstOnAPartNothingLiesOn) {
   // eval judges them at the true poses: both succeed (the floor of this fixed-seed bin).
   const test::CliRun eval = test::run_binpick("eval --dataset " + (d / "data").string() +
                                               " --results " + (d / "r.csv").string() + " --out " +
-                                              (d / "eval").string() + " --pictures 0 --no-vsd");
+                                              (d / "eval").string() + " --pictures 1 --no-vsd");
   ASSERT_EQ(eval.status, 0) << eval.err;
   EXPECT_NE(eval.out.find("picks: the first pick succeeds in 2 of 2 images (100.0 %)"),
             std::string::npos) << eval.out;
+  // The report pictures the first image's pick and says it succeeds.
+  EXPECT_TRUE(fs::is_regular_file(d / "eval/pictures/d0_000000_000000_picks.png"));
+  const std::string html = test::slurp(d / "eval/report.html");
+  EXPECT_NE(html.find("src=\"pictures/d0_000000_000000_picks.png\""), std::string::npos);
+  EXPECT_NE(html.find(": succeeds."), std::string::npos);
   // A rerun finds every scene done and writes the same picks.
   ASSERT_EQ(test::run_binpick(args).status, 0);
   EXPECT_EQ(lines(test::slurp(d / "r.picks.csv")), picks);
