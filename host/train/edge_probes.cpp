@@ -7,6 +7,7 @@
 #include <Eigen/Geometry>
 
 #include "host/core/cloud_input.hpp"
+#include "host/core/two_halves.hpp"
 #include "host/train/oriented_point_grid.hpp"
 #include "host/train/probe_surface.hpp"
 #include "host/train/voxel_subsample.hpp"
@@ -15,6 +16,7 @@ namespace binpick {
 namespace {
 
 constexpr int kDirections = 8;          // directions e tried in each candidate's tangent plane
+static_assert(2 * kDirections <= 16, "a sample's directions and their rim flags fit 16 bits");
 constexpr float kFreeRatio = 0.75f;     // a probe's distance to every surface sample, in margins
 constexpr float kInwardRatio = 0.5f;    // how far the face must run on behind p, in margins
 constexpr float kAnyFacing = -2.0f;     // a cosine every normal passes
@@ -28,25 +30,39 @@ EdgeProbes find_edge_probes(const Mesh& mesh, float voxel_size, ocl::Device& dev
   const float margin = kEdgeMarginVoxels * dense.probe_voxel;
   const OrientedPointGrid any(dense.surface, kFreeRatio * margin, kAnyFacing);
   const OrientedPointGrid face(dense.surface, 0.5f * dense.probe_voxel, kSameFacingCos);
-  PointCloud found;
-  std::vector<std::uint8_t> found_rim;
   // Every dense sample is a candidate p (not only one a probe voxel): a probe needs p within a
-  // quarter margin of the edge, a band narrower than the probe voxel.
-  for (std::size_t i = 0; i < dense.surface.points.size(); ++i) {
-    const Eigen::Vector3f& p = dense.surface.points[i];
+  // quarter margin of the edge, a band narrower than the probe voxel. Per sample, a bit per
+  // direction that gives a probe and one per direction whose probe is on a rim wall (two threads,
+  // each its own samples; gathered in order below).
+  const auto direction = [&](std::size_t i, int k) {
     const Eigen::Vector3f& n = dense.surface.normals[i];
     const Eigen::Vector3f u = n.unitOrthogonal(), v = n.cross(u);
-    for (int k = 0; k < kDirections; ++k) {
-      const float a = float(2 * std::numbers::pi * k / kDirections);
-      const Eigen::Vector3f e = std::cos(a) * u + std::sin(a) * v;
-      const Eigen::Vector3f q = p + margin * e;
-      if (any.matches(q, n) || !face.matches(p - kInwardRatio * margin * e, n)) continue;
-      found.points.push_back(q);
-      found.normals.push_back(n);
-      // A face runs on for a whole margin behind p; a rim wall is narrower.
-      found_rim.push_back(face.matches(p - margin * e, n) ? 0 : 1);
+    const float a = float(2 * std::numbers::pi * k / kDirections);
+    return Eigen::Vector3f(std::cos(a) * u + std::sin(a) * v);
+  };
+  std::vector<std::uint16_t> bits(dense.surface.points.size(), 0);
+  in_two_halves(bits.size(), [&](std::size_t first, std::size_t last) {
+    for (std::size_t i = first; i < last; ++i) {
+      const Eigen::Vector3f& p = dense.surface.points[i];
+      const Eigen::Vector3f& n = dense.surface.normals[i];
+      for (int k = 0; k < kDirections; ++k) {
+        const Eigen::Vector3f e = direction(i, k);
+        if (any.matches(p + margin * e, n) || !face.matches(p - kInwardRatio * margin * e, n)) continue;
+        bits[i] |= std::uint16_t(1u << k);
+        // A face runs on for a whole margin behind p; a rim wall is narrower.
+        if (!face.matches(p - margin * e, n)) bits[i] |= std::uint16_t(1u << (k + kDirections));
+      }
     }
-  }
+  });
+  PointCloud found;
+  std::vector<std::uint8_t> found_rim;
+  for (std::size_t i = 0; i < bits.size(); ++i)
+    for (int k = 0; k < kDirections; ++k)
+      if (bits[i] & (1u << k)) {
+        found.points.push_back(dense.surface.points[i] + margin * direction(i, k));
+        found.normals.push_back(dense.surface.normals[i]);
+        found_rim.push_back(bits[i] & (1u << (k + kDirections)) ? 1 : 0);
+      }
   if (found.points.empty()) return out;
   // One probe per probe voxel and facing (several candidates and directions reach the same
   // place); the one kept gives its kind.

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <numbers>
 
+#include "host/core/two_halves.hpp"
 #include "host/train/oriented_point_grid.hpp"
 #include "host/train/probe_surface.hpp"
 
@@ -40,14 +41,18 @@ LookalikeProbes find_lookalike_probes(const Mesh& mesh, float voxel_size,
   const OrientedPointGrid fine(surface, 0.5f * probe_voxel, kSameFacingCos);
   for (std::uint32_t s = 0; s < near.size(); ++s) {
     const Eigen::Isometry3d inverse = near[s].inverse();
+    std::vector<std::uint8_t> probe(candidates.points.size(), 0);  // two threads, each its own
+    in_two_halves(probe.size(), [&](std::size_t first, std::size_t last) {
+      for (std::size_t i = first; i < last; ++i) {
+        const Eigen::Vector3d p = inverse * candidates.points[i].cast<double>();
+        const Eigen::Vector3d n = inverse.linear() * candidates.normals[i].cast<double>();
+        probe[i] = !grid.matches(p.cast<float>(), n.cast<float>()) &&
+                   on_broad_surface(fine, candidates.points[i], candidates.normals[i], margin);
+      }
+    });
     std::vector<std::size_t> found;
-    for (std::size_t i = 0; i < candidates.points.size(); ++i) {
-      const Eigen::Vector3d p = inverse * candidates.points[i].cast<double>();
-      const Eigen::Vector3d n = inverse.linear() * candidates.normals[i].cast<double>();
-      if (!grid.matches(p.cast<float>(), n.cast<float>()) &&
-          on_broad_surface(fine, candidates.points[i], candidates.normals[i], margin))
-        found.push_back(i);
-    }
+    for (std::size_t i = 0; i < probe.size(); ++i)
+      if (probe[i]) found.push_back(i);
     // Evenly thinned: every k-th in the subsample's order, which is the same on every run.
     const std::size_t step = (found.size() + kMaxProbesPerLookalike - 1) / kMaxProbesPerLookalike;
     for (std::size_t k = 0; k < found.size(); k += std::max<std::size_t>(step, 1)) {

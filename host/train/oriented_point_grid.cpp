@@ -57,28 +57,40 @@ OrientedPointGrid::OrientedPointGrid(const PointCloud& cloud, float radius, floa
 }
 
 template <class Visit>
-bool OrientedPointGrid::visit_near(const Eigen::Vector3f& p, Visit&& visit) const {
+bool OrientedPointGrid::visit_near(const Eigen::Vector3f& p, bool centre_first, Visit&& visit) const {
   if (points_.empty() || !p.allFinite()) return false;
-  std::int64_t lo[3], hi[3];
+  std::int64_t lo[3], hi[3], at[3];
   for (int k = 0; k < 3; ++k) {
     const float f = std::floor((p[k] - lo_[k]) / radius_);
     if (!(f >= -1.0f && f <= float(dims_[k]))) return false;  // every cell within reach is outside
-    const auto c = std::int64_t(f);
-    lo[k] = std::max<std::int64_t>(c - 1, 0);
-    hi[k] = std::min<std::int64_t>(c + 1, dims_[k] - 1);
+    at[k] = std::int64_t(f);
+    lo[k] = std::max<std::int64_t>(at[k] - 1, 0);
+    hi[k] = std::min<std::int64_t>(at[k] + 1, dims_[k] - 1);
   }
+  const auto cell = [&](std::int64_t x, std::int64_t y, std::int64_t z) {
+    return std::size_t((z * dims_[1] + y) * dims_[0] + x);
+  };
+  // p's own cell holds the nearest points more often than not: a search for any match that
+  // starts there mostly ends there.
+  bool inside = true;
+  for (int k = 0; k < 3; ++k) inside = inside && at[k] >= 0 && at[k] < dims_[k];
+  const std::size_t own = inside && centre_first ? cell(at[0], at[1], at[2]) : std::size_t(-1);
+  if (own != std::size_t(-1))
+    for (std::uint32_t i = cell_start_[own]; i < cell_start_[own + 1]; ++i)
+      if (visit(i)) return true;
   for (std::int64_t z = lo[2]; z <= hi[2]; ++z)
     for (std::int64_t y = lo[1]; y <= hi[1]; ++y) {
-      const std::size_t row = std::size_t((z * dims_[1] + y) * dims_[0]);
+      const std::size_t row = cell(0, y, z);
       for (std::uint32_t i = cell_start_[row + lo[0]]; i < cell_start_[row + hi[0] + 1]; ++i)
-        if (visit(i)) return true;
+        if ((own == std::size_t(-1) || i < cell_start_[own] || i >= cell_start_[own + 1]) && visit(i))
+          return true;
     }
   return false;
 }
 
 bool OrientedPointGrid::matches(const Eigen::Vector3f& p, const Eigen::Vector3f& n) const {
   const float r2 = radius_ * radius_;
-  return visit_near(p, [&](std::uint32_t i) {
+  return visit_near(p, true, [&](std::uint32_t i) {
     return (points_[i] - p).squaredNorm() <= r2 && normals_[i].dot(n) >= min_cos_;
   });
 }
@@ -86,7 +98,7 @@ bool OrientedPointGrid::matches(const Eigen::Vector3f& p, const Eigen::Vector3f&
 float OrientedPointGrid::plane_distance(const Eigen::Vector3f& p, const Eigen::Vector3f& n) const {
   float best2 = radius_ * radius_;
   std::uint32_t best = std::numeric_limits<std::uint32_t>::max();
-  visit_near(p, [&](std::uint32_t i) {
+  visit_near(p, false, [&](std::uint32_t i) {
     const float d2 = (points_[i] - p).squaredNorm();
     // Ties go to the first point visited, so the answer does not depend on the scan's end.
     const bool nearer =

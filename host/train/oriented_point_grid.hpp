@@ -39,9 +39,10 @@ class OrientedPointGrid {
   float radius() const { return radius_; }
 
  private:
-  // Calls visit(point index) for the stored points in the cells around p, until it returns true.
+  // Calls visit(point index) for the stored points in the cells around p, until it returns true;
+  // p's own cell first if centre_first, else in memory order (the same order every time).
   template <class Visit>
-  bool visit_near(const Eigen::Vector3f& p, Visit&& visit) const;
+  bool visit_near(const Eigen::Vector3f& p, bool centre_first, Visit&& visit) const;
 
   float radius_, min_cos_;
   Eigen::Vector3f lo_;

@@ -76,7 +76,8 @@ struct PpfTrainStats {
   std::size_t pairs = 0;        // ordered pairs considered, points * (points - 1)
   std::size_t entries = 0;      // pairs in the table
   std::size_t distinct_keys = 0;
-  double diameter_s = 0, symmetry_s = 0, sample_s = 0, subsample_s = 0, grasp_s = 0;
+  double diameter_s = 0, sample_s = 0, subsample_s = 0, grasp_s = 0;
+  double symmetry_s = 0, lookalike_s = 0, probe_s = 0;  // the look-alikes' and edges' probes
   PpfTableTimes table;
 };
 

@@ -66,14 +66,16 @@ PpfModel train_ppf_model(const Mesh& mesh, const PpfTrainParams& params, PpfTrai
   model.table = build_ppf_table(dev, model.cloud, model.quant, &st.table);
   clock.lap_seconds();
   model.symmetries = find_symmetries(mesh);
+  st.symmetry_s = clock.lap_seconds();
   model.lookalikes = find_lookalikes(model.cloud, model.voxel_size, model.symmetries);
+  st.lookalike_s = clock.lap_seconds();
   const LookalikeProbes probes = find_lookalike_probes(mesh, model.voxel_size, model.lookalikes, dev);
   model.lookalike_probes = probes.cloud;
   model.probe_lookalike = probes.twin;
   const EdgeProbes edges = find_edge_probes(mesh, model.voxel_size, dev);
   model.edge_probes = edges.cloud;
   model.edge_probe_rim = edges.rim;
-  st.symmetry_s = clock.lap_seconds();
+  st.probe_s = clock.lap_seconds();
   SuctionGraspOptions grasp;
   grasp.cup_diameter = params.cup_diameter > 0 ? params.cup_diameter : kDefaultCupRatio * model.diameter;
   grasp.flatness = kGraspFlatnessRatio * grasp.cup_diameter;

@@ -62,7 +62,9 @@ TEST(EdgeProbes, ThePlatesProbesContinueItsFacesJustBeyondTheEdges) {
       EXPECT_TRUE(off_the_faces || past_a_corner) << i << ": " << p.transpose();
       // Along the outline's sides a rim probe; only past a corner (continuing the wall along
       // its length, or where two walls meet) may one be a face probe.
-      if (!found.rim[i]) EXPECT_TRUE(past_a_corner) << i << ": " << p.transpose();
+      if (!found.rim[i]) {
+        EXPECT_TRUE(past_a_corner) << i << ": " << p.transpose();
+      }
       rims_off_the_faces += off_the_faces && found.rim[i];
       continue;
     }

@@ -45,7 +45,7 @@ TEST(Grasp, FrameAndTransformByHand) {
   EXPECT_TRUE(in_camera.translation().isApprox(Eigen::Vector3d(100, 210, 305)));
   EXPECT_TRUE(in_camera.linear().col(0).isApprox(Eigen::Vector3d(0, 1, 0)));   // closing turned
   EXPECT_TRUE(in_camera.linear().col(2).isApprox(Eigen::Vector3d(0, 0, -1)));  // still down
-  for (const Eigen::Vector3d a : {Eigen::Vector3d(0, 0, 1), Eigen::Vector3d(1, 0, 0),
+  for (const Eigen::Vector3d& a : {Eigen::Vector3d(0, 0, 1), Eigen::Vector3d(1, 0, 0),
                                   Eigen::Vector3d(0.6, 0.8, 0)})
     EXPECT_NEAR(across(a).dot(a), 0, 1e-12);
 }

@@ -164,7 +164,7 @@ TEST_F(DetectCli, WritesResultsBestFirstResumesAndIsDeterministic) {
     for (std::size_t f = 0; f < kScoreFactorCount; ++f)
       if (!factor(ScoreFactor(f)).empty()) b.factor[f] = std::stod(factor(ScoreFactor(f)));
     const double score = std::stod(cells[5]);
-    EXPECT_NEAR(b.score(), score, 2e-6 * kScoreFactorCount) << row;
+    EXPECT_NEAR(b.score(), score, 2e-6 * int(kScoreFactorCount)) << row;
     nonzero += score > 0;
   }
   EXPECT_GT(nonzero, rows.size() / 2);

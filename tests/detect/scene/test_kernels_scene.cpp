@@ -180,7 +180,9 @@ TEST(LowpassKernels, lowpass_points_matches_reference) {
         filtered[i] = std::max(1.0f, pts.xyzw[4 * i + 2] + smooth(rng));
     ocl::Buffer<float> points = upload(dev, pts.xyzw), f = upload(dev, filtered);
     std::vector<float> want = lowpass_points_reference(pts.xyzw, filtered);
-    if (im + 1 == images.size()) EXPECT_EQ(want, pts.xyzw);  // no data: as it is
+    if (im + 1 == images.size()) {
+      EXPECT_EQ(want, pts.xyzw);  // no data: as it is
+    }
     want.insert(want.end(), kGuard, kFloatCanary);
     // The kernel by itself, in padded work groups of 64, and through the routine.
     ocl::Buffer<float> out =
