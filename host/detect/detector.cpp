@@ -585,7 +585,8 @@ std::vector<Detection> Detector::detect(DepthView depth, const bp_camera& cam,
     PickOptions po;
     po.min_score = params_.pick_score;
     po.approach_cone = params_.approach_cone;
-    po.tolerance = std::max(params_.pick_tolerance * model_.diameter, 3 * image_noise_);
+    po.bin_tolerance = params_.pick_tolerance * model_.diameter;
+    po.tolerance = std::max(po.bin_tolerance, 3 * image_noise_);
     po.part_diameter = model_.diameter;
     const std::vector<PlannedPick> picks =
         plan_picks(dev_, scene.device->points, cam, detections, grasps_, *gripper_,

@@ -38,7 +38,7 @@ std::vector<DatasetEvaluation> evaluate_inputs(const std::vector<EvalInput>& inp
         for (const auto& [key, image] : e.dataset.images)
           for (const auto& gt : image.gt) obj_ids.insert(gt.obj_id);
         e.picks = evaluate_picks(e.dataset, e.summary, read_first_picks(picks),
-                                 load_eval_vertices(in.dataset, obj_ids),
+                                 sample_part_surfaces(e.dataset, obj_ids),
                                  synth_bin_interior(in.dataset), options.loose);
       }
     } catch (const InputError& err) {

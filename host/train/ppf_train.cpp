@@ -76,12 +76,8 @@ PpfModel train_ppf_model(const Mesh& mesh, const PpfTrainParams& params, PpfTrai
   model.edge_probes = edges.cloud;
   model.edge_probe_rim = edges.rim;
   st.probe_s = clock.lap_seconds();
-  SuctionGraspOptions grasp;
-  grasp.cup_diameter = params.cup_diameter > 0 ? params.cup_diameter : kDefaultCupRatio * model.diameter;
-  grasp.flatness = kGraspFlatnessRatio * grasp.cup_diameter;
-  grasp.spacing = 0.75 * model.voxel_size / kFitVoxelDivisor;
-  grasp.apart = std::max(grasp.cup_diameter, kGraspApartRatio * model.diameter);
-  model.grasps = find_suction_grasps(model.fit_cloud, grasp);
+  model.grasps = find_suction_grasps(
+      model.fit_cloud, suction_grasp_options(model.diameter, model.voxel_size, params.cup_diameter));
   st.grasp_s = clock.lap_seconds();
   st.points = model.cloud.points.size();
   st.pairs = st.points * (st.points > 0 ? st.points - 1 : 0);

@@ -1,6 +1,6 @@
 #include "host/train/suction_grasps.hpp"
 
-#include "host/core/point_grid.hpp"
+#include "host/train/ppf_model.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -31,6 +31,43 @@ CupCoords cup_coords(const Eigen::Vector3d& p, const Eigen::Vector3d& n, const E
 
 }  // namespace
 
+SuctionGraspOptions suction_grasp_options(double diameter, double voxel_size, double cup_diameter) {
+  SuctionGraspOptions o;
+  o.cup_diameter = cup_diameter > 0 ? cup_diameter : kDefaultCupRatio * diameter;
+  o.flatness = kGraspFlatnessRatio * o.cup_diameter;
+  o.spacing = 0.75 * voxel_size / kFitVoxelDivisor;
+  o.apart = std::max(o.cup_diameter, kGraspApartRatio * diameter);
+  return o;
+}
+
+bool cup_held(const PointGrid& index, const PointCloud& surface, const Eigen::Vector3d& p,
+              const Eigen::Vector3d& n, const SuctionGraspOptions& o) {
+  const double r = o.cup_diameter / 2;
+  const Eigen::Vector3d u = across(n), v = n.cross(u);
+  // The lip's points: 8 on the rim and 4 halfway in, in the cup's plane.
+  std::vector<Eigen::Vector3d> at;
+  for (int k = 0; k < kRimPoints; ++k)
+    at.push_back(r * (std::cos(2 * kPi * k / kRimPoints) * u + std::sin(2 * kPi * k / kRimPoints) * v));
+  for (int k = 0; k < kInnerPoints; ++k) {
+    const double a = 2 * kPi * (k + 0.5) / kInnerPoints;
+    at.push_back(r / 2 * (std::cos(a) * u + std::sin(a) * v));
+  }
+  std::vector<bool> held(at.size(), false);
+  bool blocked = false;
+  index.near(p.cast<float>(), float(r + o.spacing + o.flatness), [&](std::uint32_t j) {
+    const CupCoords c = cup_coords(p, n, surface.points[j].cast<double>());
+    if (blocked || c.radial > r + o.spacing) return;
+    if (c.height > o.flatness && c.radial <= r) {
+      blocked = true;
+      return;
+    }
+    if (std::abs(c.height) > o.flatness || surface.normals[j].cast<double>().dot(n) < kSupportCos) return;
+    for (std::size_t k = 0; k < at.size(); ++k)
+      if ((c.in_plane - at[k]).norm() <= o.spacing) held[k] = true;
+  });
+  return !blocked && std::all_of(held.begin(), held.end(), [](bool h) { return h; });
+}
+
 std::vector<Grasp> find_suction_grasps(const PointCloud& surface, const SuctionGraspOptions& o) {
   if (!(o.cup_diameter > 0) || !(o.flatness > 0) || !(o.spacing > 0))
     throw std::logic_error("find_suction_grasps: cup diameter, flatness and spacing must be positive");
@@ -38,38 +75,13 @@ std::vector<Grasp> find_suction_grasps(const PointCloud& surface, const SuctionG
   const auto& nrm = surface.normals;
   if (pts.empty() || nrm.size() != pts.size()) return {};
   const double r = o.cup_diameter / 2;
-  const float reach = float(r + o.spacing + o.flatness);  // a lip point's support lies within
-  const PointGrid index(surface, reach, 3);
+  const PointGrid index(surface, cup_reach(o), 3);
   Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
   for (const auto& p : pts) centroid += p.cast<double>();
   centroid /= double(pts.size());
-
-  // The lip's points (8 on the rim, 4 halfway in) in the cup's plane, as (radial, angle).
-  std::vector<Eigen::Vector2d> lip;
-  for (int k = 0; k < kRimPoints; ++k) lip.emplace_back(r, 2 * kPi * k / kRimPoints);
-  for (int k = 0; k < kInnerPoints; ++k) lip.emplace_back(r / 2, 2 * kPi * (k + 0.5) / kInnerPoints);
   std::vector<std::uint32_t> fitting;  // candidates whose disc the surface fills
-  for (std::uint32_t i = 0; i < pts.size(); ++i) {
-    const Eigen::Vector3d p = pts[i].cast<double>(), n = nrm[i].cast<double>();
-    const Eigen::Vector3d u = across(n), v = n.cross(u);
-    std::vector<Eigen::Vector3d> at;
-    for (const auto& l : lip) at.push_back(l.x() * (std::cos(l.y()) * u + std::sin(l.y()) * v));
-    std::vector<bool> held(lip.size(), false);
-    bool blocked = false;
-    index.near(pts[i], reach, [&](std::uint32_t j) {
-      const CupCoords c = cup_coords(p, n, pts[j].cast<double>());
-      if (blocked || c.radial > r + o.spacing) return;
-      if (c.height > o.flatness && c.radial <= r) {
-        blocked = true;
-        return;
-      }
-      if (std::abs(c.height) > o.flatness || nrm[j].cast<double>().dot(n) < kSupportCos) return;
-      for (std::size_t k = 0; k < at.size(); ++k)
-        if ((c.in_plane - at[k]).norm() <= o.spacing) held[k] = true;
-    });
-    if (!blocked && std::all_of(held.begin(), held.end(), [](bool h) { return h; }))
-      fitting.push_back(i);
-  }
+  for (std::uint32_t i = 0; i < pts.size(); ++i)
+    if (cup_held(index, surface, pts[i].cast<double>(), nrm[i].cast<double>(), o)) fitting.push_back(i);
   // Nearest the centroid first (the pull through the part's middle); index order on ties.
   std::vector<double> distance(pts.size());
   for (const std::uint32_t i : fitting) distance[i] = (pts[i].cast<double>() - centroid).norm();

@@ -7,6 +7,7 @@
 
 #include "host/core/grasp.hpp"
 #include "host/core/mesh.hpp"
+#include "host/core/point_grid.hpp"
 
 namespace binpick {
 
@@ -17,6 +18,24 @@ struct SuctionGraspOptions {
   double apart = 0;          // mm: grasps on one face at least this far apart (0: the cup's radius)
   std::size_t max_grasps = 48;
 };
+
+// The options train uses for a part of this diameter and voxel (mm): the cup given (0: 10 % of
+// the diameter), flatness 15 % of the cup, the lip's reach 0.75 refinement voxels.
+SuctionGraspOptions suction_grasp_options(double diameter, double voxel_size, double cup_diameter);
+
+// The radius a grid for cup_held needs (and its queries read): the cup's, the lip's reach and
+// the flatness.
+inline float cup_reach(const SuctionGraspOptions& o) {
+  return float(o.cup_diameter / 2 + o.spacing + o.flatness);
+}
+
+// Whether the surface (unit normals; index a PointGrid over it of cell cup_reach(o)) holds a cup
+// whose lip lies in the plane through p with normal n (out of the part, towards the cup): at 8
+// points round the rim and 4 halfway in a point within `spacing` across and `flatness` of the
+// plane, facing within 45 degrees the same way, and no point higher than `flatness` above the
+// plane within the cup's radius.
+bool cup_held(const PointGrid& index, const PointCloud& surface, const Eigen::Vector3d& p,
+              const Eigen::Vector3d& n, const SuctionGraspOptions& o);
 
 // Of surface points with unit outward normals (the model's refinement points: even, dense),
 // the grasps whose cup the surface holds (at 8 points round the cup's rim and 4 halfway in, a

@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <fstream>
 
+#include "host/core/angles.hpp"
 #include "host/core/error.hpp"
 #include "host/eval/metrics/pick_success.hpp"
 
@@ -14,20 +15,23 @@ using namespace binpick::eval;
 
 namespace {
 
-// The tile's surface every 2 mm, model frame: x, y in [-20, 20], z in [-5, 5] (top at z = -5,
-// towards the camera, which looks along +z).
-std::vector<Eigen::Vector3d> tile_points() {
-  std::vector<Eigen::Vector3d> out;
-  for (double x = -20; x <= 20; x += 2)
-    for (double y = -20; y <= 20; y += 2)
-      for (double z : {-5.0, 5.0}) out.emplace_back(x, y, z);
+// The tile's two big faces every mm, model frame: x, y in [-20, 20], z in [-5, 5] (top at
+// z = -5, towards the camera, which looks along +z), normals out of the tile.
+PointCloud tile_surface() {
+  PointCloud out;
+  for (float x = -20; x <= 20; x += 1)
+    for (float y = -20; y <= 20; y += 1)
+      for (float z : {-5.0f, 5.0f}) {
+        out.points.emplace_back(x, y, z);
+        out.normals.emplace_back(0.0f, 0.0f, z < 0 ? -1.0f : 1.0f);
+      }
   return out;
 }
 
 struct Scene {
   Dataset dataset;
   EvalSummary summary;
-  EvalVertices vertices;
+  PartSurfaces vertices;
 };
 
 // One tile at (0, 0, 600) (the pick's part), and `over` more tiles at the given positions.
@@ -49,7 +53,7 @@ Scene scene(const std::vector<Eigen::Vector3d>& over = {}) {
   h.gt_index = 0;
   h.row.t = {0, 0, 600};
   s.summary.results.push_back(h);
-  s.vertices.by_object[1] = tile_points();
+  s.vertices[1] = tile_surface();
   return s;
 }
 
@@ -88,15 +92,29 @@ TEST(PickSuccess, ATileLyingOverThePickedOneIsHit) {
 
 TEST(PickSuccess, OffTheGraspOrOnAWrongDetectionFails) {
   Scene s = scene();
-  // The detection says the tile is 8 mm to the side: the grasp, right for that pose, lies 8 mm
-  // off the true one (more than 5 % of 58 mm).
+  // The detection says the tile is 8 mm to the side: its cup (10 mm) still lies on the true
+  // tile's top and seals.
   s.summary.results[0].row.t = {8, 0, 600};
   PickSummary r = evaluate_picks(s.dataset, s.summary, {pick_at({8, 0, 595})}, s.vertices, kBin, kRight);
+  EXPECT_TRUE(r.firsts[0].on_grasp);
+  // 18 mm to the side the cup hangs over the tile's edge (at 20 mm): no seal.
+  s.summary.results[0].row.t = {18, 0, 600};
+  r = evaluate_picks(s.dataset, s.summary, {pick_at({18, 0, 595})}, s.vertices, kBin, kRight);
   EXPECT_FALSE(r.firsts[0].on_grasp);
   EXPECT_EQ(r.success, 0u);
+  EXPECT_EQ(r.firsts[0].verdict(), "off the true grasp");
+  // Above the tile by 2 mm the cup reaches it (within 5 % of the diameter, 2.9 mm); by 4 mm not.
+  s.summary.results[0].row.t = {0, 0, 600};
+  EXPECT_TRUE(evaluate_picks(s.dataset, s.summary, {pick_at({0, 0, 593})}, s.vertices, kBin, kRight).firsts[0].on_grasp);
+  EXPECT_FALSE(evaluate_picks(s.dataset, s.summary, {pick_at({0, 0, 591})}, s.vertices, kBin, kRight).firsts[0].on_grasp);
+  // Tilted 60 degrees from the face's normal the lip leaves the face.
+  PickRow tilted = pick_at({0, 0, 595});
+  tilted.grasp.linear() = Eigen::AngleAxisd(60 * kDeg, Eigen::Vector3d::UnitY()).toRotationMatrix();
+  EXPECT_FALSE(evaluate_picks(s.dataset, s.summary, {tilted}, s.vertices, kBin, kRight).firsts[0].on_grasp);
   s.summary.results[0].translation_pct = 30;  // and eval found the pose wrong
   r = evaluate_picks(s.dataset, s.summary, {pick_at({8, 0, 595})}, s.vertices, kBin, kRight);
   EXPECT_FALSE(r.firsts[0].right);
+  EXPECT_EQ(r.firsts[0].verdict(), "on a wrong detection");
 }
 
 TEST(PickSuccess, TheBinsWallIsHitAndMissingRowsAreRefused) {

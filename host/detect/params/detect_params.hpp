@@ -67,7 +67,7 @@ struct DetectParams {
   double verify_lookalike = 1.0;
   // Picks: where to grasp the detections (host/detect/pick/).
   bool picks = false;
-  double pick_score = 0.3;
+  double pick_score = 0.1;
   std::string grasps;            // a grasps JSON file; "": the model's own
   std::string gripper = "auto";  // suction:..., parallel:..., a JSON file, or auto
   double approach_cone = 45.0;

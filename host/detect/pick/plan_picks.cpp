@@ -61,7 +61,7 @@ std::vector<PlannedPick> plan_picks(ocl::Device& dev, const ocl::Buffer<float>& 
       const std::vector<GripperSolid> solids = gripper.solids(grasps[g]);
       if (bin_known) {
         const std::string hit =
-            bin_contact(solids, pose, bin->axes, bin->origin, bin->interior, o.tolerance);
+            bin_contact(solids, pose, bin->axes, bin->origin, bin->interior, o.bin_tolerance);
         if (!hit.empty()) {
           ++hits_bin[i];
           bin_part[i] = hit;

@@ -14,6 +14,7 @@
 #include "host/core/grasp.hpp"
 #include "host/core/gripper.hpp"
 #include "host/detect/bin/bin_fit.hpp"
+#include "host/detect/params/detect_params.hpp"
 #include "host/detect/select/detection.hpp"
 #include "host/runtime/cl/cl_buffer.hpp"
 #include "kernels/binpick_shared.h"
@@ -21,9 +22,13 @@
 namespace binpick {
 
 struct PickOptions {
-  double min_score = 0.3;       // --pick-score: a detection scoring less is not picked
-  double approach_cone = 45;    // degrees about the bin's down (or the camera's view axis)
+  // The parameters' own defaults (declared once, in DetectParams).
+  double min_score = DetectParams{}.pick_score;  // --pick-score: a detection scoring less is not picked
+  double approach_cone = DetectParams{}.approach_cone;  // degrees about the bin's down (or the view axis)
   double tolerance = 1;         // mm: a point deeper than this inside the gripper collides
+  // mm: how far the gripper may reach past the bin's walls and floor (the bin is one fitted or
+  // given model, not noisy pixels: the depth noise does not widen it).
+  double bin_tolerance = 1;
   double part_diameter = 0;     // mm: the clearance that counts fully is a quarter of it
   std::size_t max_colliding = 3;  // points inside the gripper tolerated (single stray pixels)
 };

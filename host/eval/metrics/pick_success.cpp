@@ -1,6 +1,9 @@
 #include "host/eval/metrics/pick_success.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <limits>
+#include <memory>
 #include <fstream>
 #include <map>
 #include <numbers>
@@ -13,15 +16,19 @@
 #include "host/core/error.hpp"
 #include "host/core/gripper.hpp"
 #include "host/core/read_file.hpp"
+#include "host/core/cloud_input.hpp"
+#include "host/core/point_grid.hpp"
 #include "host/formats/grasps/grasp_json.hpp"
+#include "host/formats/mesh/load_model.hpp"
+#include "host/train/ppf_model.hpp"
+#include "host/train/suction_grasps.hpp"
+#include "host/train/surface_sampling.hpp"
 
 namespace binpick::eval {
 namespace {
 
-constexpr double kGraspPointRatio = 0.05;  // of the diameter: the grasp's position tolerance
-constexpr double kGraspAngleDeg = 15;      // the grasp's approach tolerance
+constexpr double kGraspPointRatio = 0.05;  // of the diameter: the cup's travel to the true part
 constexpr double kTouchRatio = 0.02;       // of the diameter: deeper inside the gripper collides
-constexpr int kTurnSteps = 72;             // continuous symmetries: turns tried, 5 degrees apart
 
 std::vector<double> numbers(const std::string& cell) {
   std::vector<double> out;
@@ -30,19 +37,25 @@ std::vector<double> numbers(const std::string& cell) {
   return out;
 }
 
-// The model-frame transforms that leave the part unchanged: the identity, its discrete
-// symmetries, and turns about each continuous axis.
-std::vector<Eigen::Isometry3d> symmetry_transforms(const PartSymmetries& s) {
-  std::vector<Eigen::Isometry3d> out{Eigen::Isometry3d::Identity()};
-  for (const Eigen::Matrix4d& m : s.discrete) out.emplace_back(Eigen::Isometry3d(m));
-  for (const ContinuousSymmetry& c : s.continuous)
-    for (int k = 1; k < kTurnSteps; ++k) {
-      Eigen::Isometry3d t = Eigen::Isometry3d::Identity();
-      t.linear() = Eigen::AngleAxisd(2 * std::numbers::pi * k / kTurnSteps, c.axis.normalized()).toRotationMatrix();
-      t.translation() = c.offset - t.linear() * c.offset;
-      out.push_back(t);
-    }
-  return out;
+// The surface samples' density: this many per (diameter / 100)^2 of area, well above what the
+// lip test needs (a point within 0.75 refinement voxels of each of its 12 points).
+constexpr double kSamplesPerCentiDiameterArea = 2;
+constexpr std::size_t kMaxSurfaceSamples = std::size_t(1) << 20;
+
+// Whether the cup of grasp g (model frame of the true part), moved along its approach to the
+// first surface facing it under the cup, at most `travel` mm, seals there.
+bool seals(const PointCloud& surface, const PointGrid& index, const Grasp& g,
+           const SuctionGraspOptions& o, double travel) {
+  const Eigen::Vector3d n = -g.approach;  // out of the part, towards the cup
+  double contact = -std::numeric_limits<double>::infinity();
+  index.near(g.point.cast<float>(), float(travel + o.cup_diameter / 2), [&](std::uint32_t j) {
+    const Eigen::Vector3d d = surface.points[j].cast<double>() - g.point;
+    const double h = d.dot(n);
+    if ((d - h * n).norm() <= o.cup_diameter / 2 && surface.normals[j].cast<double>().dot(n) > 0)
+      contact = std::max(contact, h);
+  });
+  if (!(std::abs(contact) <= travel)) return false;
+  return cup_held(index, surface, g.point + contact * n, n, o);
 }
 
 }  // namespace
@@ -121,8 +134,24 @@ std::string PickOutcome::verdict() const {
   return "succeeds";
 }
 
+PartSurfaces sample_part_surfaces(const Dataset& dataset, const std::set<int>& obj_ids) {
+  PartSurfaces out;
+  for (const int obj_id : obj_ids) {
+    const auto path = dataset.root / "models" / fmt::format("obj_{:06d}.ply", obj_id);
+    const auto info = dataset.models.find(obj_id);
+    if (info == dataset.models.end())
+      throw InputError(fmt::format("obj_id {}: not in models_info.json", obj_id));
+    const Mesh mesh = load_model(path.string(), {});
+    const double unit = info->second.diameter / 100;
+    const double count = kSamplesPerCentiDiameterArea * surface_area(mesh) / (unit * unit);
+    out[obj_id] = with_unit_normals(sample_surface(
+        mesh, std::size_t(std::clamp(count, 1.0, double(kMaxSurfaceSamples)))));
+  }
+  return out;
+}
+
 PickSummary evaluate_picks(const Dataset& dataset, const EvalSummary& summary,
-                           const std::vector<PickRow>& picks, const EvalVertices& vertices,
+                           const std::vector<PickRow>& picks, const PartSurfaces& surfaces,
                            const std::optional<Eigen::Vector3d>& bin_interior,
                            const OperatingPoint& right) {
   PickSummary out;
@@ -138,8 +167,8 @@ PickSummary evaluate_picks(const Dataset& dataset, const EvalSummary& summary,
                                    "the results", p.scene_id, p.im_id, p.obj_id, p.rank));
     const HypothesisResult& h = *found->second;
     const auto info = dataset.models.find(p.obj_id);
-    const auto verts = vertices.by_object.find(p.obj_id);
-    if (info == dataset.models.end() || verts == vertices.by_object.end())
+    const auto surface = surfaces.find(p.obj_id);
+    if (info == dataset.models.end() || surface == surfaces.end())
       throw InputError(fmt::format("a pick of obj_id {}: the dataset has no such model", p.obj_id));
     const Gripper gripper = parse_gripper(p.gripper);
     if (gripper.kind != Grasp::Kind::suction) continue;  // not judged (see the header)
@@ -149,25 +178,20 @@ PickSummary evaluate_picks(const Dataset& dataset, const EvalSummary& summary,
     o.pick = p;
     o.right = h.gt_index >= 0 && h.translation_pct <= right.translation_pct &&
               h.rotation_deg <= right.rotation_deg;
-    // The grasp in the model frame (from the detection's pose), at the true pose, the nearest of
-    // the part's symmetric equivalents.
+    // The grasp in the frame of the true part (the one the detection matched): does its cup
+    // seal there, as train's test of a generated grasp asks?
     Grasp g;
-    const Eigen::Isometry3d in_model = bop::Pose{h.row.R, h.row.t}.isometry().inverse() * p.grasp;
-    g.point = in_model.translation();
-    g.approach = in_model.linear().col(2);
-    g.closing = in_model.linear().col(0);
     g.size = gripper.a;
+    const SuctionGraspOptions cup = suction_grasp_options(d, PpfTrainParams{}.voxel_ratio * d, gripper.a);
     if (h.gt_index >= 0) {
-      const bop::GroundTruth& gt = image.gt[std::size_t(h.gt_index)];
-      const Eigen::Isometry3d truth = gt.model_to_camera.isometry();
-      for (const Eigen::Isometry3d& s : symmetry_transforms(info->second.symmetries)) {
-        const Eigen::Vector3d point = truth * (s * g.point);
-        const Eigen::Vector3d approach = truth.linear() * s.linear() * g.approach;
-        const double angle = std::acos(std::clamp(approach.dot(p.grasp.linear().col(2)), -1.0, 1.0));
-        if ((point - p.grasp.translation()).norm() <= kGraspPointRatio * d &&
-            angle <= kGraspAngleDeg * kDeg)
-          o.on_grasp = true;
-      }
+      const Eigen::Isometry3d in_true =
+          image.gt[std::size_t(h.gt_index)].model_to_camera.isometry().inverse() * p.grasp;
+      g.point = in_true.translation();
+      g.approach = in_true.linear().col(2);
+      g.closing = in_true.linear().col(0);
+      const double travel = kGraspPointRatio * d;
+      const PointGrid grid(surface->second, std::max(cup_reach(cup), float(cup.cup_diameter / 2 + travel)), 3);
+      o.on_grasp = seals(surface->second, grid, g, cup, travel);
     }
     // The gripper at the planned grasp against every part at its true pose, and the bin.
     const std::vector<GripperSolid> solids = gripper.solids(g);
@@ -177,11 +201,11 @@ PickSummary evaluate_picks(const Dataset& dataset, const EvalSummary& summary,
       const bop::GroundTruth& gt = image.gt[k];
       if ((gt.model_to_camera.t - p.grasp.translation()).norm() > reach + dataset.models.at(gt.obj_id).diameter)
         continue;
-      const auto v = vertices.by_object.find(gt.obj_id);
-      if (v == vertices.by_object.end()) continue;
+      const auto v = surfaces.find(gt.obj_id);
+      if (v == surfaces.end()) continue;
       const bool own = int(k) == h.gt_index;
-      for (const Eigen::Vector3d& m : v->second) {
-        const Eigen::Vector3d q = to_grasp * (gt.model_to_camera.R * m + gt.model_to_camera.t);
+      for (const Eigen::Vector3f& m : v->second.points) {
+        const Eigen::Vector3d q = to_grasp * (gt.model_to_camera.R * m.cast<double>() + gt.model_to_camera.t);
         if (own && q.z() >= -kGraspPointRatio * d) continue;  // the contact: the part's own face
         double inside = 1e30;
         for (const GripperSolid& s : solids) inside = std::min(inside, signed_distance(s, q));

@@ -1,22 +1,24 @@
 // Pick success (docs/picks.md, "Evaluation"): whether the robot would take a part with each
 // image's first pick (order 1 of each obj_id in OUT.picks.csv). It does when the pick's detection
-// is right (eval's loose operating point), its grasp lies within 5 % of the diameter and 15 degrees
-// of the same grasp on the true part (the part's symmetries considered), and the gripper at the
-// planned grasp meets nothing at the true poses: no other part's surface deeper than 2 % of the
-// diameter inside it, its own part only at the contact, and not the bin (from synth.json where the
-// dataset has one).
+// is right (eval's loose operating point), the cup at the planned grasp, moved along its approach
+// to the true part (at most 5 % of the diameter), seals on it as train's grasps do (the same lip
+// test, so symmetric parts need no special case), and the gripper meets nothing at the true
+// poses: no other part's surface deeper than 2 % of the diameter inside it, its own part only at
+// the contact, and not the bin (from synth.json where the dataset has one).
 #pragma once
 
 #include <cstdint>
 #include <filesystem>
+#include <map>
 #include <optional>
+#include <set>
 #include <string>
 #include <vector>
 
 #include <Eigen/Geometry>
 
 #include "host/eval/metrics/eval_dataset.hpp"
-#include "host/eval/metrics/eval_vertices.hpp"
+#include "host/core/mesh.hpp"
 #include "host/eval/metrics/evaluate.hpp"
 
 namespace binpick::eval {
@@ -38,7 +40,7 @@ std::optional<Eigen::Vector3d> synth_bin_interior(const std::filesystem::path& d
 struct PickOutcome {
   PickRow pick;             // the pick judged
   bool right = false;       // the detection is right (loose)
-  bool on_grasp = false;    // the grasp is the true part's, within the tolerances
+  bool on_grasp = false;    // the cup seals on the true part
   std::string collision;    // what the gripper meets at the true poses ("" nothing)
   bool success() const { return right && on_grasp && collision.empty(); }
   // "succeeds", or the first reason it fails ("on a wrong detection", "off the true grasp",
@@ -55,11 +57,17 @@ struct PickSummary {
   double rate() const { return images ? double(success) / double(images) : 0.0; }
 };
 
+// Each part's surface in its model frame (unit normals), evenly and densely enough for the
+// cup's lip test: a point every 0.5 % of the diameter squared on average.
+using PartSurfaces = std::map<int, PointCloud>;
+// Samples models/obj_NNNNNN.ply of each obj_id; InputError naming a missing or bad model.
+PartSurfaces sample_part_surfaces(const Dataset& dataset, const std::set<int>& obj_ids);
+
 // InputError for a pick of a detection the results do not have, or of an obj_id without
-// vertices. Only suction picks are judged (a parallel gripper's opening is not in the file).
+// a surface. Only suction picks are judged (a parallel gripper's opening is not in the file).
 // right: where a detection is right (eval's loose operating point).
 PickSummary evaluate_picks(const Dataset& dataset, const EvalSummary& summary,
-                           const std::vector<PickRow>& picks, const EvalVertices& vertices,
+                           const std::vector<PickRow>& picks, const PartSurfaces& surfaces,
                            const std::optional<Eigen::Vector3d>& bin_interior,
                            const OperatingPoint& right);
 

@@ -30,7 +30,9 @@ TEST(ParamTable, EveryParameterOnceWithADefaultInItsRange) {
     EXPECT_TRUE(names.insert(p.name).second) << p.name;
     EXPECT_FALSE(std::string(p.help).empty()) << p.name;
     EXPECT_EQ(find_param(p.name), &p);
-    if (p.old_name) EXPECT_EQ(find_param(p.old_name), &p);
+    if (p.old_name) {
+      EXPECT_EQ(find_param(p.old_name), &p);
+    }
   }
   // Every member of DetectParams is a row: the file written from the table holds them all, and
   // one member per row (two rows on one member would collide here).
@@ -68,9 +70,13 @@ TEST(ParamTable, EachRangeHoldsAtItsEdgesAndNoFurther) {
       EXPECT_EQ(problem(r.lo + step), "");
     } else {
       EXPECT_EQ(problem(r.lo), "");
-      if (r.lo - step >= 0 || !is_count(p)) EXPECT_EQ(problem(r.lo - step), p.name);
+      if (r.lo - step >= 0 || !is_count(p)) {
+        EXPECT_EQ(problem(r.lo - step), p.name);
+      }
     }
-    if (r.or_zero) EXPECT_EQ(problem(0), "");
+    if (r.or_zero) {
+      EXPECT_EQ(problem(0), "");
+    }
     if (!is_count(p)) {
       EXPECT_EQ(problem(NAN), p.name);
       EXPECT_EQ(problem(INFINITY), p.name);
@@ -114,7 +120,9 @@ TEST(ParamTable, TheCommandLineHasAnOptionPerRow) {
   ASSERT_EQ(r.status, 0) << r.err;
   for (const ParamInfo& p : detect_param_table()) {
     EXPECT_NE(r.out.find(fmt::format("--{}", p.name)), std::string::npos) << p.name;
-    if (is_flag(p)) EXPECT_NE(r.out.find(fmt::format("--no-{}", p.name)), std::string::npos) << p.name;
+    if (is_flag(p)) {
+      EXPECT_NE(r.out.find(fmt::format("--no-{}", p.name)), std::string::npos) << p.name;
+    }
   }
   EXPECT_NE(r.out.find("Detection parameters: verification"), std::string::npos) << r.out;
 }
