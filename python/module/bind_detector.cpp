@@ -187,10 +187,11 @@ void bind_detector(py::module_& m) {
             return py::dict(py::arg("order") = p.order, py::arg("grasp") = p.grasp,
                             py::arg("pose") = Eigen::Matrix4d(p.pose.matrix()),
                             py::arg("approach") = Eigen::Vector3d(p.pose.linear().col(2)),
-                            py::arg("clearance") = p.clearance);
+                            py::arg("width") = p.width, py::arg("clearance") = p.clearance);
           },
           "with picks=True: the pick (order: 1 first; grasp: its index; pose: the grasp's frame "
-          "in the camera frame, 4 x 4, mm; approach; clearance, mm), or None")
+          "in the camera frame, 4 x 4, mm; approach; width: the cup's diameter or the jaws' "
+          "opening, mm; clearance, mm), or None")
       .def_property_readonly("pick_reason", [](const FoundPart& f) { return f.detection.pick.reason; },
                              "why the detection has no pick (picks=True), else \"\"")
       .def("__repr__", [](const FoundPart& f) {

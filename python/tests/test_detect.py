@@ -269,4 +269,5 @@ def test_picks_from_python_are_the_command_lines(bins, tmp_path):
             assert np.allclose(d.pick["pose"][:3, 3], np.array(r["t"].split(), dtype=float), atol=1e-3)
             assert np.allclose(d.pick["approach"], np.array(r["approach"].split(), dtype=float), atol=1e-6)
             assert d.pick["clearance"] == pytest.approx(float(r["clearance"]), abs=1e-3)
+            assert d.pick["width"] == pytest.approx(float(r["width"]), abs=1e-3)
     assert picked >= 2

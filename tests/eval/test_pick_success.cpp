@@ -15,16 +15,24 @@ using namespace binpick::eval;
 
 namespace {
 
-// The tile's two big faces every mm, model frame: x, y in [-20, 20], z in [-5, 5] (top at
-// z = -5, towards the camera, which looks along +z), normals out of the tile.
+// The tile's surface every mm, model frame: x, y in [-20, 20], z in [-5, 5] (top at z = -5,
+// towards the camera, which looks along +z), normals out of the tile.
 PointCloud tile_surface() {
   PointCloud out;
-  for (float x = -20; x <= 20; x += 1)
-    for (float y = -20; y <= 20; y += 1)
+  for (float u = -20; u <= 20; u += 1) {
+    for (float v = -20; v <= 20; v += 1)
       for (float z : {-5.0f, 5.0f}) {
-        out.points.emplace_back(x, y, z);
+        out.points.emplace_back(u, v, z);
         out.normals.emplace_back(0.0f, 0.0f, z < 0 ? -1.0f : 1.0f);
       }
+    for (float z = -4; z <= 4; z += 1)  // the four sides
+      for (float side : {-20.0f, 20.0f}) {
+        out.points.emplace_back(side, u, z);
+        out.normals.emplace_back(side / 20, 0.0f, 0.0f);
+        out.points.emplace_back(u, side, z);
+        out.normals.emplace_back(0.0f, side / 20, 0.0f);
+      }
+  }
   return out;
 }
 
@@ -117,6 +125,41 @@ TEST(PickSuccess, OffTheGraspOrOnAWrongDetectionFails) {
   EXPECT_EQ(r.firsts[0].verdict(), "on a wrong detection");
 }
 
+// Parallel jaws (fingers 6 wide, 10 deep, 20 long: their tips 5 mm past the grasp point) about
+// the tile's middle, closing along x.
+PickRow jaws_at(double opening) {
+  PickRow p = pick_at({0, 0, 600});
+  p.width = opening;
+  p.gripper = "parallel:6,10,20,10";
+  return p;
+}
+
+TEST(PickSuccess, ParallelJawsHoldTheTileByTwoFacingSides) {
+  const Scene s = scene();
+  // Open 50 mm the jaws pass beside the 40 mm tile and close on its sides at x = +-20.
+  PickSummary r = evaluate_picks(s.dataset, s.summary, {jaws_at(50)}, s.vertices, kBin, kRight);
+  ASSERT_EQ(r.firsts.size(), 1u);
+  EXPECT_TRUE(r.firsts[0].on_grasp);
+  EXPECT_EQ(r.firsts[0].collision, "");
+  EXPECT_EQ(r.success, 1u);
+  // Turned a quarter about the approach they close on the sides at y = +-20.
+  PickRow turned = jaws_at(50);
+  turned.grasp.linear() = Eigen::AngleAxisd(90 * kDeg, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+  EXPECT_EQ(evaluate_picks(s.dataset, s.summary, {turned}, s.vertices, kBin, kRight).success, 1u);
+  // Open 30 mm the fingers come down on the tile itself; between them only its top and bottom,
+  // which do not face them.
+  r = evaluate_picks(s.dataset, s.summary, {jaws_at(30)}, s.vertices, kBin, kRight);
+  EXPECT_FALSE(r.firsts[0].on_grasp);
+  EXPECT_EQ(r.firsts[0].collision, "its own part");
+  // 30 mm to the side, open 50: one jaw meets the tile's side, the other nothing.
+  EXPECT_FALSE(evaluate_picks(s.dataset, s.summary, {[] { PickRow p = jaws_at(50); p.grasp.translation().x() = 30; return p; }()},
+                              s.vertices, kBin, kRight).firsts[0].on_grasp);
+  // A second tile lying beside it, 8 mm away: the open finger lands on it.
+  const Scene crowded = scene({{48, 0, 600}});
+  r = evaluate_picks(crowded.dataset, crowded.summary, {jaws_at(50)}, crowded.vertices, kBin, kRight);
+  EXPECT_EQ(r.firsts[0].collision, "part 1 (obj_id 1)");
+}
+
 TEST(PickSuccess, TheBinsWallIsHitAndMissingRowsAreRefused) {
   const Scene s = scene();
   // The tile by the wall (x = 100): the cup over its edge at x = 97 reaches 102.
@@ -135,17 +178,18 @@ TEST(PickSuccess, TheBinsWallIsHitAndMissingRowsAreRefused) {
 TEST(PickSuccess, ReadsTheFirstPicksOfAPicksFile) {
   const auto file = std::filesystem::temp_directory_path() / "binpick_test_first_picks.csv";
   std::ofstream(file)
-      << "scene_id,im_id,obj_id,rank,order,grasp,R,t,approach,clearance,score,gripper,reason\n"
-      << "0,0,1,0,2,3,1 0 0 0 1 0 0 0 1,1 2 3,0 0 1,5.000,0.9,\"suction:10,5,10,100\",\n"
-      << "0,0,1,1,1,4,1 0 0 0 1 0 0 0 1,4 5 6,0 0 1,5.000,0.8,\"suction:10,5,10,100\",\n"
-      << "0,0,1,2,,,,,,,0.5,\"suction:10,5,10,100\",\"score 0.50 below --pick-score 0.70\"\n";
+      << "scene_id,im_id,obj_id,rank,order,grasp,R,t,approach,width,clearance,score,gripper,reason\n"
+      << "0,0,1,0,2,3,1 0 0 0 1 0 0 0 1,1 2 3,0 0 1,10.000,5.000,0.9,\"suction:10,5,10,100\",\n"
+      << "0,0,1,1,1,4,1 0 0 0 1 0 0 0 1,4 5 6,0 0 1,10.000,5.000,0.8,\"suction:10,5,10,100\",\n"
+      << "0,0,1,2,,,,,,,,0.5,\"suction:10,5,10,100\",\"score 0.50 below --pick-score 0.70\"\n";
   const auto rows = read_first_picks(file);
   ASSERT_EQ(rows.size(), 1u);
   EXPECT_EQ(rows[0].rank, 1);
   EXPECT_TRUE(rows[0].grasp.translation().isApprox(Eigen::Vector3d(4, 5, 6)));
   EXPECT_EQ(rows[0].gripper, "suction:10,5,10,100");
-  std::ofstream(file) << "scene_id,im_id,obj_id,rank,order,grasp,R,t,approach,clearance,score,gripper,reason\n"
-                      << "0,0,1,1,1,4,1 0 0 0 1 0 0 0,4 5 6,0 0 1,5.000,0.8,\"suction:10,5,10,100\",\n";
+  EXPECT_EQ(rows[0].width, 10.0);
+  std::ofstream(file) << "scene_id,im_id,obj_id,rank,order,grasp,R,t,approach,width,clearance,score,gripper,reason\n"
+                      << "0,0,1,1,1,4,1 0 0 0 1 0 0 0,4 5 6,0 0 1,10.000,5.000,0.8,\"suction:10,5,10,100\",\n";
   EXPECT_THROW(read_first_picks(file), InputError);
   std::ofstream(file) << "scene_id,im_id,score\n";
   EXPECT_THROW(read_first_picks(file), InputError);

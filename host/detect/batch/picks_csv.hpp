@@ -14,7 +14,7 @@ namespace binpick {
 std::filesystem::path picks_path(const std::filesystem::path& out);  // OUT with .picks.csv
 
 inline constexpr const char* kPicksCsvHeader =
-    "scene_id,im_id,obj_id,rank,order,grasp,R,t,approach,clearance,score,gripper,reason\n";
+    "scene_id,im_id,obj_id,rank,order,grasp,R,t,approach,width,clearance,score,gripper,reason\n";
 
 // The rows of one model's detections in one image (rank: the detection's in the results;
 // gripper: its option text, Gripper::describe).

@@ -92,6 +92,7 @@ std::vector<PlannedPick> plan_picks(ocl::Device& dev, const ocl::Buffer<float>& 
       p.grasp = t.grasp;
       p.pose = t.pose;
       p.clearance = clearance;
+      p.width = grasps[t.grasp].size;
     }
   }
   // Why the others have no pick.

@@ -20,6 +20,7 @@ struct PlannedPick {
   bool picked = false;
   std::size_t grasp = 0;          // index into the grasps
   Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();  // the grasp's frame, camera frame
+  double width = 0;               // mm: the grasp's cup diameter or jaws' opening
   double clearance = 0;           // mm, up to a quarter of the diameter
   double value = 0;               // the order's key (docs/picks.md)
   std::uint32_t order = 0;        // 1: picked first; 0: no pick

@@ -28,6 +28,7 @@ namespace binpick::eval {
 namespace {
 
 constexpr double kGraspPointRatio = 0.05;  // of the diameter: the cup's travel to the true part
+constexpr std::size_t kPlainColumns = 12;  // of OUT.picks.csv, before the quoted gripper
 constexpr double kTouchRatio = 0.02;       // of the diameter: deeper inside the gripper collides
 
 std::vector<double> numbers(const std::string& cell) {
@@ -58,20 +59,45 @@ bool seals(const PointCloud& surface, const PointGrid& index, const Grasp& g,
   return cup_held(index, surface, g.point + contact * n, n, o);
 }
 
+// Whether parallel jaws at grasp g (model frame of the true part; size the opening) closing
+// along its closing axis hold the part: some of it lies between the fingers' pads (within the
+// opening, the fingers' depth across it and their length along the approach), and where the jaws
+// stop, on either side, its surface faces that jaw within 45 degrees (an antipodal grasp).
+bool jaws_hold(const PointCloud& surface, const Grasp& g, const Gripper& jaws, double touch) {
+  const Eigen::Vector3d x = g.closing, z = g.approach, y = z.cross(x);
+  double lo = std::numeric_limits<double>::infinity(), hi = -lo;
+  std::vector<std::pair<double, double>> between;  // (x, the normal's x) of points between the pads
+  for (std::size_t i = 0; i < surface.points.size(); ++i) {
+    const Eigen::Vector3d d = surface.points[i].cast<double>() - g.point;
+    const double qx = d.dot(x), qy = d.dot(y), qz = d.dot(z);
+    if (std::abs(qx) > g.size / 2 || std::abs(qy) > jaws.b / 2 || qz < -0.75 * jaws.c || qz > 0.25 * jaws.c)
+      continue;
+    between.emplace_back(qx, surface.normals[i].cast<double>().dot(x));
+    lo = std::min(lo, qx);
+    hi = std::max(hi, qx);
+  }
+  bool left = false, right = false;  // the faces the jaws meet, facing them
+  for (const auto& [qx, nx] : between) {
+    right = right || (qx >= hi - touch && nx >= std::cos(45 * kDeg));
+    left = left || (qx <= lo + touch && nx <= -std::cos(45 * kDeg));
+  }
+  return left && right;
+}
+
 }  // namespace
 
 std::vector<PickRow> read_first_picks(const std::filesystem::path& path) {
   std::istringstream in(read_file_bytes(path));
   std::string line;
   std::getline(in, line);
-  if (line.rfind("scene_id,im_id,obj_id,rank,order,grasp,R,t,approach,clearance,score,gripper", 0) != 0)
+  if (line.rfind("scene_id,im_id,obj_id,rank,order,grasp,R,t,approach,width,clearance,score,gripper", 0) != 0)
     throw InputError(path.string() + ": not a picks file of binpick detect --picks (its header)");
   std::vector<PickRow> rows;
   for (int n = 2; std::getline(in, line); ++n) {
-    // Eleven plain columns, then the gripper's text in double quotes (it holds commas).
+    // Twelve plain columns, then the gripper's text in double quotes (it holds commas).
     std::vector<std::string> f;
     std::istringstream cells(line);
-    for (std::string c; f.size() < 11 && std::getline(cells, c, ',');) f.push_back(c);
+    for (std::string c; f.size() < kPlainColumns && std::getline(cells, c, ',');) f.push_back(c);
     const auto bad = [&](const char* what) {
       return InputError(fmt::format("{}: line {}: {}", path.string(), n, what));
     };
@@ -89,8 +115,8 @@ std::vector<PickRow> read_first_picks(const std::filesystem::path& path) {
         break;
       }
     }
-    if (f.size() < 11 || rest.empty() || rest[0] != '"' || at >= rest.size())
-      throw bad("13 columns expected, the gripper and the reason in double quotes");
+    if (f.size() < kPlainColumns || rest.empty() || rest[0] != '"' || at >= rest.size())
+      throw bad("14 columns expected, the gripper and the reason in double quotes");
     f.push_back(gripper);
     if (f[4] != "1") continue;
     PickRow r;
@@ -109,7 +135,13 @@ std::vector<PickRow> read_first_picks(const std::filesystem::path& path) {
     if (!m.allFinite() || !(m.transpose() * m).isApprox(Eigen::Matrix3d::Identity(), 1e-4))
       throw bad("R is not a rotation");
     r.grasp = bop::Pose{m, Eigen::Vector3d(t[0], t[1], t[2])}.isometry();
-    r.gripper = f[11];
+    try {
+      r.width = std::stod(f[9]);
+    } catch (const std::exception&) {
+      r.width = 0;
+    }
+    if (!(r.width > 0 && std::isfinite(r.width))) throw bad("the width must be a positive number of mm");
+    r.gripper = f[12];
     rows.push_back(r);
   }
   return rows;
@@ -171,7 +203,6 @@ PickSummary evaluate_picks(const Dataset& dataset, const EvalSummary& summary,
     if (info == dataset.models.end() || surface == surfaces.end())
       throw InputError(fmt::format("a pick of obj_id {}: the dataset has no such model", p.obj_id));
     const Gripper gripper = parse_gripper(p.gripper);
-    if (gripper.kind != Grasp::Kind::suction) continue;  // not judged (see the header)
     const EvalImage& image = dataset.images.at({p.scene_id, p.im_id});
     const double d = info->second.diameter;
     PickOutcome o;
@@ -181,7 +212,9 @@ PickSummary evaluate_picks(const Dataset& dataset, const EvalSummary& summary,
     // The grasp in the frame of the true part (the one the detection matched): does its cup
     // seal there, as train's test of a generated grasp asks?
     Grasp g;
-    g.size = gripper.a;
+    g.kind = gripper.kind;
+    g.size = gripper.kind == Grasp::Kind::suction ? gripper.a : p.width;
+    const double touch = kTouchRatio * d;
     const SuctionGraspOptions cup = suction_grasp_options(d, PpfTrainParams{}.voxel_ratio * d, gripper.a);
     if (h.gt_index >= 0) {
       const Eigen::Isometry3d in_true =
@@ -190,13 +223,17 @@ PickSummary evaluate_picks(const Dataset& dataset, const EvalSummary& summary,
       g.approach = in_true.linear().col(2);
       g.closing = in_true.linear().col(0);
       const double travel = kGraspPointRatio * d;
-      const PointGrid grid(surface->second, std::max(cup_reach(cup), float(cup.cup_diameter / 2 + travel)), 3);
-      o.on_grasp = seals(surface->second, grid, g, cup, travel);
+      if (gripper.kind == Grasp::Kind::parallel) {
+        o.on_grasp = jaws_hold(surface->second, g, gripper, touch);
+      } else {
+        const PointGrid grid(surface->second, std::max(cup_reach(cup), float(cup.cup_diameter / 2 + travel)), 3);
+        o.on_grasp = seals(surface->second, grid, g, cup, travel);
+      }
     }
     // The gripper at the planned grasp against every part at its true pose, and the bin.
     const std::vector<GripperSolid> solids = gripper.solids(g);
     const Eigen::Isometry3d to_grasp = p.grasp.inverse();
-    const double touch = kTouchRatio * d, reach = gripper.length() + gripper.a + d;
+    const double reach = gripper.length() + g.size + gripper.a + d;
     for (std::size_t k = 0; k < image.gt.size() && o.collision.empty(); ++k) {
       const bop::GroundTruth& gt = image.gt[k];
       if ((gt.model_to_camera.t - p.grasp.translation()).norm() > reach + dataset.models.at(gt.obj_id).diameter)
@@ -206,7 +243,8 @@ PickSummary evaluate_picks(const Dataset& dataset, const EvalSummary& summary,
       const bool own = int(k) == h.gt_index;
       for (const Eigen::Vector3f& m : v->second.points) {
         const Eigen::Vector3d q = to_grasp * (gt.model_to_camera.R * m.cast<double>() + gt.model_to_camera.t);
-        if (own && q.z() >= -kGraspPointRatio * d) continue;  // the contact: the part's own face
+        // A cup's contact: the part's own face under it. Open jaws touch nothing of their part.
+        if (own && gripper.kind == Grasp::Kind::suction && q.z() >= -kGraspPointRatio * d) continue;
         double inside = 1e30;
         for (const GripperSolid& s : solids) inside = std::min(inside, signed_distance(s, q));
         if (inside < -touch) {

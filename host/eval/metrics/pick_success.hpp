@@ -2,7 +2,7 @@
 // image's first pick (order 1 of each obj_id in OUT.picks.csv). It does when the pick's detection
 // is right (eval's loose operating point), the cup at the planned grasp, moved along its approach
 // to the true part (at most 5 % of the diameter), seals on it as train's grasps do (the same lip
-// test, so symmetric parts need no special case), and the gripper meets nothing at the true
+// test, so symmetric parts need no special case; parallel jaws: evaluate_picks), and the gripper meets nothing at the true
 // poses: no other part's surface deeper than 2 % of the diameter inside it, its own part only at
 // the contact, and not the bin (from synth.json where the dataset has one).
 #pragma once
@@ -27,6 +27,7 @@ namespace binpick::eval {
 struct PickRow {
   int scene_id = 0, im_id = 0, obj_id = 1, rank = 0;
   Eigen::Isometry3d grasp = Eigen::Isometry3d::Identity();  // camera frame
+  double width = 0;                                         // the cup's or the jaws' opening, mm
   std::string gripper;                                      // --gripper's text
 };
 
@@ -64,7 +65,8 @@ using PartSurfaces = std::map<int, PointCloud>;
 PartSurfaces sample_part_surfaces(const Dataset& dataset, const std::set<int>& obj_ids);
 
 // InputError for a pick of a detection the results do not have, or of an obj_id without
-// a surface. Only suction picks are judged (a parallel gripper's opening is not in the file).
+// a surface. A parallel-jaw pick holds its part when the jaws, closing from the planned opening,
+// meet it on two faces facing them (antipodal, within 45 degrees); they touch nothing on the way.
 // right: where a detection is right (eval's loose operating point).
 PickSummary evaluate_picks(const Dataset& dataset, const EvalSummary& summary,
                            const std::vector<PickRow>& picks, const PartSurfaces& surfaces,

@@ -64,13 +64,13 @@ TEST_F(PicksCli, WritesAPickPerDetectionTheFirstOnAPartNothingLiesOn) {
   const std::vector<std::string> picks = lines(test::slurp(d / "r.picks.csv"));
   const std::vector<std::string> results = lines(test::slurp(d / "r.csv"));
   ASSERT_EQ(picks.front(),
-            "scene_id,im_id,obj_id,rank,order,grasp,R,t,approach,clearance,score,gripper,reason");
+            "scene_id,im_id,obj_id,rank,order,grasp,R,t,approach,width,clearance,score,gripper,reason");
   ASSERT_EQ(picks.size(), results.size());  // a row per detection
   int first = 0;
   for (std::size_t i = 1; i < picks.size(); ++i) {
     const auto f = fields(picks[i]);
-    ASSERT_GE(f.size(), 15u) << picks[i];  // the gripper's text holds 3 commas
-    EXPECT_EQ(f[11] + "," + f[12] + "," + f[13] + "," + f[14], "\"suction:5.2,5.2,5.2,104\"")
+    ASSERT_GE(f.size(), 16u) << picks[i];  // the gripper's text holds 3 commas
+    EXPECT_EQ(f[12] + "," + f[13] + "," + f[14] + "," + f[15], "\"suction:5.2,5.2,5.2,104\"")
         << "the default tool: the grasps' cup";
     if (f[4].empty()) {
       EXPECT_EQ(picks[i].back(), '"') << "a detection without a pick says why: " << picks[i];
