@@ -80,13 +80,32 @@ std::vector<Grasp> find_suction_grasps(const PointCloud& surface, const SuctionG
   for (const auto& p : pts) centroid += p.cast<double>();
   centroid /= double(pts.size());
   std::vector<std::uint32_t> fitting;  // candidates whose disc the surface fills
+  std::vector<bool> holds(pts.size(), false);
   for (std::uint32_t i = 0; i < pts.size(); ++i)
-    if (cup_held(index, surface, pts[i].cast<double>(), nrm[i].cast<double>(), o)) fitting.push_back(i);
-  // Nearest the centroid first (the pull through the part's middle); index order on ties.
+    if ((holds[i] = cup_held(index, surface, pts[i].cast<double>(), nrm[i].cast<double>(), o)))
+      fitting.push_back(i);
+  // How far a grasp may slip along its face and still seal (a detected pose is a few millimetres
+  // off): the distance to the nearest point of the same face where the cup is not held (near an
+  // edge, a hole, a bend), in lip spacings, up to the cup's radius.
+  std::vector<int> slip(pts.size(), 0);
+  const int most = int(r / o.spacing);
+  for (const std::uint32_t i : fitting) {
+    const Eigen::Vector3d p = pts[i].cast<double>(), n = nrm[i].cast<double>();
+    double nearest = r;
+    index.near(pts[i], float(r), [&](std::uint32_t j) {
+      if (holds[j] || nrm[j].cast<double>().dot(n) < kSupportCos) return;
+      const CupCoords c = cup_coords(p, n, pts[j].cast<double>());
+      if (std::abs(c.height) <= o.flatness) nearest = std::min(nearest, c.radial);
+    });
+    slip[i] = std::min(most, int(nearest / o.spacing));
+  }
+  // Those that slip furthest first; then nearest the centroid (the pull through the part's
+  // middle); index order on ties.
   std::vector<double> distance(pts.size());
   for (const std::uint32_t i : fitting) distance[i] = (pts[i].cast<double>() - centroid).norm();
-  std::stable_sort(fitting.begin(), fitting.end(),
-                   [&](std::uint32_t a, std::uint32_t b) { return distance[a] < distance[b]; });
+  std::stable_sort(fitting.begin(), fitting.end(), [&](std::uint32_t a, std::uint32_t b) {
+    return slip[a] != slip[b] ? slip[a] > slip[b] : distance[a] < distance[b];
+  });
 
   const double apart = o.apart > 0 ? o.apart : r;
   std::vector<Grasp> grasps;

@@ -38,11 +38,10 @@ bool cup_held(const PointGrid& index, const PointCloud& surface, const Eigen::Ve
               const Eigen::Vector3d& n, const SuctionGraspOptions& o);
 
 // Of surface points with unit outward normals (the model's refinement points: even, dense),
-// the grasps whose cup the surface holds (at 8 points round the cup's rim and 4 halfway in, a
-// point within `spacing` across and `flatness` of the tangent plane, facing within 45 degrees the
-// same way: a cup's lip follows a gently curved face) with no point higher than `flatness` above the plane within the cup's
-// radius; nearest the points' centroid first, no two closer than `apart` on one face (normals
-// within 10 degrees). Deterministic; empty when no face holds the cup.
+// the grasps whose cup the surface holds (cup_held); those that may slip furthest along their
+// face and still seal first (the distance to where the cup is not held, in lip spacings up to
+// the cup's radius), then nearest the points' centroid; no two closer than `apart` on one face
+// (normals within 10 degrees). Deterministic; empty when no face holds the cup.
 std::vector<Grasp> find_suction_grasps(const PointCloud& surface, const SuctionGraspOptions& options);
 
 }  // namespace binpick

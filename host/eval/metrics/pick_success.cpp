@@ -28,6 +28,7 @@ namespace binpick::eval {
 namespace {
 
 constexpr double kGraspPointRatio = 0.05;  // of the diameter: the cup's travel to the true part
+constexpr double kGraspAngleDeg = 15;      // the tilt between the cup's axis and the face it seals on
 constexpr std::size_t kPlainColumns = 12;  // of OUT.picks.csv, before the quoted gripper
 constexpr double kTouchRatio = 0.02;       // of the diameter: deeper inside the gripper collides
 
@@ -47,16 +48,23 @@ constexpr std::size_t kMaxSurfaceSamples = std::size_t(1) << 20;
 // first surface facing it under the cup, at most `travel` mm, seals there.
 bool seals(const PointCloud& surface, const PointGrid& index, const Grasp& g,
            const SuctionGraspOptions& o, double travel) {
-  const Eigen::Vector3d n = -g.approach;  // out of the part, towards the cup
+  const Eigen::Vector3d up = -g.approach;  // out of the part, towards the cup
+  // Where the cup's axis meets the part first: the highest point facing the cup within the lip's
+  // reach of the axis.
   double contact = -std::numeric_limits<double>::infinity();
-  index.near(g.point.cast<float>(), float(travel + o.cup_diameter / 2), [&](std::uint32_t j) {
+  std::uint32_t at = 0;
+  index.near(g.point.cast<float>(), float(travel + o.spacing), [&](std::uint32_t j) {
     const Eigen::Vector3d d = surface.points[j].cast<double>() - g.point;
-    const double h = d.dot(n);
-    if ((d - h * n).norm() <= o.cup_diameter / 2 && surface.normals[j].cast<double>().dot(n) > 0)
-      contact = std::max(contact, h);
+    const double h = d.dot(up);
+    if ((d - h * up).norm() <= o.spacing && surface.normals[j].cast<double>().dot(up) > 0 && h > contact)
+      contact = h, at = j;
   });
   if (!(std::abs(contact) <= travel)) return false;
-  return cup_held(index, surface, g.point + contact * n, n, o);
+  // The cup's lip settles on the face there (a bellows cup follows a face tilted up to
+  // kGraspAngleDeg from its axis) and must seal as a generated grasp does.
+  const Eigen::Vector3d n = surface.normals[at].cast<double>();
+  if (n.dot(up) < std::cos(kGraspAngleDeg * kDeg)) return false;
+  return cup_held(index, surface, surface.points[at].cast<double>(), n, o);
 }
 
 // Whether parallel jaws at grasp g (model frame of the true part; size the opening) closing
