@@ -2,6 +2,8 @@
 // discretisation and the hash table, everything detection needs (Drost 2010; paper IV).
 #pragma once
 
+#include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <vector>
 
@@ -86,6 +88,12 @@ struct PpfTrainStats {
 inline constexpr double kSamplesPerVoxelArea = 16.0;
 // The refinement points' voxel is the model's divided by this (PpfModel::fit_cloud).
 inline constexpr float kFitVoxelDivisor = 2.0f;
+
+// The dense surface sample training subsamples (kSamplesPerVoxelArea per voxel face area).
+inline std::size_t model_surface_samples(double surface_area, double voxel_size) {
+  return std::max<std::size_t>(
+      1, static_cast<std::size_t>(std::ceil(kSamplesPerVoxelArea * surface_area / (voxel_size * voxel_size))));
+}
 
 // Throws InputError unless voxel_ratio is finite in (0, 1] and the steps are in range
 // (make_ppf_quant).

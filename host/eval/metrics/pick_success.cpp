@@ -23,6 +23,7 @@
 #include "host/train/ppf_model.hpp"
 #include "host/train/suction_grasps.hpp"
 #include "host/train/surface_sampling.hpp"
+#include "host/train/voxel_subsample.hpp"
 
 namespace binpick::eval {
 namespace {
@@ -38,11 +39,6 @@ std::vector<double> numbers(const std::string& cell) {
   for (double v; in >> v;) out.push_back(v);
   return out;
 }
-
-// The surface samples' density: this many per (diameter / 100)^2 of area, well above what the
-// lip test needs (a point within 0.75 refinement voxels of each of its 12 points).
-constexpr double kSamplesPerCentiDiameterArea = 2;
-constexpr std::size_t kMaxSurfaceSamples = std::size_t(1) << 20;
 
 // Whether the cup of grasp g (model frame of the true part), moved along its approach to the
 // first surface facing it under the cup, at most `travel` mm, seals there.
@@ -181,13 +177,18 @@ PartSurfaces sample_part_surfaces(const Dataset& dataset, const std::set<int>& o
     const auto info = dataset.models.find(obj_id);
     if (info == dataset.models.end())
       throw InputError(fmt::format("obj_id {}: not in models_info.json", obj_id));
-    const Mesh mesh = load_model(path.string(), {});
-    const double unit = info->second.diameter / 100;
-    const double count = kSamplesPerCentiDiameterArea * surface_area(mesh) / (unit * unit);
-    out[obj_id] = with_unit_normals(sample_surface(
-        mesh, std::size_t(std::clamp(count, 1.0, double(kMaxSurfaceSamples)))));
+    out[obj_id] = sample_part_surface(load_model(path.string(), {}), info->second.diameter);
   }
   return out;
+}
+
+PointCloud sample_part_surface(const Mesh& mesh, double diameter) {
+  // As train samples it for its refinement points (ppf_train.cpp; the host's reference of the
+  // same voxel subsampling): the surface its grasps were found on, at the default voxel.
+  const double voxel = PpfTrainParams{}.voxel_ratio * diameter;
+  const PointCloud dense = sample_surface(mesh, model_surface_samples(surface_area(mesh), voxel));
+  return with_unit_normals(
+      voxel_subsample_reference(dense, float(voxel) / kFitVoxelDivisor, VoxelFaces::both).cloud);
 }
 
 PickSummary evaluate_picks(const Dataset& dataset, const EvalSummary& summary,

@@ -58,9 +58,11 @@ struct PickSummary {
   double rate() const { return images ? double(success) / double(images) : 0.0; }
 };
 
-// Each part's surface in its model frame (unit normals), evenly and densely enough for the
-// cup's lip test: a point every 0.5 % of the diameter squared on average.
+// Each part's surface in its model frame (unit normals): the points train finds grasps on (its
+// refinement points at the default voxel), so that a grasp at its own pose seals.
 using PartSurfaces = std::map<int, PointCloud>;
+// A part's surface sampled so (diameter mm); the same mesh gives train's points exactly.
+PointCloud sample_part_surface(const Mesh& mesh, double diameter);
 // Samples models/obj_NNNNNN.ply of each obj_id; InputError naming a missing or bad model.
 PartSurfaces sample_part_surfaces(const Dataset& dataset, const std::set<int>& obj_ids);
 
