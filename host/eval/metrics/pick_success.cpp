@@ -23,7 +23,6 @@
 #include "host/train/ppf_model.hpp"
 #include "host/train/suction_grasps.hpp"
 #include "host/train/surface_sampling.hpp"
-#include "host/train/voxel_subsample.hpp"
 
 namespace binpick::eval {
 namespace {
@@ -45,17 +44,17 @@ std::vector<double> numbers(const std::string& cell) {
 bool seals(const PointCloud& surface, const PointGrid& index, const Grasp& g,
            const SuctionGraspOptions& o, double travel) {
   const Eigen::Vector3d up = -g.approach;  // out of the part, towards the cup
-  // Where the cup's axis meets the part first: the highest point facing the cup within the lip's
-  // reach of the axis.
-  double contact = -std::numeric_limits<double>::infinity();
-  std::uint32_t at = 0;
-  index.near(g.point.cast<float>(), float(travel + o.spacing), [&](std::uint32_t j) {
+  // Where the cup settles: the surface point facing it nearest its axis, under the cup and
+  // within its travel (the points are train's, a refinement voxel apart).
+  double nearest = o.cup_diameter / 2;
+  std::uint32_t at = std::numeric_limits<std::uint32_t>::max();
+  index.near(g.point.cast<float>(), float(travel + o.cup_diameter / 2), [&](std::uint32_t j) {
     const Eigen::Vector3d d = surface.points[j].cast<double>() - g.point;
-    const double h = d.dot(up);
-    if ((d - h * up).norm() <= o.spacing && surface.normals[j].cast<double>().dot(up) > 0 && h > contact)
-      contact = h, at = j;
+    const double h = d.dot(up), radial = (d - h * up).norm();
+    if (std::abs(h) <= travel && radial < nearest && surface.normals[j].cast<double>().dot(up) > 0)
+      nearest = radial, at = j;
   });
-  if (!(std::abs(contact) <= travel)) return false;
+  if (at == std::numeric_limits<std::uint32_t>::max()) return false;
   // The cup's lip settles on the face there (a bellows cup follows a face tilted up to
   // kGraspAngleDeg from its axis) and must seal as a generated grasp does.
   const Eigen::Vector3d n = surface.normals[at].cast<double>();
@@ -183,12 +182,10 @@ PartSurfaces sample_part_surfaces(const Dataset& dataset, const std::set<int>& o
 }
 
 PointCloud sample_part_surface(const Mesh& mesh, double diameter) {
-  // As train samples it for its refinement points (ppf_train.cpp; the host's reference of the
-  // same voxel subsampling): the surface its grasps were found on, at the default voxel.
-  const double voxel = PpfTrainParams{}.voxel_ratio * diameter;
-  const PointCloud dense = sample_surface(mesh, model_surface_samples(surface_area(mesh), voxel));
-  return with_unit_normals(
-      voxel_subsample_reference(dense, float(voxel) / kFitVoxelDivisor, VoxelFaces::both).cloud);
+  // Train's dense sample at its refinement voxel (16 a voxel face), not subsampled: the lip
+  // finds the surface wherever it is, not where a subsample's lattice happens to put a point.
+  const double voxel = PpfTrainParams{}.voxel_ratio * diameter / kFitVoxelDivisor;
+  return with_unit_normals(sample_surface(mesh, model_surface_samples(surface_area(mesh), voxel)));
 }
 
 PickSummary evaluate_picks(const Dataset& dataset, const EvalSummary& summary,

@@ -58,10 +58,10 @@ struct PickSummary {
   double rate() const { return images ? double(success) / double(images) : 0.0; }
 };
 
-// Each part's surface in its model frame (unit normals): the points train finds grasps on (its
-// refinement points at the default voxel), so that a grasp at its own pose seals.
+// Each part's surface in its model frame (unit normals): train's dense sample at its refinement
+// voxel (16 points a voxel face), so the lip finds the surface wherever it lies.
 using PartSurfaces = std::map<int, PointCloud>;
-// A part's surface sampled so (diameter mm); the same mesh gives train's points exactly.
+// A part's surface sampled so (diameter mm).
 PointCloud sample_part_surface(const Mesh& mesh, double diameter);
 // Samples models/obj_NNNNNN.ply of each obj_id; InputError naming a missing or bad model.
 PartSurfaces sample_part_surfaces(const Dataset& dataset, const std::set<int>& obj_ids);
