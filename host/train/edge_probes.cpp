@@ -1,6 +1,7 @@
 #include "host/train/edge_probes.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <numbers>
 
@@ -34,19 +35,24 @@ EdgeProbes find_edge_probes(const Mesh& mesh, float voxel_size, ocl::Device& dev
   // quarter margin of the edge, a band narrower than the probe voxel. Per sample, a bit per
   // direction that gives a probe and one per direction whose probe is on a rim wall (two threads,
   // each its own samples; gathered in order below).
-  const auto direction = [&](std::size_t i, int k) {
+  const auto directions = [&](std::size_t i) {  // in the sample's tangent plane
     const Eigen::Vector3f& n = dense.surface.normals[i];
     const Eigen::Vector3f u = n.unitOrthogonal(), v = n.cross(u);
-    const float a = float(2 * std::numbers::pi * k / kDirections);
-    return Eigen::Vector3f(std::cos(a) * u + std::sin(a) * v);
+    std::array<Eigen::Vector3f, kDirections> e;
+    for (int k = 0; k < kDirections; ++k) {
+      const float a = float(2 * std::numbers::pi * k / kDirections);
+      e[std::size_t(k)] = std::cos(a) * u + std::sin(a) * v;
+    }
+    return e;
   };
   std::vector<std::uint16_t> bits(dense.surface.points.size(), 0);
   in_two_halves(bits.size(), [&](std::size_t first, std::size_t last) {
     for (std::size_t i = first; i < last; ++i) {
       const Eigen::Vector3f& p = dense.surface.points[i];
       const Eigen::Vector3f& n = dense.surface.normals[i];
+      const auto e_of = directions(i);
       for (int k = 0; k < kDirections; ++k) {
-        const Eigen::Vector3f e = direction(i, k);
+        const Eigen::Vector3f& e = e_of[std::size_t(k)];
         if (any.matches(p + margin * e, n) || !face.matches(p - kInwardRatio * margin * e, n)) continue;
         bits[i] |= std::uint16_t(1u << k);
         // A face runs on for a whole margin behind p; a rim wall is narrower.
@@ -56,13 +62,16 @@ EdgeProbes find_edge_probes(const Mesh& mesh, float voxel_size, ocl::Device& dev
   });
   PointCloud found;
   std::vector<std::uint8_t> found_rim;
-  for (std::size_t i = 0; i < bits.size(); ++i)
+  for (std::size_t i = 0; i < bits.size(); ++i) {
+    if (!bits[i]) continue;
+    const auto e_of = directions(i);
     for (int k = 0; k < kDirections; ++k)
       if (bits[i] & (1u << k)) {
-        found.points.push_back(dense.surface.points[i] + margin * direction(i, k));
+        found.points.push_back(dense.surface.points[i] + margin * e_of[std::size_t(k)]);
         found.normals.push_back(dense.surface.normals[i]);
         found_rim.push_back(bits[i] & (1u << (k + kDirections)) ? 1 : 0);
       }
+  }
   if (found.points.empty()) return out;
   // One probe per probe voxel and facing (several candidates and directions reach the same
   // place); the one kept gives its kind.

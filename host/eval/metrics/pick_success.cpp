@@ -2,10 +2,10 @@
 
 #include <algorithm>
 #include <cmath>
-#include <limits>
-#include <memory>
 #include <fstream>
+#include <limits>
 #include <map>
+#include <memory>
 #include <numbers>
 #include <sstream>
 
@@ -198,6 +198,7 @@ PickSummary evaluate_picks(const Dataset& dataset, const EvalSummary& summary,
   for (const HypothesisResult& h : summary.results)
     results[{h.scene_id, h.im_id, h.obj_id, h.rank}] = &h;
   std::map<ImageKey, bool> picked;
+  std::map<std::pair<int, float>, std::unique_ptr<PointGrid>> grids;
   for (const PickRow& p : picks) {
     const auto found = results.find({p.scene_id, p.im_id, p.obj_id, p.rank});
     if (found == results.end())
@@ -232,8 +233,11 @@ PickSummary evaluate_picks(const Dataset& dataset, const EvalSummary& summary,
       if (gripper.kind == Grasp::Kind::parallel) {
         o.on_grasp = jaws_hold(surface->second, g, gripper, touch);
       } else {
-        const PointGrid grid(surface->second, std::max(cup_reach(cup), float(cup.cup_diameter / 2 + travel)), 3);
-        o.on_grasp = seals(surface->second, grid, g, cup, travel);
+        // One grid a part and cell, shared by its picks (the cell follows the cup).
+        const float cell = std::max(cup_reach(cup), float(cup.cup_diameter / 2 + travel));
+        auto& grid = grids[{p.obj_id, cell}];
+        if (!grid) grid = std::make_unique<PointGrid>(surface->second, cell, 3);
+        o.on_grasp = seals(surface->second, *grid, g, cup, travel);
       }
     }
     // The gripper at the planned grasp against every part at its true pose, and the bin.
