@@ -580,23 +580,27 @@ std::vector<Detection> Detector::detect(DepthView depth, const bp_camera& cam,
   };
   std::vector<Detection> detections =
       in_rounds(std::min(hyps.size(), hypotheses_sought(params_)), vote, rank, started, t);
-  if (gripper_) {
-    Stopwatch pick_clock;
-    PickOptions po;
-    po.min_score = params_.pick_score;
-    po.approach_cone = params_.approach_cone;
-    po.bin_tolerance = params_.pick_tolerance * model_.diameter;
-    po.tolerance = std::max(po.bin_tolerance, 3 * image_noise_);
-    po.part_diameter = model_.diameter;
-    const std::vector<PlannedPick> picks =
-        plan_picks(dev_, scene.device->points, cam, detections, grasps_, *gripper_,
-                   masked.bin ? &*masked.bin : nullptr, po);
-    for (std::size_t i = 0; i < detections.size(); ++i) detections[i].pick = picks[i];
-    t.pick_ms += pick_clock.lap();
-    t.stages.push_back({"picks", t.pick_ms});
-  }
+  add_picks(detections, scene.device->points, cam, masked.bin ? &*masked.bin : nullptr,
+            image_noise_, t);
   if (times) *times += t;
   return detections;
+}
+
+void Detector::add_picks(std::vector<Detection>& detections, const ocl::Buffer<float>& points,
+                         const bp_camera& cam, const BinFit* bin, double noise, DetectTimes& t) {
+  if (!gripper_) return;
+  Stopwatch pick_clock;
+  PickOptions po;
+  po.min_score = params_.pick_score;
+  po.approach_cone = params_.approach_cone;
+  po.bin_tolerance = params_.pick_tolerance * model_.diameter;
+  po.tolerance = std::max(po.bin_tolerance, 3 * noise);
+  po.part_diameter = model_.diameter;
+  const std::vector<PlannedPick> picks =
+      plan_picks(dev_, points, cam, detections, grasps_, *gripper_, bin, po);
+  for (std::size_t i = 0; i < detections.size(); ++i) detections[i].pick = picks[i];
+  t.pick_ms += pick_clock.lap();
+  t.stages.push_back({"picks", t.pick_ms});
 }
 
 std::vector<Detection> Detector::detect(const PointCloud& input, DetectTimes* times) {
@@ -612,9 +616,6 @@ std::vector<Detection> Detector::detect(const PointCloud& input, DetectTimes* ti
       bin_spec_.mode == BinSpec::Mode::given)
     throw InputError("--roi, --bin W,D,H and --bin-pose apply to depth images (--dataset), not "
                      "to a point cloud");
-  if (gripper_)
-    throw InputError("--picks, --grasps and --gripper apply to depth images (--dataset), not to a "
-                     "point cloud");
   check_cloud(input);
   require(!input.points.empty(), "the point cloud is empty");
   PointCloud cloud = input;
@@ -691,6 +692,10 @@ std::vector<Detection> Detector::detect(const PointCloud& input, DetectTimes* ti
   };
   std::vector<Detection> detections =
       in_rounds(std::min(hyps.size(), hypotheses_sought(params_)), vote, rank, started, t);
+  // Picks against the same virtual image, no bin (the approach cone is about the view axis).
+  // Its pixels are the nearest points, the sensor's noise unknown: the tolerance is
+  // --pick-tolerance alone.
+  add_picks(detections, points, image.camera, nullptr, 0.0, t);
   if (times) *times += t;
   return detections;
 }

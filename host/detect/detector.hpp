@@ -149,6 +149,10 @@ class Detector {
                                          PlaneSearchMemo* searched_before = nullptr,
                                          RefineMemo* refined = nullptr,
                                          const ocl::Buffer<float>* search_points = nullptr);
+  // With a gripper, each detection's pick against the point image (plan_picks.hpp), timed in t.
+  // noise: the image's depth noise in mm (it widens the collision tolerance); bin: if found.
+  void add_picks(std::vector<Detection>& detections, const ocl::Buffer<float>& points,
+                 const bp_camera& cam, const BinFit* bin, double noise, DetectTimes& t);
 
   ocl::Device& dev_;
   double program_build_s_ = 0;

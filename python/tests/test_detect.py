@@ -131,6 +131,19 @@ def test_a_cloud_gives_the_command_lines_detections(bins, tmp_path):
     found = binpick.Detector(binpick.Model.load(str(bins / "bracket.ppfm"))).detect_cloud(points)
     assert found
     assert_same(found, cli_rows(tmp_path / "c.csv")[(0, 0)])
+    # Picks on a cloud: detect_cloud with picks=True plans those `detect --cloud --picks` writes.
+    run("detect", "--model", bins / "bracket.ppfm", "--cloud", ply, "--out", tmp_path / "p.csv",
+        "--picks")
+    with open(tmp_path / "p.picks.csv") as f:
+        rows = list(csv.DictReader(f))
+    picking = binpick.Detector(binpick.Model.load(str(bins / "bracket.ppfm")), picks=True)
+    found = picking.detect_cloud(points)
+    assert len(found) == len(rows)
+    for d, r in zip(found, rows):
+        if d.pick is None:
+            assert r["order"] == "" and d.pick_reason == r["reason"] != ""
+        else:
+            assert (d.pick["order"], d.pick["grasp"]) == (int(r["order"]), int(r["grasp"]))
     detector = binpick.Detector(binpick.Model.load(str(bins / "bracket.ppfm")))
     for bad, message in ((np.zeros((5, 2), np.float32), r"\(N, 3\)"),
                          (np.zeros((0, 3), np.float32), "empty"),

@@ -18,6 +18,7 @@
 #include "host/core/output_lock.hpp"
 #include "host/detect/batch/detect_batch.hpp"
 #include "host/detect/detector.hpp"
+#include "host/detect/batch/picks_csv.hpp"
 #include "host/formats/mesh/point_cloud_ply.hpp"
 #include "host/core/atomic_file.hpp"
 #include "host/core/read_file.hpp"
@@ -92,6 +93,12 @@ void detect_cloud(const DetectArgs& a, const std::vector<ObjectDetector>& detect
                            several ? std::optional<int>(detectors[m].obj_id) : std::nullopt);
   }
   write_file_atomically(details_path(a.out), [&](std::ostream& o) { o << details; });
+  if (const auto& gripper = detectors.front().detector->gripper()) {
+    std::string picks = kPicksCsvHeader;
+    for (std::size_t m = 0; m < detectors.size(); ++m)
+      picks += pick_rows(found[m], 0, 0, detectors[m].obj_id, gripper->describe());
+    write_file_atomically(picks_path(a.out), [&](std::ostream& o) { o << picks; });
+  }
   bop::write_results_csv(a.out, rows);
   s.rows = rows.size();
   if (a.verbose) {

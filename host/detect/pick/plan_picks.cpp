@@ -12,9 +12,10 @@
 namespace binpick {
 namespace {
 
-// Clearance and height each add up to this to a pick's value, so they order picks whose scores
-// are close, never one far less sure above one far surer.
-constexpr double kOrderWeight = 0.1;
+// Clearance and height each add up to this to a pick's value, so they only order picks whose
+// scores are within 0.04; at 0.1 they put a less sure pick first more often than they helped
+// (docs/decisions/2026-12-07-pick-order.md).
+constexpr double kOrderWeight = 0.02;
 
 }  // namespace
 

@@ -1,6 +1,6 @@
 // `binpick detect --picks` as a user runs it (docs/picks.md): OUT.picks.csv beside the results,
 // a row per detection, the first pick on a part nothing lies on, the same bytes on a rerun, and
-// bad grasps or gripper options refused with one message.
+// bad grasps or gripper options refused with one message; a point cloud's picks the same way.
 #include <gtest/gtest.h>
 
 #include <fstream>
@@ -42,6 +42,31 @@ std::vector<double> numbers(const std::string& cell) {
   return out;
 }
 
+// A first pick (f: its fields) takes a part nothing covers: the true instance nearest the
+// detection's position (its results row) is right within a tenth of the diameter and at least
+// 90 % visible, and the pick approaches downwards into the bin (the camera looks down it).
+void expect_first_pick_on_a_free_part(const fs::path& d, const std::vector<std::string>& f,
+                                      const std::string& result, const std::string& pick) {
+  const int scene = std::stoi(f[0]);
+  const auto t = numbers(fields(result)[5]);
+  ASSERT_EQ(t.size(), 3u);
+  ASSERT_EQ(numbers(f[6]).size(), 9u);
+  const fs::path dir = d / "data" / "test" / fmt::format("{:06d}", scene);
+  const auto gt = nlohmann::json::parse(test::slurp(dir / "scene_gt.json"))["0"];
+  const auto info = nlohmann::json::parse(test::slurp(dir / "scene_gt_info.json"))["0"];
+  double nearest = 1e30;
+  std::size_t which = 0;
+  for (std::size_t k = 0; k < gt.size(); ++k) {
+    const auto& tk = gt[k]["cam_t_m2c"];
+    const double dist = std::hypot(std::hypot(tk[0].get<double>() - t[0], tk[1].get<double>() - t[1]),
+                                   tk[2].get<double>() - t[2]);
+    if (dist < nearest) nearest = dist, which = k;
+  }
+  EXPECT_LT(nearest, 5.2) << result;  // the detection is right (a tenth of the diameter)
+  EXPECT_GE(info[which]["visib_fract"].get<double>(), 0.9) << pick;
+  EXPECT_GT(numbers(f[8])[2], 0.7) << pick;
+}
+
 class PicksCli : public testing::Test {
  protected:
   static void SetUpTestSuite() {
@@ -78,27 +103,7 @@ TEST_F(PicksCli, WritesAPickPerDetectionTheFirstOnAPartNothingLiesOn) {
     }
     if (f[4] != "1") continue;
     ++first;
-    // The part the first pick takes (the true instance at the detection's pose: the results'
-    // row of the same line) is not covered: at least 90 % of it is visible.
-    const int scene = std::stoi(f[0]);
-    const auto t = numbers(fields(results[i])[5]);
-    ASSERT_EQ(t.size(), 3u);
-    ASSERT_EQ(numbers(f[6]).size(), 9u);
-    const fs::path dir = d / "data" / "test" / fmt::format("{:06d}", scene);
-    const auto gt = nlohmann::json::parse(test::slurp(dir / "scene_gt.json"))["0"];
-    const auto info = nlohmann::json::parse(test::slurp(dir / "scene_gt_info.json"))["0"];
-    double nearest = 1e30;
-    std::size_t which = 0;
-    for (std::size_t k = 0; k < gt.size(); ++k) {
-      const auto& tk = gt[k]["cam_t_m2c"];
-      const double dist = std::hypot(std::hypot(tk[0].get<double>() - t[0], tk[1].get<double>() - t[1]),
-                                     tk[2].get<double>() - t[2]);
-      if (dist < nearest) nearest = dist, which = k;
-    }
-    EXPECT_LT(nearest, 5.2) << results[i];  // the detection is right (a tenth of the diameter)
-    EXPECT_GE(info[which]["visib_fract"].get<double>(), 0.9) << picks[i];
-    // Approaching downwards into the bin (the camera looks down it).
-    EXPECT_GT(numbers(f[8])[2], 0.7) << picks[i];
+    expect_first_pick_on_a_free_part(d, f, results[i], picks[i]);
   }
   EXPECT_EQ(first, 2);  // a first pick in each image
   // eval judges them at the true poses: both succeed (the floor of this fixed-seed bin).
@@ -116,6 +121,37 @@ TEST_F(PicksCli, WritesAPickPerDetectionTheFirstOnAPartNothingLiesOn) {
   // A rerun finds every scene done and writes the same picks.
   ASSERT_EQ(test::run_binpick(args).status, 0);
   EXPECT_EQ(lines(test::slurp(d / "r.picks.csv")), picks);
+}
+
+TEST_F(PicksCli, ACloudGetsItsPicksToo) {
+  // A bin's visible cloud as synth writes it, the bin itself not rendered (a cloud's bin is not
+  // looked for: the rim would be taken for brackets): picks planned against the cloud seen
+  // through the virtual camera, written beside the results as for a depth image.
+  const fs::path d = *dir_ / "cloud";
+  ASSERT_EQ(test::run_binpick("synth --model builtin:bracket --out " + (d / "data").string() +
+                              " --bins 1 --objects 60 --width 800 --height 450 --seed 3 "
+                              "--bin-render none").status, 0);
+  const fs::path cloud = d / "data" / "test" / "000000" / "cloud" / "000000.ply";
+  const test::CliRun run = test::run_binpick("detect --model " + (*dir_ / "b.ppfm").string() +
+                                             " --cloud " + cloud.string() + " --out " +
+                                             (d / "c.csv").string() + " --picks");
+  ASSERT_EQ(run.status, 0) << run.err;
+  const std::vector<std::string> picks = lines(test::slurp(d / "c.picks.csv"));
+  const std::vector<std::string> results = lines(test::slurp(d / "c.csv"));
+  ASSERT_EQ(picks.front(),
+            "scene_id,im_id,obj_id,rank,order,grasp,R,t,approach,width,clearance,score,gripper,reason");
+  ASSERT_EQ(picks.size(), results.size());
+  int first = 0, refused = 0;
+  for (std::size_t i = 1; i < picks.size(); ++i) {
+    const auto f = fields(picks[i]);
+    ASSERT_GE(f.size(), 16u) << picks[i];
+    if (f[4].empty()) ++refused;
+    if (f[4] != "1") continue;
+    ++first;
+    expect_first_pick_on_a_free_part(d, f, results[i], picks[i]);
+  }
+  EXPECT_EQ(first, 1);
+  EXPECT_GT(refused, 0) << "a part standing on its edge is refused here too";
 }
 
 TEST_F(PicksCli, BadGraspsOrGripperAreOneMessage) {
