@@ -25,9 +25,13 @@ constexpr float kAnyFacing = -2.0f;     // a cosine every normal passes
 }  // namespace
 
 EdgeProbes find_edge_probes(const Mesh& mesh, float voxel_size, ocl::Device& dev) {
+  if (!(voxel_size > 0)) return {};
+  return find_edge_probes(probe_surface(mesh, voxel_size, dev), dev);
+}
+
+EdgeProbes find_edge_probes(const ProbeSurface& dense, ocl::Device& dev) {
   EdgeProbes out;
-  if (!(voxel_size > 0)) return out;
-  const ProbeSurface dense = probe_surface(mesh, voxel_size, dev);
+  if (!(dense.probe_voxel > 0)) return out;
   const float margin = kEdgeMarginVoxels * dense.probe_voxel;
   const OrientedPointGrid any(dense.surface, kFreeRatio * margin, kAnyFacing);
   const OrientedPointGrid face(dense.surface, 0.5f * dense.probe_voxel, kSameFacingCos);

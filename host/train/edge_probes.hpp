@@ -35,6 +35,7 @@
 
 #include "host/core/mesh.hpp"
 #include "host/runtime/cl/cl_device.hpp"
+#include "host/train/probe_surface.hpp"
 
 namespace binpick {
 
@@ -50,6 +51,8 @@ struct EdgeProbes {
 // model's voxel (mm); else none.
 EdgeProbes find_edge_probes(const Mesh& mesh, float voxel_size,
                             ocl::Device& dev = ocl::Device::shared());
+// The same on a probe surface already sampled (train shares one with the look-alike probes).
+EdgeProbes find_edge_probes(const ProbeSurface& dense, ocl::Device& dev);
 
 // The face probes among `probes` (rim: one kind per probe, or empty: all face probes), in order.
 PointCloud face_probes(const PointCloud& probes, const std::vector<std::uint8_t>& rim);

@@ -30,9 +30,14 @@ bool on_broad_surface(const OrientedPointGrid& fine, const Eigen::Vector3f& p,
 
 LookalikeProbes find_lookalike_probes(const Mesh& mesh, float voxel_size,
                             const std::vector<Eigen::Isometry3d>& near, ocl::Device& dev) {
+  if (near.empty() || !(voxel_size > 0)) return {};
+  return find_lookalike_probes(probe_surface(mesh, voxel_size, dev), near);
+}
+
+LookalikeProbes find_lookalike_probes(const ProbeSurface& dense,
+                                      const std::vector<Eigen::Isometry3d>& near) {
   LookalikeProbes out;
-  if (near.empty() || !(voxel_size > 0)) return out;
-  const ProbeSurface dense = probe_surface(mesh, voxel_size, dev);
+  if (near.empty() || !(dense.probe_voxel > 0)) return out;
   const float probe_voxel = dense.probe_voxel;
   const PointCloud& surface = dense.surface;
   const PointCloud& candidates = dense.candidates;

@@ -41,5 +41,8 @@ struct LookalikeProbes {
 LookalikeProbes find_lookalike_probes(const Mesh& mesh, float voxel_size,
                             const std::vector<Eigen::Isometry3d>& near,
                             ocl::Device& dev = ocl::Device::shared());
+// The same on a probe surface already sampled (train shares one with the edge probes).
+LookalikeProbes find_lookalike_probes(const ProbeSurface& dense,
+                                      const std::vector<Eigen::Isometry3d>& near);
 
 }  // namespace binpick

@@ -16,6 +16,14 @@ std::size_t PpfTable::distinct_keys() const {
   return count;
 }
 
+std::size_t ppf_table_groups(std::size_t n, std::size_t n_keys, std::size_t cores) {
+  // Two per core keep every core busy (every row pairs with all points: equal blocks are equal
+  // work); more only add histograms to clear and scan, n_keys counters each (2 MiB at the
+  // defaults: 31 groups took 40-50 ms of the bracket's training).
+  return std::max<std::size_t>(1, std::min({n, 2 * std::max<std::size_t>(cores, 1), kPpfTableGroups,
+                                            (std::size_t(1) << 24) / std::max<std::size_t>(n_keys, 1)}));
+}
+
 PpfTable build_ppf_table(ocl::Device& dev, const PointCloud& input, const bp_ppf_quant& quant,
                          PpfTableTimes* times) {
   const PointCloud cloud = ppf_input(input, kMaxPpfModelPoints, "PPF table");
@@ -24,10 +32,8 @@ PpfTable build_ppf_table(ocl::Device& dev, const PointCloud& input, const bp_ppf
   PpfTableTimes t;
   Stopwatch clock;
 
-  // Groups of rows with a histogram each: enough to keep every core busy, few enough that the
-  // histograms stay within 2^24 counters (64 MiB).
   const std::size_t groups =
-      std::max<std::size_t>(1, std::min({n, kPpfTableGroups, (std::size_t(1) << 24) / n_keys}));
+      ppf_table_groups(n, n_keys, dev.device().getInfo<CL_DEVICE_MAX_COMPUTE_UNITS>());
   const auto rows_per_group = static_cast<std::uint32_t>((n + groups - 1) / groups);
   const auto count = static_cast<std::uint32_t>(n);
   const auto keys = static_cast<std::uint32_t>(n_keys);

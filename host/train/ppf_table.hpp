@@ -19,6 +19,10 @@ inline constexpr std::size_t kMaxPpfModelPoints = 11585;
 
 // Work items of the table build (each a block of reference points with its own histogram).
 inline constexpr std::size_t kPpfTableGroups = 64;
+// The build's split of n reference points into groups of consecutive rows on a device of
+// `cores` compute units: at most kPpfTableGroups, and the histograms within 2^24 counters
+// (64 MiB). The table does not depend on it: a bucket's entries stay in row order.
+std::size_t ppf_table_groups(std::size_t n, std::size_t n_keys, std::size_t cores);
 
 struct PpfTable {
   std::vector<std::uint32_t> offsets;  // bp_ppf_key_count(quant) + 1; offsets.back() = entries

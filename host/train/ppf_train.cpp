@@ -13,6 +13,7 @@
 #include "host/train/symmetry_detect.hpp"
 #include "host/train/edge_probes.hpp"
 #include "host/train/lookalike_probes.hpp"
+#include "host/train/probe_surface.hpp"
 #include "host/train/voxel_subsample.hpp"
 
 namespace binpick {
@@ -68,10 +69,12 @@ PpfModel train_ppf_model(const Mesh& mesh, const PpfTrainParams& params, PpfTrai
   st.symmetry_s = clock.lap_seconds();
   model.lookalikes = find_lookalikes(model.cloud, model.voxel_size, model.symmetries);
   st.lookalike_s = clock.lap_seconds();
-  const LookalikeProbes probes = find_lookalike_probes(mesh, model.voxel_size, model.lookalikes, dev);
+  // One dense probe surface for both kinds of probe.
+  const ProbeSurface probe_dense = probe_surface(mesh, model.voxel_size, dev);
+  const LookalikeProbes probes = find_lookalike_probes(probe_dense, model.lookalikes);
   model.lookalike_probes = probes.cloud;
   model.probe_lookalike = probes.twin;
-  const EdgeProbes edges = find_edge_probes(mesh, model.voxel_size, dev);
+  const EdgeProbes edges = find_edge_probes(probe_dense, dev);
   model.edge_probes = edges.cloud;
   model.edge_probe_rim = edges.rim;
   st.probe_s = clock.lap_seconds();

@@ -74,8 +74,8 @@ DeviceCloud on_device(ocl::Device& dev, PointCloud cloud, const bp_ppf_quant& q)
 
 // The routine's split into groups of rows (host/train/ppf_table.cpp).
 std::pair<u32, u32> routine_groups(std::size_t n, std::size_t n_keys) {
-  const std::size_t groups =
-      std::max<std::size_t>(1, std::min({n, kPpfTableGroups, (std::size_t(1) << 24) / n_keys}));
+  const std::size_t groups = ppf_table_groups(
+      n, n_keys, ocl::Device::shared().device().getInfo<CL_DEVICE_MAX_COMPUTE_UNITS>());
   return {u32(groups), u32((n + groups - 1) / groups)};
 }
 
