@@ -287,6 +287,9 @@ std::vector<std::size_t> Detector::vote_order(
     const std::function<const HypothesisCrop&(std::size_t)>& crop, DetectTimes& t) {
   ranked = std::min(ranked, found);
   if (!params_.prerank || ranked < 2) return prerank_order({}, found);
+  // The crops first: crop() times them as their own stages (preparation), the stage below is
+  // the coarse votes alone.
+  for (std::size_t k = 0; k < ranked; ++k) crop(k);
   Stopwatch clock;
   DetectTimes coarse;  // its stages are one line in --verbose
   std::vector<double> votes(ranked, -1.0);
