@@ -67,7 +67,16 @@ void stages(std::ostream& os, const BenchResult& r) {
         os << fmt::format(" {:.3f} |", s < d.stages.size() ? d.stages[s].ms_per_hyp : 0.0);
       os << "\n";
     }
-  os << "\n";
+  // Where the next gain must come from: the stage taking most of a hypothesis' time.
+  for (const auto& d : r.detect) {
+    if (d.stages.empty() || !(d.total_ms > 0)) continue;
+    const auto top = std::max_element(d.stages.begin(), d.stages.end(),
+                                      [](const auto& a, const auto& b) { return a.ms_per_hyp < b.ms_per_hyp; });
+    os << fmt::format("\nThe limit at {} reference points: {}, {:.1f} of {:.1f} ms a hypothesis ({}).",
+                      ratio_label(d.ref_ratio), top->stage, top->ms_per_hyp, d.total_ms,
+                      pct(top->ms_per_hyp / d.total_ms));
+  }
+  os << "\n\n";
 }
 
 void rates(std::ostream& os, const BenchResult& r) {
