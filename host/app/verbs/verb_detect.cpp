@@ -93,10 +93,11 @@ void detect_cloud(const DetectArgs& a, const std::vector<ObjectDetector>& detect
                            several ? std::optional<int>(detectors[m].obj_id) : std::nullopt);
   }
   write_file_atomically(details_path(a.out), [&](std::ostream& o) { o << details; });
-  if (const auto& gripper = detectors.front().detector->gripper()) {
+  if (detectors.front().detector->gripper()) {  // every model plans picks, or none
     std::string picks = kPicksCsvHeader;
     for (std::size_t m = 0; m < detectors.size(); ++m)
-      picks += pick_rows(found[m], 0, 0, detectors[m].obj_id, gripper->describe());
+      picks += pick_rows(found[m], 0, 0, detectors[m].obj_id,
+                         detectors[m].detector->gripper()->describe());
     write_file_atomically(picks_path(a.out), [&](std::ostream& o) { o << picks; });
   }
   bop::write_results_csv(a.out, rows);
