@@ -120,7 +120,8 @@ void follow_planes(const std::vector<float>& xyzw, std::uint32_t width, std::uin
     for (std::size_t i = 0; i < n; ++i)
       if (start[i] && !missing(i) && on(i)) seeds.push_back(i);
     const auto joins = [&](std::size_t, std::size_t j) { return on(j); };
-    for (const std::size_t i : flood_with_gaps(width, height, seeds, missing, joins, max_gap))
+    for (const std::size_t i :
+         flood_with_gaps(width, height, seeds, missing, joins, max_gap, /*path_independent=*/true))
       reached[i] = 1;
   }
 }
