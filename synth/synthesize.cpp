@@ -16,6 +16,7 @@
 #include "host/formats/mesh/load_model.hpp"
 #include "synth/bin_writer.hpp"
 #include "synth/camera_rig.hpp"
+#include "synth/drops_ahead.hpp"
 #include "host/formats/bop/test_targets.hpp"
 #include "synth/physics/bin_capacity.hpp"
 #include "synth/render/bin_renderer.hpp"
@@ -165,35 +166,45 @@ SynthSummary synthesize(const Model& model, const std::string& model_description
   // ideal depth (docs/sensor_model.md).
   if (structured_light) sensor_model.added_sigma_mm = o.noise * diameter;
   const int waves = (o.drop.objects + o.drop.grid_x * o.drop.grid_y - 1) / (o.drop.grid_x * o.drop.grid_y);
+  // Each bin's drop: its seed, and the mix of kinds from its own stream of that seed (without
+  // distractors the orientations are those of a bin of one kind).
+  const auto drop_request = [&](int b) {
+    DropsAhead::Request r{drop_options, {}};
+    r.drop.seed = mix_seed(o.seed, 2 * std::uint64_t(b));
+    r.sequence = mixed_sequence(counts, mix_seed(r.drop.seed, 0));
+    return r;
+  };
+  std::vector<int> todo;  // the bins to make, in order
+  std::vector<DropsAhead::Request> to_drop;  // the piles of those not cached, in the same order
   for (int b = 0; b < o.bins; ++b) {
     if (!o.shard.owns(std::size_t(b))) continue;
-    const fs::path scene = o.out / "test" / fmt::format("{:06d}", b);
     if (done(b)) {
       ++summary.bins_skipped;
       continue;
     }
+    todo.push_back(b);
+    if (!(piles && piles->find(pile_key, b))) to_drop.push_back(drop_request(b));
+  }
+  DropsAhead drops(kinds, std::move(to_drop), o.threads);
+  for (const int b : todo) {
+    const fs::path scene = o.out / "test" / fmt::format("{:06d}", b);
     const fs::path staging = o.out / "test" / fmt::format(".{:06d}.partial", b);
     fs::remove_all(staging);
     fs::create_directories(staging);
 
     Progress progress(fmt::format("bin {}/{}", b + 1, o.bins), std::size_t(waves) + 1);
-    DropOptions drop = drop_options;
-    drop.seed = mix_seed(o.seed, 2 * std::uint64_t(b));
-    // The mix of kinds comes from its own stream of the bin's seed: without distractors the
-    // orientations are those of a bin of one kind.
-    const std::vector<int> sequence = mixed_sequence(counts, mix_seed(drop.seed, 0));
-    t0 = Clock::now();
     const DropResult* cached = piles ? piles->find(pile_key, b) : nullptr;
-    const DropResult dropped =
-        cached ? *cached
-               : drop_parts(kinds, sequence, drop, [&](const DropProgress& p) {
+    const DropsAhead::Dropped dropped_now =
+        cached ? DropsAhead::Dropped{}
+               : drops.next([&](const DropProgress& p) {
                    progress.update(std::size_t(p.wave),
                                    fmt::format("wave {}/{}: {} moving, {:.1f} s simulated",
                                                p.wave + 1, p.waves, p.parts_moving,
                                                p.simulated_seconds));
                  });
+    const DropResult& dropped = cached ? *cached : dropped_now.pile;
     if (piles && !cached) piles->store(pile_key, b, dropped);
-    const double physics = seconds_since(t0);
+    const double physics = dropped_now.seconds;
     progress.update(std::size_t(waves), "rendering");
 
     t0 = Clock::now();

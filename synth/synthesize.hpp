@@ -48,6 +48,7 @@ struct SynthOptions {
   std::vector<DistractorSpec> distractors;  // obj_ids 2, 3, ... in this order
   DecomposeOptions decompose;
   Shard shard;                      // --shard K/N: only bins K-1, K-1+N, ... (synth_shards.hpp)
+  unsigned threads = 0;             // piles dropped at once (drops_ahead.hpp); 0: one per core
 };
 
 struct SynthSummary {

@@ -29,8 +29,10 @@ BinWorld::BinWorld(const DropOptions& options, std::vector<const PartShape*> kin
   world_.setGravity(btVector3(0, 0, btScalar(-kGravityUnits)));
   contact_erp_ = world_.getSolverInfo().m_erp2;
   // Bullet puts an island to sleep once all its bodies have been below their sleeping
-  // thresholds this long; the same duration as our own rest test. (A process-wide global.)
-  gDeactivationTime = btScalar(options.rest_seconds);
+  // thresholds this long; the same duration as our own rest test. (A process-wide global:
+  // written only when it changes, so that bins dropping side by side only read it.)
+  if (gDeactivationTime != btScalar(options.rest_seconds))
+    gDeactivationTime = btScalar(options.rest_seconds);
 
   thinnest_mm_ = INFINITY;
   for (const PartShape* k : kinds_) thinnest_mm_ = std::min(thinnest_mm_, k->thinnest_mm());

@@ -139,7 +139,8 @@ void validate_drop_options(const DropOptions& options);
 
 // `hulls` collide; `part` (closed, mm) gives mass, centre of mass and inertia. Single threaded
 // and deterministic unless max_wall_seconds cuts it short. Bins may drop in parallel threads
-// only with the same rest_seconds (Bullet's deactivation time is a process-wide global).
+// (drops_ahead.hpp) only with the same rest_seconds (Bullet's deactivation time is a
+// process-wide global).
 DropResult drop_parts(const ConvexParts& hulls, const Mesh& part, const DropOptions& options,
                       const ProgressFn& progress = {});
 

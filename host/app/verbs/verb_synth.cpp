@@ -157,6 +157,12 @@ void add_synth_verb(CLI::App& app) {
   verb->add_flag("--masks", o.write_masks,
                  "also write mask/ (each part alone) and mask_visib/ (its visible pixels), one PNG per part");
   verb->add_flag("!--no-cloud", o.write_cloud, "do not write cloud/000000.ply");
+  verb->add_option("--threads", o.threads,
+                   "bins whose parts drop at once, each on its own core while earlier bins "
+                   "render (Bullet steps one bin on one thread); 0: one per core. The dataset "
+                   "is the same whatever the number")
+      ->check(CLI::Range(0u, 1024u))
+      ->capture_default_str();
   verb->add_option("--cache-dir", args->cache_dir,
                    "convex decomposition cache (default $BINPICK_CACHE_DIR or ~/.cache/binpick)");
   add_shard_options(verb, args->shards, "bins");
