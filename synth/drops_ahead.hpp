@@ -1,9 +1,9 @@
 // Piles dropped ahead, on other threads, while the caller renders and writes the bins before
 // them. Debian's Bullet is built without BT_THREADSAFE (btCreateDefaultTaskScheduler gives no
 // scheduler, so btDiscreteDynamicsWorldMt steps on one thread): one world runs on one core, and
-// the bins of a dataset, independent worlds, run side by side (docs/synthesis.md, "Bins side
-// by side"). Each bin's pile depends only on its own options and seed, so the dataset is the
-// same bytes whatever the number of threads.
+// the bins of a dataset, independent worlds, run side by side
+// (docs/synthesis.md, "Bins side by side"). Each bin's pile depends only on its own options and
+// seed, so the dataset is the same bytes whatever the number of threads.
 #pragma once
 
 #include <cstddef>

@@ -1,4 +1,5 @@
 #include "host/detect/detector.hpp"
+#include "host/detect/detector_steps.hpp"
 
 #include "host/detect/pick/plan_picks.hpp"
 #include "host/formats/grasps/grasp_json.hpp"
@@ -48,33 +49,15 @@
 namespace binpick {
 namespace {
 
-void require(bool ok, const std::string& message) {
-  if (!ok) throw InputError(message);
-}
-
-
 double sum_ms(const StageTimings& t, std::size_t from) {
   double ms = 0;
   for (std::size_t i = from; i < t.size(); ++i) ms += t[i].ms;
   return ms;
 }
 
-// The sphere voted on about a hypothesis' point.
-CropOptions crop_about(const Hypothesis& h, double radius) {
-  CropOptions crop;
-  crop.centre = h.point;
-  crop.radius = float(radius);
-  return crop;
-}
-
-// The detection of the k-th highest point, before voting.
-Detection detection_for(const std::vector<Hypothesis>& hyps, std::size_t k) {
-  Detection d;
-  d.hypothesis = hyps[k];
-  d.index = static_cast<std::uint32_t>(k);
-  return d;
-}
-
+using detector_steps::crop_about;
+using detector_steps::detection_for;
+using detector_steps::require;
 
 }  // namespace
 
@@ -381,6 +364,44 @@ void Detector::set_instances(std::uint32_t n) {
   params_.instances = n;
 }
 
+RegionSetup Detector::region_setup(double noise) const {
+  RegionSetup region;
+  region.noise = noise;
+  region.roi = parse_roi(params_.roi);
+  region.bin = bin_spec_;
+  region.margin = params_.bin_margin * model_.diameter;
+  region.above = model_.diameter;
+  region.min_height = 0.5 * model_.diameter;  // a tray shallower than half a part holds none
+  region.min_side = model_.diameter;          // nor one narrower than a part
+  region.floor_clearance_cap = 0.5 * thinnest_extent_;
+  region.keep_through_walls = params_.through_walls;
+  region.keep_over_rim = params_.over_rim;
+  region.over_rim_gap = 0.25 * model_.diameter;  // a hole in the depth of an arm's face
+  return region;
+}
+
+void Detector::note_region(const SceneRegionMask& masked, const RegionSetup& region,
+                           DepthView depth, DetectTimes& t) {
+  if (region.wanted()) {
+    const std::size_t valid = std::size_t(std::count_if(
+        depth.raw.begin(), depth.raw.end(), [](std::uint16_t v) { return v > 0; }));
+    const bool mask = masked.mask.has_value();
+    region_report_ = masked.report;
+    region_report_ += fmt::format("{}mask: {} of {} pixels with depth may be used ({} excluded)",
+                                  region_report_.empty() ? "" : "; ", mask ? masked.kept : valid,
+                                  valid, mask ? valid - masked.kept : 0);
+  }
+  last_bin_ = masked.bin;
+  if (masked.bin) {
+    ++t.bin_sought;
+    t.bin_found += masked.bin->found;
+  }
+  if (!masked.warning.empty() && !warned_no_bin_ && bin_spec_.mode != BinSpec::Mode::find) {
+    std::cerr << "warning: " << masked.warning << "\n";
+    warned_no_bin_ = true;
+  }
+}
+
 std::vector<Detection> Detector::detect(DepthView depth, const bp_camera& cam,
                                         DetectTimes* times,
                                         std::vector<PointCloud>* neighbourhoods,
@@ -411,40 +432,13 @@ std::vector<Detection> Detector::detect(DepthView depth, const bp_camera& cam,
   const double noise = params_.noise_voxel > 1 || bin_spec_.mode != BinSpec::Mode::none ? image_noise_ : 0.0;
   t.stages.push_back({"noise", noise_clock.lap()});
   // --roi / --bin: the mask of the pixels that may be used, and the low-pass of those only.
-  RegionSetup region;
-  region.noise = noise;
-  region.roi = parse_roi(params_.roi);
-  region.bin = bin_spec_;
-  region.margin = params_.bin_margin * model_.diameter;
-  region.above = model_.diameter;
-  region.min_height = 0.5 * model_.diameter;  // a tray shallower than half a part holds none
-  region.min_side = model_.diameter;          // nor one narrower than a part
-  region.floor_clearance_cap = 0.5 * thinnest_extent_;
-  region.keep_through_walls = params_.through_walls;
-  region.keep_over_rim = params_.over_rim;
-  region.over_rim_gap = 0.25 * model_.diameter;  // a hole in the depth of an arm's face
+  const RegionSetup region = region_setup(noise);
   const BinFit* known_bin = shared ? shared->bin(bin_key(), model_.diameter) : nullptr;
   const SceneRegionMask masked =
       apply_region(scene, region, prep.lowpass_radius, &t.stages, known_bin);
   if (shared && masked.bin) shared->keep_bin(bin_key(), model_.diameter, *masked.bin);
   const ocl::Buffer<std::uint8_t>* mask = masked.mask ? &*masked.mask : nullptr;
-  if (region.wanted()) {
-    const std::size_t valid = std::size_t(std::count_if(
-        depth.raw.begin(), depth.raw.end(), [](std::uint16_t v) { return v > 0; }));
-    region_report_ = masked.report;
-    region_report_ += fmt::format("{}mask: {} of {} pixels with depth may be used ({} excluded)",
-                                  region_report_.empty() ? "" : "; ", mask ? masked.kept : valid,
-                                  valid, mask ? valid - masked.kept : 0);
-  }
-  last_bin_ = masked.bin;
-  if (masked.bin) {
-    ++t.bin_sought;
-    t.bin_found += masked.bin->found;
-  }
-  if (!masked.warning.empty() && !warned_no_bin_ && bin_spec_.mode != BinSpec::Mode::find) {
-    std::cerr << "warning: " << masked.warning << "\n";
-    warned_no_bin_ = true;
-  }
+  note_region(masked, region, depth, t);
   // Noisy depth: scene voxels longer along the camera's axis (depth_noise.hpp).
   const double voxel_factor = scene_voxel_factor(noise, model_.voxel_size, params_.noise_voxel);
   if (voxel_factor > 1)
@@ -604,103 +598,6 @@ void Detector::add_picks(std::vector<Detection>& detections, const ocl::Buffer<f
   for (std::size_t i = 0; i < detections.size(); ++i) detections[i].pick = picks[i];
   t.pick_ms += pick_clock.lap();
   t.stages.push_back({"picks", t.pick_ms});
-}
-
-std::vector<Detection> Detector::detect(const PointCloud& input, DetectTimes* times) {
-  DetectTimes t;
-  Stopwatch clock;
-  const Stopwatch started;
-  skipped_.clear();
-  region_report_.clear();
-  last_bin_.reset();
-  // `auto` (the default) looks for a bin where there is an image to look in; a region asked for
-  // explicitly cannot be honoured on a cloud.
-  if (!params_.roi.empty() || bin_spec_.mode == BinSpec::Mode::sized ||
-      bin_spec_.mode == BinSpec::Mode::given)
-    throw InputError("--roi, --bin W,D,H and --bin-pose apply to depth images (--dataset), not "
-                     "to a point cloud");
-  check_cloud(input);
-  require(!input.points.empty(), "the point cloud is empty");
-  PointCloud cloud = input;
-  if (cloud.normals.empty())
-    cloud.normals = cloud_normals(cloud, float(params_.normal_ratio * model_.diameter));
-  CloudHypothesisOptions ho;
-  // Highest points to stand in for those the flat-region test skips (a cloud's rounds are cheap:
-  // all found at once).
-  ho.hypotheses.count = hypotheses_sought(params_) * (params_.flat_region > 0 ? 2 : 1);
-  ho.hypotheses.exclusion_radius = float(params_.exclusion_ratio * model_.diameter);
-  const std::vector<Hypothesis> hyps = find_hypotheses(cloud, ho);
-  const double prep_ms = clock.lap();
-  t.prepare_ms += prep_ms;
-  t.stages.push_back({"cloud hypotheses", prep_ms});
-  // Verification needs what the sensor saw along each ray: the cloud seen through a virtual
-  // camera (scene_cloud.hpp).
-  const CloudImage image = cloud_point_image(cloud, 0.5f * model_.voxel_size);
-  const ocl::Buffer<float> points(dev_, std::span<const float>(image.points.xyzw),
-                                  CL_MEM_READ_ONLY);
-  t.prepare_ms += clock.lap();
-
-  std::vector<std::optional<HypothesisCrop>> crops(hyps.size());  // as on a depth image
-  const auto crop = [&](std::size_t k) -> const HypothesisCrop& {
-    if (!crops[k]) {
-      clock.lap();
-      const PointCloud neighbourhood =
-          crop_sphere(cloud, crop_about(hyps[k], params_.crop_ratio * model_.diameter));
-      HypothesisCrop c;
-      c.cropped = neighbourhood.points.size();
-      // The scene is subsampled like the model (its voxel), so that densities, and so votes,
-      // match.
-      c.cloud = voxel_subsample(dev_, neighbourhood, model_.voxel_size).cloud;
-      const double ms = clock.lap();
-      t.prepare_ms += ms;
-      t.stages.push_back({"crop+subsample", ms});
-      c.reason = flat_skip_->reason(c.cloud, hyps[k].point, 0, 1);
-      c.flat = !c.reason.empty();
-      crops[k] = std::move(c);
-    }
-    return *crops[k];
-  };
-  // The stand-ins for flat-skipped points (the second half) follow in height order.
-  const std::vector<std::size_t> order =
-      vote_order(hyps.size(), hypotheses_sought(params_), crop, t);
-
-  std::vector<Detection> voted;
-  std::vector<std::vector<PoseCluster>> candidates;
-  std::size_t next = 0;  // as on a depth image: flat-skipped highest points do not count
-  const auto vote = [&](std::size_t from, std::size_t to) {
-    std::size_t taken = from;
-    while (taken < to && next < order.size()) {
-      const std::size_t k = order[next++];
-      const HypothesisCrop& c = crop(k);
-      Detection d = detection_for(hyps, k);
-      d.neighbourhood = c.cropped;
-      if (!c.reason.empty()) {
-        d.subsampled = c.cloud.points.size();
-        d.reason = c.reason;
-        skipped_.push_back(d);
-        continue;
-      }
-      ++taken;
-      clock.lap();
-      candidates.push_back(vote_and_cluster(c.cloud, d, t));
-      clock.lap();
-      voted.push_back(d);
-    }
-    t.hypotheses += taken - from;
-  };
-  RefineMemo refined;  // the first round's ICP, for the second
-  const auto rank = [&] {
-    return refine_and_rank(voted, candidates, points, image.camera, t, false, nullptr, nullptr,
-                           &refined);
-  };
-  std::vector<Detection> detections =
-      in_rounds(std::min(hyps.size(), hypotheses_sought(params_)), vote, rank, started, t);
-  // Picks against the same virtual image, no bin (the approach cone is about the view axis).
-  // Its pixels are the nearest points, the sensor's noise unknown: the tolerance is
-  // --pick-tolerance alone.
-  add_picks(detections, points, image.camera, nullptr, 0.0, t);
-  if (times) *times += t;
-  return detections;
 }
 
 }  // namespace binpick

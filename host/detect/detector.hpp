@@ -17,6 +17,7 @@
 #include <Eigen/Geometry>
 
 #include "host/detect/bin/bin_fit.hpp"
+#include "host/detect/bin/bin_region.hpp"
 #include "host/detect/hypotheses/flat_region.hpp"
 #include "host/detect/hypotheses/hypotheses.hpp"
 #include "host/detect/hypotheses/prerank.hpp"
@@ -33,6 +34,7 @@
 #include "host/core/gripper.hpp"
 #include "host/core/mesh.hpp"
 #include "host/train/ppf_model.hpp"
+#include "host/detect/scene/cloud_image.hpp"
 #include "host/detect/scene/depth_to_points.hpp"
 
 namespace binpick {
@@ -149,6 +151,20 @@ class Detector {
                                          PlaneSearchMemo* searched_before = nullptr,
                                          RefineMemo* refined = nullptr,
                                          const ocl::Buffer<float>* search_points = nullptr);
+  // A cloud's points in the region (--roi, --bin; all of them without one), found on the depth
+  // image of its virtual camera (detector_cloud.cpp), and the bin when one was sought.
+  struct CloudRegion {
+    PointCloud kept;
+    std::optional<BinFit> bin;
+  };
+  CloudRegion cloud_region(const CloudImage& image, const PointCloud& cloud, DetectTimes& t);
+  // The region options (--roi, --bin and the rules scaled by the part) for an image whose depth
+  // noise is `noise` mm.
+  RegionSetup region_setup(double noise) const;
+  // Keeps what the region found (last_bin_, the report --verbose prints, the counts in t) and
+  // warns once when a bin asked for was not found. depth: the image the mask is of.
+  void note_region(const SceneRegionMask& masked, const RegionSetup& region, DepthView depth,
+                   DetectTimes& t);
   // With a gripper, each detection's pick against the point image (plan_picks.hpp), timed in t.
   // noise: the image's depth noise in mm (it widens the collision tolerance); bin: if found.
   void add_picks(std::vector<Detection>& detections, const ocl::Buffer<float>& points,

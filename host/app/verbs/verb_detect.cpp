@@ -105,6 +105,10 @@ void detect_cloud(const DetectArgs& a, const std::vector<ObjectDetector>& detect
   if (a.verbose) {
     for (const StageTime& st : s.times.stages)
       std::cout << fmt::format("  {} {:.1f} ms\n", st.stage, st.ms);
+    for (const ObjectDetector& d : detectors)  // what --roi / --bin found on the cloud's image
+      if (!d.detector->region_report().empty())
+        std::cout << "  " << (several ? fmt::format("obj_id {} ", d.obj_id) : "")
+                  << d.detector->region_report() << "\n";
     for (std::size_t m = 0; m < detectors.size(); ++m)
       for (std::size_t r = 0; r < found[m].size(); ++r)
         std::cout << "  " << (several ? fmt::format("obj_id {} ", detectors[m].obj_id) : "")

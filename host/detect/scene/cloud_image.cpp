@@ -76,7 +76,14 @@ CloudImage cloud_point_image(const PointCloud& cloud, float pitch) {
     if (px[3] != 0 && px[2] <= p.z()) continue;
     px[0] = p.x(), px[1] = p.y(), px[2] = p.z(), px[3] = 1.0f;
   }
-  fill_holes_and_background(out, 10.0f * *std::max_element(depths.begin(), depths.end()));
+  const float farthest = *std::max_element(depths.begin(), depths.end());
+  out.depth_scale = farthest < 6500.0f ? 0.1f : 1.0f;
+  out.depth.assign(std::size_t(cam.width) * cam.height, 0);
+  for (std::size_t i = 0; i < out.depth.size(); ++i)
+    if (out.points.xyzw[4 * i + 3] != 0)
+      out.depth[i] = std::uint16_t(
+          std::clamp(std::lround(out.points.xyzw[4 * i + 2] / out.depth_scale), 1L, 65535L));
+  fill_holes_and_background(out, 10.0f * farthest);
   return out;
 }
 

@@ -7,6 +7,9 @@
 // image's missing pixels, which are neutral).
 #pragma once
 
+#include <cstdint>
+#include <vector>
+
 #include "host/core/mesh.hpp"
 #include "host/detect/scene/depth_to_points.hpp"
 #include "kernels/binpick_shared.h"
@@ -16,6 +19,11 @@ namespace binpick {
 struct CloudImage {
   bp_camera camera{};  // depth_scale 1
   PointImage points;
+  // The same pixels as a depth image of the cloud alone, before gaps and background are filled:
+  // each pixel its nearest point's z in units of depth_scale mm (0.1, or 1 beyond 6.5 m), 0
+  // where no point falls. What the bin fit and the region mask read (detector_cloud.cpp).
+  std::vector<std::uint16_t> depth;
+  float depth_scale = 0.1f;
 };
 
 // Largest side of the virtual image, pixels.
