@@ -1,8 +1,8 @@
 // `binpick detect --cloud` on a cloud that holds its bin (detector_cloud.cpp): the bin is found
 // on the cloud's virtual depth image as on a sensor's, so its rim and walls are kept out of the
 // highest points and crops. Without the region (--bin none) the rim, the highest thing in view,
-// is taken for brackets: the test can fail. A bin of a given size (--bin W,D,H) and --roi apply
-// to a cloud too.
+// is taken for brackets: the test can fail. Picks plan against the bin found. A bin of a given
+// size (--bin W,D,H) and --roi apply to a cloud too.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -83,6 +83,25 @@ TEST_F(DetectCloudBin, TheBinIsFoundAndItsRimIsNotTakenForAPart) {
   EXPECT_NEAR(d, 400, 10);
   EXPECT_NEAR(h, 300, 10);
   EXPECT_LT(near_found, 0.1 * diameter()) << "the top-ranked pose is on no bracket";
+
+  // Picks plan against the bin found: one first pick, on a row of its own.
+  const auto [picked, near_picked] = detect("--picks");
+  ASSERT_EQ(picked.status, 0) << picked.err;
+  EXPECT_EQ(near_picked, near_found);
+  const std::string picks = test::slurp(*dir_ / fmt::format("r{}.picks.csv", runs_ - 1));
+  std::size_t firsts = 0, rows = 0;
+  std::istringstream in(picks);
+  std::string line;
+  std::getline(in, line);  // header
+  for (; std::getline(in, line); ++rows) {
+    std::vector<std::string> f;
+    std::istringstream cells(line);
+    for (std::string c; std::getline(cells, c, ',');) f.push_back(c);
+    ASSERT_GE(f.size(), 5u) << line;
+    firsts += f[4] == "1";
+  }
+  EXPECT_GT(rows, 0u);
+  EXPECT_EQ(firsts, 1u) << picks;
 
   const auto [none, near_none] = detect("--bin none");
   ASSERT_EQ(none.status, 0) << none.err;
