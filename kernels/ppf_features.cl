@@ -12,11 +12,10 @@ __kernel void ppf_pair_features(__global const float4* points, __global const fl
   if (r >= n) return;
   const float3 pr = points[r].xyz;
   const float3 nr = normals[r].xyz;
-  for (uint i = 0; i < n; ++i) {
-    float alpha = 0.0f;
-    const uint key = i == r ? BP_PPF_NO_KEY
-                            : bp_ppf_pair(pr, nr, points[i].xyz, normals[i].xyz, q, &alpha);
-    keys[(size_t)r * n + i] = key;
-    alphas[(size_t)r * n + i] = alpha;
+  for (uint i = 0; i < n; i += 8u) {
+    float8 alpha;
+    const uint8 key = bp_ppf_pairs_at(pr, nr, points, normals, i, n, r, q, &alpha);
+    bp_store_keys8(key, keys + (size_t)r * n + i, n - i);
+    bp_store_alphas8(alpha, alphas + (size_t)r * n + i, n - i);
   }
 }

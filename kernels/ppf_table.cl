@@ -20,11 +20,12 @@ __kernel void ppf_count(__global const float4* points, __global const float4* no
   for (uint r = begin; r < end; ++r) {
     const float3 pr = points[r].xyz;
     const float3 nr = normals[r].xyz;
-    for (uint i = 0; i < n; ++i) {
-      if (i == r) continue;
-      float alpha;
-      const uint key = bp_ppf_pair(pr, nr, points[i].xyz, normals[i].xyz, q, &alpha);
-      if (key != BP_PPF_NO_KEY) ++histogram[key];
+    for (uint i = 0; i < n; i += 8u) {
+      float8 alpha;
+      uint k[8];
+      vstore8(bp_ppf_pairs_at(pr, nr, points, normals, i, n, r, q, &alpha), 0, k);
+      for (uint l = 0; l < 8u; ++l)
+        if (k[l] != BP_PPF_NO_KEY) ++histogram[k[l]];
     }
   }
 }
@@ -64,15 +65,19 @@ __kernel void ppf_scatter(__global const float4* points, __global const float4* 
   for (uint r = begin; r < end; ++r) {
     const float3 pr = points[r].xyz;
     const float3 nr = normals[r].xyz;
-    for (uint i = 0; i < n; ++i) {
-      if (i == r) continue;
-      float alpha;
-      const uint key = bp_ppf_pair(pr, nr, points[i].xyz, normals[i].xyz, q, &alpha);
-      if (key == BP_PPF_NO_KEY) continue;
-      bp_ppf_entry e;
-      e.point = r;
-      e.alpha = alpha;
-      entries[next[key]++] = e;
+    for (uint i = 0; i < n; i += 8u) {
+      float8 alpha;
+      uint k[8];
+      float a[8];
+      vstore8(bp_ppf_pairs_at(pr, nr, points, normals, i, n, r, q, &alpha), 0, k);
+      vstore8(alpha, 0, a);
+      for (uint l = 0; l < 8u; ++l) {
+        if (k[l] == BP_PPF_NO_KEY) continue;
+        bp_ppf_entry e;
+        e.point = r;
+        e.alpha = a[l];
+        entries[next[k[l]]++] = e;
+      }
     }
   }
 }

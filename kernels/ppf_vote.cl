@@ -1,7 +1,7 @@
 /* Drost voting around one hypothesis (paper section III-B).
  *
  * ppf_scene_features: one work item per reference point s_r; for every subsampled scene point
- *   s_i the key and alpha_s of the pair (s_r, s_i), computed by the same bp_ppf_pair as the
+ *   s_i the key and alpha_s of the pair (s_r, s_i), computed by the same bp_ppf_pair8 as the
  *   model (so model and scene features cannot drift apart). Row r of keys/alphas is s_r's.
  * ppf_vote: one work item per reference point, with its own accumulator of n_model x n_alpha
  *   integer counters in global memory (no atomics, so the votes are exact and deterministic).
@@ -36,12 +36,11 @@ __kernel void ppf_scene_features(__global const float4* points, __global const f
   const uint ref = refs[r];
   const float3 pr = points[ref].xyz;
   const float3 nr = normals[ref].xyz;
-  for (uint i = 0; i < n; ++i) {
-    float alpha = 0.0f;
-    const uint key = i == ref ? BP_PPF_NO_KEY
-                              : bp_ppf_pair(pr, nr, points[i].xyz, normals[i].xyz, q, &alpha);
-    keys[(size_t)r * n + i] = key;
-    alphas[(size_t)r * n + i] = alpha;
+  for (uint i = 0; i < n; i += 8u) {
+    float8 alpha;
+    const uint8 key = bp_ppf_pairs_at(pr, nr, points, normals, i, n, ref, q, &alpha);
+    bp_store_keys8(key, keys + (size_t)r * n + i, n - i);
+    bp_store_alphas8(alpha, alphas + (size_t)r * n + i, n - i);
   }
 }
 

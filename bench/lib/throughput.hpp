@@ -13,7 +13,7 @@
 
 namespace binpick::bench {
 
-// bp_ppf_pair counted by hand: 4 atan2 (~20 each, as polynomial + division), 3 cross products
+// bp_ppf_pair8 counted by hand, per pair (lane): 4 atan2 (~20 each, as polynomial + division), 3 cross products
 // (9), 4 dot/length (5-6 each), 4 quantisations (~4), the alpha rotation (~25). An estimate: the
 // report says so.
 inline constexpr double kFeatureFlopsPerPair = 160.0;

@@ -1,7 +1,7 @@
 // Point pair features (Drost 2010) of a cloud with normals, discretised with bp_ppf_quant
 // (kernels/binpick_shared.h): the key of every ordered pair (m_r, m_i) and its alpha_m.
 //
-// Conventions (the same on the device, see bp_ppf_pair):
+// Conventions (the same on the device, see bp_ppf_pair8):
 //   d = m_i - m_r, F = (|d|, angle(n_r, d), angle(n_i, d), angle(n_r, n_i)), angles in [0, pi];
 //   pairs with |d| > max_distance or |d| <= BP_PPF_MIN_DIST_RATIO * max_distance (coincident
 //   points: undefined angles) and m_r with itself get BP_PPF_NO_KEY;

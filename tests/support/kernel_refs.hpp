@@ -489,7 +489,7 @@ inline bool near_bin_edge(float value, float step, u32 bins, float eps) {
   return k >= 1.0f && k <= float(bins) - 1.0f && std::fabs(r - k) * step <= eps;
 }
 
-// Rounding allowed at a bin edge: angles are computed with bp_atan2 (to ~2e-7 rad) on the
+// Rounding allowed at a bin edge: angles are computed with bp_atan2_8 (to ~2e-7 rad) on the
 // device and std::atan2 in the reference, each from float cross and dot products; distances
 // with a different summation order.
 inline constexpr float kAngleEdgeEps = 1e-4f;      // rad

@@ -1,9 +1,9 @@
 // The four kernels of the PPF hash table build (kernels/ppf_table.cl), each launched by itself
 // and compared with a plain C++ reference of that one step (tests/support/kernel_refs.hpp).
 //
-// ppf_count and ppf_scatter compute the pair features themselves (bp_ppf_pair). Their outputs
+// ppf_count and ppf_scatter compute the pair features themselves (bp_ppf_pair8). Their outputs
 // are compared exactly with the step's reference fed the device's own pair features (the
-// ppf_pair_features kernel, the same bp_ppf_pair on the same buffers), and with the reference fed
+// ppf_pair_features kernel, the same bp_ppf_pair8 on the same buffers), and with the reference fed
 // the Eigen features (ppf_pair_feature_reference) up to pairs whose feature lies next to a bin
 // edge (kAngleEdgeEps = 1e-4 rad, kDistanceEdgeRel = 1e-5 of max_distance); alphas within 1e-4
 // rad of the Eigen ones. ppf_bucket_totals and ppf_group_slots are integer: exact, on random

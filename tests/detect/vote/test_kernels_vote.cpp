@@ -4,7 +4,7 @@
 // step checked.
 //
 // ppf_scene_features: exactly the rows refs[r] of the ppf_pair_features kernel on the same
-// buffers (the same bp_ppf_pair), and the Eigen reference (ppf_pair_feature_reference) up to
+// buffers (the same bp_ppf_pair8), and the Eigen reference (ppf_pair_feature_reference) up to
 // pairs next to a bin edge (kAngleEdgeEps = 1e-4 rad, kDistanceEdgeRel = 1e-5 of max_distance),
 // alphas within 1e-4 rad. ppf_peaks: integer, exact, on random accumulators full of ties. The
 // composed routine is tests/detect/vote/test_ppf_vote.cpp's.

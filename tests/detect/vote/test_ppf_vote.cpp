@@ -122,7 +122,7 @@ TEST(PpfVote, SceneFeaturesMatchReference) {
   for (std::size_t i = 0; i < got.keys.size(); ++i) {
     if (want.keys[i] != BP_PPF_NO_KEY) ++valid;
     if (got.keys[i] != want.keys[i]) {
-      ++differ;  // a value within rounding of a bin edge (bp_atan2 vs std::atan2)
+      ++differ;  // a value within rounding of a bin edge (bp_atan2_8 vs std::atan2)
       continue;
     }
     if (got.keys[i] == BP_PPF_NO_KEY) continue;
