@@ -6,6 +6,7 @@
 
 #include "host/core/atomic_file.hpp"
 #include "host/core/read_file.hpp"
+#include "synth/pile_cache.hpp"
 #include "synth/synthesize.hpp"
 
 namespace binpick::bench {
@@ -14,7 +15,19 @@ using nlohmann::json;
 
 namespace {
 
-fs::path times_path(const BenchOptions& o) { return o.out / "synth_times.json"; }
+fs::path times_path(const BenchOptions& o, bool real) {
+  return o.out / (real ? "synth_times_real.json" : "synth_times.json");
+}
+
+// The real cell's sensor: structured light, 2 m away, tilted (as bench/realistic_sets.sh's
+// basket sets are seen).
+void real_view(SynthOptions& s, const BenchOptions& o) {
+  s.width = o.real_width;
+  s.height = o.real_height;
+  s.sensor.kind = SensorModel::Kind::structured_light;
+  s.camera_height_mm = 2000;
+  s.camera_tilt_deg = 20;
+}
 
 // Times of earlier runs by bin; a missing or unreadable record only means they are unknown.
 std::map<int, SynthBin> read_times(const fs::path& path) {
@@ -49,24 +62,27 @@ void write_times(const fs::path& path, const std::vector<SynthBin>& bins) {
 }  // namespace
 
 fs::path dataset_dir(const BenchOptions& o) { return o.out / "dataset"; }
+fs::path real_dataset_dir(const BenchOptions& o) { return o.out / "dataset_real"; }
 
-std::vector<SynthBin> make_bench_dataset(const Model& part, const BenchOptions& o) {
+std::vector<SynthBin> make_bench_dataset(const Model& part, const BenchOptions& o, bool real,
+                                         PileCache* piles) {
   SynthOptions s;
-  s.out = dataset_dir(o);
+  s.out = real ? real_dataset_dir(o) : dataset_dir(o);
   s.seed = o.seed;
   s.width = o.width;
   s.height = o.height;
+  if (real) real_view(s, o);
   s.write_cloud = false;  // detection reads the depth image
   s.drop.objects = o.objects;
   validate_synth_options(s);
   fs::create_directories(o.out);
-  std::map<int, SynthBin> known = read_times(times_path(o));
+  std::map<int, SynthBin> known = read_times(times_path(o, real));
   std::vector<SynthBin> bins;
   // One bin per call: synthesize resumes, so call k makes bin k alone and its summary is that
   // bin's time.
   for (int k = 0; k < o.bins; ++k) {
     s.bins = k + 1;
-    const SynthSummary sum = synthesize(part, describe(o.part), s);
+    const SynthSummary sum = synthesize(part, describe(o.part), s, {}, piles);
     SynthBin b;
     b.bin = k;
     if (sum.bins_made > 0) {
@@ -82,7 +98,7 @@ std::vector<SynthBin> make_bench_dataset(const Model& part, const BenchOptions& 
     }
     bins.push_back(b);
   }
-  write_times(times_path(o), bins);
+  write_times(times_path(o, real), bins);
   return bins;
 }
 

@@ -19,6 +19,8 @@ json detect_json(const DetectMeasure& d, const MachineInfo& machine) {
   const Throughput t = throughput(d, machine);
   return {{"ref_ratio", d.ref_ratio},
           {"hypotheses", d.hypotheses},
+          {"images", d.images},
+          {"ms_per_image", d.ms_per_image},
           {"ms_per_hypothesis",
            {{"preparation", d.prepare_ms}, {"hypotheses", d.hypotheses_ms}, {"voting", d.vote_ms},
             {"clustering", d.cluster_ms}, {"total", d.total_ms}}},
@@ -108,6 +110,7 @@ json bench_json(const BenchResult& r) {
                           {"decompose_s", b.decompose_s}, {"write_s", b.write_s},
                           {"measured_now", b.measured_now}});
   for (const auto& d : r.detect) j["detect"].push_back(detect_json(d, m));
+  if (r.real) j["real_size"] = {{"scene", r.real_scene}, {"detect", detect_json(*r.real, m)}};
   for (const auto& s : r.scaling) j["scaling"].push_back(scaling_json(s));
   return j;
 }

@@ -79,6 +79,36 @@ void stages(std::ostream& os, const BenchResult& r) {
   os << "\n\n";
 }
 
+// The paper's image next to the real sensor's: what an image costs at each size, and the stages
+// that grow with the pixels.
+void real_size(std::ostream& os, const BenchResult& r) {
+  if (!r.real || r.detect.empty()) return;
+  const DetectMeasure& paper = r.detect.front();
+  const DetectMeasure& real = *r.real;
+  os << "## The real sensor's size\n\nThe same bins seen by " << r.real_scene
+     << ", detected at the defaults, next to the paper's view at the first reference ratio.\n\n"
+        "| scene | reference points | hypotheses per image | ms per image | ms per hypothesis | "
+        "precision top / all (10 %, 15°) |\n|---|---|---|---|---|---|\n";
+  for (const DetectMeasure* d : {&paper, &real})
+    os << fmt::format("| {} | {} | {:.1f} | **{:.0f}** | {:.1f} | {} / {} |\n",
+                      d == &paper ? r.scene : r.real_scene, ratio_label(d->ref_ratio),
+                      double(d->hypotheses) / double(std::max<std::size_t>(d->images, 1)),
+                      d->ms_per_image, d->total_ms, pct(d->precision_top), pct(d->precision_all));
+  os << "\nms per image, stage by stage:\n\n| stage | paper's view | real size |\n|---|---|---|\n";
+  // Stages match by name without their detail ("prerank (10 highest points)").
+  auto name = [](const std::string& stage) { return stage.substr(0, stage.find(" (")); };
+  auto per_image = [&](const DetectMeasure& d, const std::string& stage) {
+    for (const auto& s : d.stages)
+      if (name(s.stage) == name(stage))
+        return s.ms_per_hyp * double(d.hypotheses) / double(std::max<std::size_t>(d.images, 1));
+    return 0.0;
+  };
+  for (const auto& s : real.stages)
+    os << fmt::format("| {} | {:.1f} | {:.1f} |\n", s.stage, per_image(paper, s.stage),
+                      per_image(real, s.stage));
+  os << "\n";
+}
+
 void rates(std::ostream& os, const BenchResult& r) {
   os << "## Throughput against the machine\n\n"
         "Work per hypothesis counted, divided by the stage's time. Fractions compare with the "
@@ -177,6 +207,7 @@ std::string bench_markdown(const BenchResult& r) {
   std::ostringstream os;
   machine(os, r);
   stages(os, r);
+  real_size(os, r);
   rates(os, r);
   synth_and_train(os, r);
   scaling(os, r);

@@ -27,6 +27,8 @@ BenchOptions quick_options(BenchOptions o) {
   o.objects = 30;
   o.width = 800;
   o.height = 450;
+  o.real_width = 1032;
+  o.real_height = 772;
   o.repeats = 1;
   o.scaling_ref_ratios = {0.05, 0.2, 1.0};
   o.scaling_crop_fractions = {0.5, 1.0};
@@ -43,6 +45,10 @@ void check(const BenchOptions& o) {
           fmt::format("--repeats {} must be in [1, 100]", o.repeats));
   require(o.width >= 16 && o.height >= 16 && o.width <= 8192 && o.height <= 8192,
           fmt::format("image size {} x {} must be within 16 .. 8192 pixels", o.width, o.height));
+  require((o.real_width == 0) == (o.real_height == 0) && o.real_width <= 8192 &&
+              o.real_height <= 8192 && (o.real_width == 0 || o.real_width * o.real_height >= 256),
+          fmt::format("real image size {} x {} must be 0 x 0 or within 16 .. 8192 pixels",
+                      o.real_width, o.real_height));
   require(!o.out.empty(), "--out must name a directory");
   check_fractions(o.ref_ratios, "--ref-ratios", 1.0);
   check_fractions(o.scaling_ref_ratios, "scaling reference ratios", 1.0);

@@ -52,6 +52,8 @@ struct DetectMeasure {
   std::size_t hypotheses = 0;      // per repetition, over all bins
   double prepare_ms = 0, hypotheses_ms = 0, vote_ms = 0, cluster_ms = 0;  // per hypothesis
   double total_ms = 0;
+  std::size_t images = 0;
+  double ms_per_image = 0;         // every stage of an image, median over repetitions
   std::vector<StageRow> stages;
   PairCounts counts;               // per hypothesis (mean)
   double features_ms = 0, votes_ms = 0, peaks_ms = 0;  // per hypothesis, parts of vote_ms
@@ -95,6 +97,9 @@ struct BenchResult {
   std::vector<SynthBin> synth;
   TrainMeasure train;
   std::vector<DetectMeasure> detect;
+  // The same bins seen by the real-size camera, at the defaults (BenchOptions::real_width).
+  std::optional<DetectMeasure> real;
+  std::string real_scene;
   std::vector<Scaling> scaling;
   OpenCvComparison opencv;
   double seconds = 0;  // the whole bench

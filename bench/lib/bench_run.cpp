@@ -16,6 +16,7 @@
 #include "host/core/timing.hpp"
 #include "host/eval/metrics/eval_dataset.hpp"
 #include "host/runtime/vk/vk_context.hpp"
+#include "synth/pile_cache.hpp"
 
 namespace binpick::bench {
 namespace {
@@ -73,7 +74,8 @@ BenchRun run_bench(const Model& part, const BenchOptions& o, std::ostream& log) 
                      r.machine.stream_gb_s, r.machine.fma_gflop_s, r.machine.gather_mlookup_s);
 
   log << fmt::format("bench: scenes ({}) in {}", r.scene, dataset_dir(o).string()) << std::endl;
-  r.synth = make_bench_dataset(part, o);
+  PileCache piles;  // the real-size view drops the same piles
+  r.synth = make_bench_dataset(part, o, false, &piles);
 
   log << "bench: training" << std::endl;
   PpfModel model;
@@ -94,6 +96,20 @@ BenchRun run_bench(const Model& part, const BenchOptions& o, std::ostream& log) 
                        100 * stage.measure.precision_all);
     r.detect.push_back(stage.measure);
     if (crops.empty()) crops = std::move(stage.crops);
+  }
+
+  if (o.real_width > 0) {
+    r.real_scene = fmt::format("{} x {}, structured light, 2 m, tilted 20°", o.real_width,
+                               o.real_height);
+    log << fmt::format("bench: the same bins at the real size ({}) in {}", r.real_scene,
+                       real_dataset_dir(o).string())
+        << std::endl;
+    make_bench_dataset(part, o, true, &piles);
+    const StageRun real = run_stages(model, o.detect, load_bench_scenes(real_dataset_dir(o)),
+                                     eval::load_dataset(real_dataset_dir(o)), o.repeats);
+    log << fmt::format("  {:.0f} ms per image, precision top {:.0f} %\n", real.measure.ms_per_image,
+                       100 * real.measure.precision_top);
+    r.real = real.measure;
   }
 
   log << "bench: scaling" << std::endl;

@@ -120,11 +120,16 @@ StageRun run_stages(const PpfModel& model, const DetectParams& params,
       if (!is_vote_stage(s) && !is_cluster_stage(s) && s != "hypotheses") ms += v;
     return ms;
   });
-  m.total_ms = per_hyp([](const Repetition& r) {
+  auto all_stages = [](const Repetition& r) {
     double ms = 0;
     for (const auto& [s, v] : r.ms) ms += v;
     return ms;
-  });
+  };
+  m.total_ms = per_hyp(all_stages);
+  m.images = scenes.size();
+  std::vector<double> per_image;
+  for (const Repetition& r : reps) per_image.push_back(all_stages(r) / double(std::max<std::size_t>(m.images, 1)));
+  m.ms_per_image = median(per_image);
   m.features_ms = per_hyp(stage("features"));
   m.votes_ms = per_hyp(stage("vote"));
   m.peaks_ms = per_hyp(stage("peaks"));

@@ -19,7 +19,7 @@ TEST(BenchCli, help_names_the_options) {
   const auto r = run_binpick("bench --help");
   ASSERT_EQ(r.status, 0) << r.err;
   for (const char* opt : {"--out", "--bins", "--objects", "--repeats", "--ref-ratios", "--opencv",
-                          "--quick", "--model"})
+                          "--quick", "--model", "--real-size"})
     EXPECT_NE(r.out.find(opt), std::string::npos) << opt;
 }
 
@@ -27,7 +27,8 @@ TEST(BenchCli, bad_options_fail_fast_with_one_message) {
   const fs::path dir = fresh_temp_dir("bench_bad");
   for (const char* args :
        {"--bins 0", "--repeats 0", "--ref-ratios 0.2,abc", "--ref-ratios 0", "--ref-ratios ''",
-        "--objects -3", "--model builtin:nosuchpart", "--width 4"}) {
+        "--objects -3", "--model builtin:nosuchpart", "--width 4", "--real-size 2064",
+        "--real-size 8x8", "--real-size 100x100x3"}) {
     const auto r = run_binpick("bench --out " + dir.string() + " " + std::string(args));
     EXPECT_EQ(r.status, 2) << args << "\n" << r.err;
     EXPECT_NE(r.err.find("error"), std::string::npos) << args << "\n" << r.err;
@@ -70,6 +71,13 @@ TEST(BenchCli, quick_run_writes_a_complete_report_and_reuses_its_scenes) {
     EXPECT_LE(top, 1);
   }
   EXPECT_GT(pairs_20, 5 * pairs_2);  // ten times the reference points, about ten times the pairs
+  // The same bins at the real sensor's size (half of it in --quick), at the defaults.
+  const auto& real = j.at("real_size").at("detect");
+  EXPECT_EQ(real.at("images").get<int>(), 1);
+  EXPECT_EQ(real.at("ref_ratio").get<double>(), 0.2);
+  EXPECT_GT(real.at("ms_per_image").get<double>(), 0);
+  EXPECT_GT(real.at("hypotheses").get<int>(), 0);
+  EXPECT_TRUE(fs::exists(dir / "dataset_real" / "test" / "000000" / "depth" / "000000.png"));
 
   ASSERT_EQ(j.at("scaling").size(), 4u);
   for (const auto& s : j.at("scaling")) {

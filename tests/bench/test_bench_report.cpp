@@ -99,8 +99,18 @@ BenchResult sample_result() {
   d.ref_ratio = 0.2;
   d.hypotheses = 15;
   d.total_ms = 37.25;
-  d.stages = {{"points", 1.0}, {"vote", 20.0}};
+  d.stages = {{"points", 1.0}, {"prerank (10 highest points)", 3.0}, {"vote", 20.0}};
+  d.images = 3;
+  d.ms_per_image = 186.25;
   r.detect = {d};
+  DetectMeasure real = d;  // 5 hypotheses an image: per image = per hypothesis x 5
+  real.hypotheses = 10;
+  real.images = 2;
+  real.ms_per_image = 412.5;
+  real.total_ms = 82.5;
+  real.stages = {{"points", 4.0}, {"prerank (8 highest points)", 2.0}, {"vote", 60.0}};
+  r.real = real;
+  r.real_scene = "2064 x 1544, structured light, 2 m, tilted 20°";
   r.scaling = {{"voting vs reference points", "reference ratio", "reference points",
                 {{0.1, 50, 2, 0}, {0.2, 100, 4, 0}}, 1.0}};
   r.opencv.why_not = "opencv_ppf3d was not built";
@@ -117,7 +127,13 @@ TEST(BenchReport, markdown_has_every_table) {
         "made by an earlier run without a record", "## Model", "192282 table entries",
         "## Scaling", "(k = 1.00: about linear)", "## OpenCV's PPF3DDetector side by side",
         "Not run: opencv_ppf3d was not built", "| vote | 20.000 |",
-        "The limit at 20 % reference points: vote, 20.0 of 37.2 ms a hypothesis (54 %)."})
+        "The limit at 20 % reference points: vote, 20.0 of 37.2 ms a hypothesis (54 %).",
+        "## The real sensor's size",
+        "| 1600 x 900, 350 parts, 3 bins | 20 % | 5.0 | **186** | 37.2 |",
+        "| 2064 x 1544, structured light, 2 m, tilted 20° | 20 % | 5.0 | **412** | 82.5 |",
+        // per image: the paper's 1.0 x 15 / 3, the real 4.0 x 10 / 2; the prerank matched by name
+        "| points | 5.0 | 20.0 |", "| prerank (8 highest points) | 15.0 | 10.0 |",
+        "| vote | 100.0 | 300.0 |"})
     EXPECT_NE(md.find(want), std::string::npos) << want << "\n" << md;
 }
 
@@ -131,4 +147,11 @@ TEST(BenchReport, json_keys_for_scripts) {
   EXPECT_EQ(j.at("scaling").at(0).at("exponent"), 1.0);
   EXPECT_FALSE(j.at("opencv").at("ran").get<bool>());
   EXPECT_EQ(j.at("machine").at("gather_mlookup_s"), 300);
+  EXPECT_EQ(j.at("detect").at(0).at("ms_per_image"), 186.25);
+  EXPECT_EQ(j.at("real_size").at("detect").at("ms_per_image"), 412.5);
+  EXPECT_EQ(j.at("real_size").at("detect").at("images"), 2);
+  BenchResult without = sample_result();
+  without.real.reset();
+  EXPECT_FALSE(bench_json(without).contains("real_size"));
+  EXPECT_EQ(bench_markdown(without).find("real sensor"), std::string::npos);
 }

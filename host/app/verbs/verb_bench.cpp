@@ -2,7 +2,9 @@
 // stage, the device's peaks, the scaling sweeps and OpenCV's PPF3DDetector on the same crops,
 // and writes bench.md and bench.json (bench/lib/bench_run.hpp). `./run.sh bench` runs it.
 #include <CLI/CLI.hpp>
+#include <cstdio>
 #include <iostream>
+#include <tuple>
 #include <memory>
 
 #include <fmt/format.h>
@@ -18,6 +20,18 @@
 namespace binpick::cli {
 namespace {
 
+// "W x H" as --real-size takes it ("2064x1544"), or "off" (0 x 0).
+std::pair<std::uint32_t, std::uint32_t> parse_real_size(const std::string& text) {
+  if (text == "off") return {0, 0};
+  unsigned w = 0, h = 0;
+  char x = 0, rest = 0;
+  if (std::sscanf(text.c_str(), "%u%c%u%c", &w, &x, &h, &rest) != 3 || x != 'x' || w < 16 ||
+      h < 16 || w > 8192 || h > 8192)
+    throw InputError(fmt::format(
+        "--real-size '{}' must be WIDTHxHEIGHT within 16 .. 8192 pixels, or off", text));
+  return {w, h};
+}
+
 ModelArgs default_model() {
   ModelArgs m;
   m.model = "builtin:bracket";
@@ -29,6 +43,7 @@ struct BenchArgs {
   bench::BenchOptions options;
   DatasetArgs dataset{.bins = bench::BenchOptions{}.bins, .objects = bench::BenchOptions{}.objects};
   std::string ref_ratios = "0.2,0.02";
+  std::string real_size;  // empty: the default (BenchOptions), halved by --quick
   bool quick = false;
 };
 
@@ -38,6 +53,7 @@ void run_bench_verb(const BenchArgs& a) {
   bench::BenchOptions o = a.quick ? bench::quick_options(given) : given;
   o.part = part_spec_of(a.model);
   o.ref_ratios = parse_number_list(a.ref_ratios, "--ref-ratios", "0.2,0.02");
+  if (!a.real_size.empty()) std::tie(o.real_width, o.real_height) = parse_real_size(a.real_size);
   bench::check(o);  // before the slow stages
   const OutputLock lock = OutputLock::directory(o.out);
   const auto run = bench::run_bench(load_part_finding_symmetries(o.part), o, std::cout);
@@ -54,7 +70,8 @@ void add_bench_verb(CLI::App& app) {
   auto* verb = app.add_subcommand(
       "bench",
       "Benchmark on the paper's scene (1600 x 900, 350 parts): detection per stage at 20 % and "
-      "2 % reference points, throughput against the device's measured peaks, scaling, synth "
+      "2 % reference points, the same bins at the real sensor's size (2064 x 1544, structured "
+      "light), throughput against the device's measured peaks, scaling, synth "
       "and training times, and OpenCV's PPF3DDetector side by side when its runner was built. "
       "Writes bench.md and bench.json; a rerun reuses the scenes.");
   add_model_options(verb, a->model, false);
@@ -71,6 +88,10 @@ void add_bench_verb(CLI::App& app) {
                    "OpenCV's runner: auto (opencv_ppf3d next to binpick, if built), off, or a "
                    "path")
       ->capture_default_str();
+  verb->add_option("--real-size", a->real_size,
+                   "the same bins also seen by a structured-light camera of this size (2 m, "
+                   "tilted 20 degrees) and detected at the defaults; off: not measured")
+      ->default_str(fmt::format("{}x{}", o.real_width, o.real_height));
   verb->add_flag("--quick", a->quick,
                  "a small scene, one repetition, short sweeps: seconds, to check the bench runs");
   verb->callback([a] { run_bench_verb(*a); });
