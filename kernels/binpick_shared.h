@@ -267,22 +267,14 @@ BP_FN uint8 bp_ppf_pairs_at(float3 pr, float3 nr, __global const float4* points,
   return select(key, (uint8)(BP_PPF_NO_KEY), out);
 }
 
-/* Writes the eight values at out[0 .. 7], or those below `count` when fewer remain. */
-BP_FN void bp_store_keys8(uint8 v, __global uint* out, uint count) {
+/* Writes the eight values at out[0 .. 7], or those below `count` when fewer remain (alphas as
+ * their bits: as_uint8, the buffer cast). */
+BP_FN void bp_store8(uint8 v, __global uint* out, uint count) {
   if (count >= 8u) {
     vstore8(v, 0, out);
     return;
   }
   uint t[8];
-  vstore8(v, 0, t);
-  for (uint l = 0; l < count; ++l) out[l] = t[l];
-}
-BP_FN void bp_store_alphas8(float8 v, __global float* out, uint count) {
-  if (count >= 8u) {
-    vstore8(v, 0, out);
-    return;
-  }
-  float t[8];
   vstore8(v, 0, t);
   for (uint l = 0; l < count; ++l) out[l] = t[l];
 }

@@ -15,7 +15,7 @@ __kernel void ppf_pair_features(__global const float4* points, __global const fl
   for (uint i = 0; i < n; i += 8u) {
     float8 alpha;
     const uint8 key = bp_ppf_pairs_at(pr, nr, points, normals, i, n, r, q, &alpha);
-    bp_store_keys8(key, keys + (size_t)r * n + i, n - i);
-    bp_store_alphas8(alpha, alphas + (size_t)r * n + i, n - i);
+    bp_store8(key, keys + (size_t)r * n + i, n - i);
+    bp_store8(as_uint8(alpha), (__global uint*)alphas + (size_t)r * n + i, n - i);
   }
 }
