@@ -507,43 +507,16 @@ std::vector<Detection> Detector::detect(DepthView depth, const bp_camera& cam,
     }
     return *crops[k];
   };
-  std::vector<std::size_t> order = vote_order(hyps.size(), hypotheses_sought(params_), crop, t);
-  const auto more = [&] {  // stand-ins beyond those ranked, in height order
+  VoteQueue queue{vote_order(hyps.size(), hypotheses_sought(params_), crop, t)};
+  queue.more = [&] {  // stand-ins beyond those ranked, in height order
     if (!find_more()) return false;
-    for (std::size_t k = order.size(); k < hyps.size(); ++k) order.push_back(k);
+    for (std::size_t k = queue.order.size(); k < hyps.size(); ++k) queue.order.push_back(k);
     return true;
   };
-
-  std::vector<Detection> voted;
-  std::vector<std::vector<PoseCluster>> candidates;
-  // vote(from, to) takes highest points in order until to - from are voted or skipped for
-  // their crop; those the flat-region test skips do not count (the next is taken instead).
-  std::size_t next = 0;
+  queue.flat_skipped = &flat_skipped;
+  Voted voted;
   const auto vote = [&](std::size_t from, std::size_t to) {
-    std::size_t taken = from;
-    while (taken < to && (next < order.size() || more())) {
-      const std::size_t k = order[next++];
-      const HypothesisCrop& c = crop(k);
-      Detection d = detection_for(hyps, k);
-      d.neighbourhood = c.cropped;
-      if (neighbourhoods) neighbourhoods->push_back(c.cloud);
-      if (!c.reason.empty()) {
-        d.subsampled = c.cloud.points.size();
-        d.reason = c.reason;
-        skipped_.push_back(d);
-        if (c.flat)
-          ++flat_skipped;
-        else
-          ++taken;
-        continue;
-      }
-      ++taken;
-      clock.lap();
-      candidates.push_back(vote_and_cluster(c.cloud, d, t));
-      clock.lap();
-      voted.push_back(d);
-    }
-    t.hypotheses += taken - from;
+    vote_from_queue(queue, from, to, crop, hyps, neighbourhoods, voted, clock, t);
   };
   // Noisy depth: the in-plane search reads the low-passed depth (plane_search.hpp).
   std::optional<ocl::Buffer<float>> search_points;
@@ -571,8 +544,8 @@ std::vector<Detection> Detector::detect(DepthView depth, const bp_camera& cam,
   PlaneSearchMemo searched;  // the first round's searches and ICP, for the second
   RefineMemo refined;
   const auto rank = [&] {
-    return refine_and_rank(voted, candidates, scene.device->points, cam, t, true,
-                           masked.bin ? &*masked.bin : nullptr, &searched, &refined,
+    return refine_and_rank(voted.detections, voted.candidates, scene.device->points, cam, t,
+                           true, masked.bin ? &*masked.bin : nullptr, &searched, &refined,
                            search_points ? &*search_points : nullptr);
   };
   std::vector<Detection> detections =
@@ -581,6 +554,37 @@ std::vector<Detection> Detector::detect(DepthView depth, const bp_camera& cam,
             image_noise_, t);
   if (times) *times += t;
   return detections;
+}
+
+void Detector::vote_from_queue(VoteQueue& queue, std::size_t from, std::size_t to,
+                               const std::function<const HypothesisCrop&(std::size_t)>& crop,
+                               const std::vector<Hypothesis>& hyps,
+                               std::vector<PointCloud>* neighbourhoods, Voted& voted,
+                               Stopwatch& clock, DetectTimes& t) {
+  std::size_t taken = from;
+  while (taken < to && (queue.next < queue.order.size() || (queue.more && queue.more()))) {
+    const std::size_t k = queue.order[queue.next++];
+    const HypothesisCrop& c = crop(k);
+    Detection d = detection_for(hyps, k);
+    d.neighbourhood = c.cropped;
+    if (neighbourhoods) neighbourhoods->push_back(c.cloud);
+    if (!c.reason.empty()) {
+      d.subsampled = c.cloud.points.size();
+      d.reason = c.reason;
+      skipped_.push_back(d);
+      if (!c.flat)
+        ++taken;
+      else if (queue.flat_skipped)
+        ++*queue.flat_skipped;
+      continue;
+    }
+    ++taken;
+    clock.lap();
+    voted.candidates.push_back(vote_and_cluster(c.cloud, d, t));
+    clock.lap();
+    voted.detections.push_back(d);
+  }
+  t.hypotheses += taken - from;
 }
 
 void Detector::add_picks(std::vector<Detection>& detections, const ocl::Buffer<float>& points,

@@ -124,6 +124,29 @@ class Detector {
   std::vector<std::size_t> vote_order(
       std::size_t found, std::size_t ranked,
       const std::function<const HypothesisCrop&(std::size_t)>& crop, DetectTimes& t);
+  // The highest points in the order they are voted in (vote_order), the next to take, and, on
+  // a depth image, more(): finds more highest points and appends them (false: there are none),
+  // as many more as were flat-skipped (*flat_skipped, counted as they are passed).
+  struct VoteQueue {
+    std::vector<std::size_t> order;
+    std::size_t next = 0;
+    std::function<bool()> more;
+    std::size_t* flat_skipped = nullptr;
+  };
+  // What the rounds voted: a detection per highest point voted on and its candidate clusters.
+  struct Voted {
+    std::vector<Detection> detections;
+    std::vector<std::vector<PoseCluster>> candidates;
+  };
+  // in_rounds' vote(from, to) on a depth image and a cloud alike: takes highest points from the
+  // queue until to - from are voted on or skipped (their crop's reason goes to skipped_); one
+  // the flat-region test skips does not count, the next stands in. Adds to t.hypotheses; the
+  // vote's time is kept out of clock (preparation).
+  void vote_from_queue(VoteQueue& queue, std::size_t from, std::size_t to,
+                              const std::function<const HypothesisCrop&(std::size_t)>& crop,
+                              const std::vector<Hypothesis>& hyps,
+                              std::vector<PointCloud>* neighbourhoods, Voted& voted,
+                              Stopwatch& clock, DetectTimes& t);
   // Refines and verifies every hypothesis' candidates against a point image on the device
   // (one batch for all), keeps each hypothesis' best and ranks them. With a bin found, a pose
   // that sinks the part into its floor scores 0 (below_floor.hpp). sensor: the points are a

@@ -121,38 +121,16 @@ std::vector<Detection> Detector::detect(const PointCloud& input, DetectTimes* ti
     return *crops[k];
   };
   // The stand-ins for flat-skipped points (the second half) follow in height order.
-  const std::vector<std::size_t> order =
-      vote_order(hyps.size(), hypotheses_sought(params_), crop, t);
-
-  std::vector<Detection> voted;
-  std::vector<std::vector<PoseCluster>> candidates;
-  std::size_t next = 0;  // as on a depth image: flat-skipped highest points do not count
+  VoteQueue queue{vote_order(hyps.size(), hypotheses_sought(params_), crop, t)};
+  Voted voted;
   const auto vote = [&](std::size_t from, std::size_t to) {
-    std::size_t taken = from;
-    while (taken < to && next < order.size()) {
-      const std::size_t k = order[next++];
-      const HypothesisCrop& c = crop(k);
-      Detection d = detection_for(hyps, k);
-      d.neighbourhood = c.cropped;
-      if (!c.reason.empty()) {
-        d.subsampled = c.cloud.points.size();
-        d.reason = c.reason;
-        skipped_.push_back(d);
-        continue;
-      }
-      ++taken;
-      clock.lap();
-      candidates.push_back(vote_and_cluster(c.cloud, d, t));
-      clock.lap();
-      voted.push_back(d);
-    }
-    t.hypotheses += taken - from;
+    vote_from_queue(queue, from, to, crop, hyps, nullptr, voted, clock, t);
   };
   RefineMemo refined;  // the first round's ICP, for the second
   const BinFit* bin = region.bin && region.bin->found ? &*region.bin : nullptr;
   const auto rank = [&] {
-    return refine_and_rank(voted, candidates, points, image.camera, t, false, bin, nullptr,
-                           &refined);
+    return refine_and_rank(voted.detections, voted.candidates, points, image.camera, t, false,
+                           bin, nullptr, &refined);
   };
   std::vector<Detection> detections =
       in_rounds(std::min(hyps.size(), hypotheses_sought(params_)), vote, rank, started, t);
