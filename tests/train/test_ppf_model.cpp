@@ -179,18 +179,31 @@ TEST(PpfFeatures, MatchReferenceExceptAtBinEdges) {
 TEST(PpfFeatures, DegenerateInput) {
   const bp_ppf_quant q = make_ppf_quant(10.0f, 20, 30);
   PointCloud c;
-  // 0 and 1 coincide; 2 has the normal of 0 (parallel normals) along d = p2 - p0.
-  c.points = {{0, 0, 0}, {0, 0, 0}, {0, 0, 5}, {3, 0, 0}};
-  c.normals = {{0, 0, 1}, {1, 0, 0}, {0, 0, 1}, {0, 0, -1}};
-  for (const PairFeatures& f : {ppf_pair_features(test_device(), c, q), ppf_pair_features_reference(c, q)}) {
-    EXPECT_EQ(f.keys[0 * 4 + 1], BP_PPF_NO_KEY);  // coincident: skipped both ways
-    EXPECT_EQ(f.keys[1 * 4 + 0], BP_PPF_NO_KEY);
-    for (int i = 0; i < 4; ++i) EXPECT_EQ(f.keys[i * 4 + i], BP_PPF_NO_KEY);
+  // 0 and 1 coincide; 2 has the normal of 0 (parallel normals) along d = p2 - p0. 1 and 4 have
+  // normals +x and -x, the rotation's special cases; 3 lies on 1's normal line.
+  c.points = {{0, 0, 0}, {0, 0, 0}, {0, 0, 5}, {3, 0, 0}, {0, 4, 0}};
+  c.normals = {{0, 0, 1}, {1, 0, 0}, {0, 0, 1}, {0, 0, -1}, {-1, 0, 0}};
+  const std::size_t n = c.points.size();
+  const PairFeatures device = ppf_pair_features(test_device(), c, q);
+  const PairFeatures reference = ppf_pair_features_reference(c, q);
+  for (const PairFeatures& f : {device, reference}) {
+    EXPECT_EQ(f.keys[0 * n + 1], BP_PPF_NO_KEY);  // coincident: skipped both ways
+    EXPECT_EQ(f.keys[1 * n + 0], BP_PPF_NO_KEY);
+    for (std::size_t i = 0; i < n; ++i) EXPECT_EQ(f.keys[i * n + i], BP_PPF_NO_KEY);
     // 0 -> 2: |d| = 5 (bin 10), n0 parallel to d, n2 parallel to d, normals parallel.
-    EXPECT_EQ(f.keys[0 * 4 + 2], bp_ppf_key(10, 0, 0, 0, q.n_angle));
-    EXPECT_EQ(f.alphas[0 * 4 + 2], 0.0f);  // m_i on n_r's line
+    EXPECT_EQ(f.keys[0 * n + 2], bp_ppf_key(10, 0, 0, 0, q.n_angle));
+    EXPECT_EQ(f.alphas[0 * n + 2], 0.0f);  // m_i on n_r's line
     // 0 -> 3: |d| = 3 (bin 6), both normals at pi/2 from d, normals opposite (angle pi: last bin).
-    EXPECT_EQ(f.keys[0 * 4 + 3], bp_ppf_key(6, 7, 7, 14, q.n_angle));
+    EXPECT_EQ(f.keys[0 * n + 3], bp_ppf_key(6, 7, 7, 14, q.n_angle));
+    EXPECT_EQ(f.alphas[1 * n + 3], 0.0f);                   // on +x's line
+    EXPECT_NEAR(f.alphas[1 * n + 2], kPi / 2, 1e-6f);         // n = +x: R is the identity
+    EXPECT_NEAR(f.alphas[4 * n + 2], std::atan2(5.0f, 4.0f), 1e-6f);  // n = -x: a half turn about z
+  }
+  // Every pair, the device's eight-lane feature and the Eigen reference alike (none lies within
+  // rounding of a bin edge but the exact distances 3 and 5, which both compute exactly).
+  for (std::size_t k = 0; k < n * n; ++k) {
+    EXPECT_EQ(device.keys[k], reference.keys[k]) << k / n << " -> " << k % n;
+    EXPECT_LT(circular_distance(device.alphas[k], reference.alphas[k]), 1e-6f) << k / n << " -> " << k % n;
   }
   PointCloud one;
   one.points = {{1, 2, 3}};
