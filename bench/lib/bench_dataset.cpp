@@ -19,14 +19,14 @@ fs::path times_path(const BenchOptions& o, bool real) {
   return o.out / (real ? "synth_times_real.json" : "synth_times.json");
 }
 
-// The real cell's sensor: structured light, 2 m away, tilted (as bench/realistic_sets.sh's
+// The real cell's sensor: structured light, farther and tilted (as bench/realistic_sets.sh's
 // basket sets are seen).
 void real_view(SynthOptions& s, const BenchOptions& o) {
   s.width = o.real_width;
   s.height = o.real_height;
   s.sensor.kind = SensorModel::Kind::structured_light;
-  s.camera_height_mm = 2000;
-  s.camera_tilt_deg = 20;
+  s.camera_height_mm = o.real_camera_height_mm;
+  s.camera_tilt_deg = o.real_camera_tilt_deg;
 }
 
 // Times of earlier runs by bin; a missing or unreadable record only means they are unknown.

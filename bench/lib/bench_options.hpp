@@ -24,9 +24,11 @@ struct BenchOptions {
   std::uint32_t width = 1600, height = 900;
   std::uint64_t seed = 1;
   // The same bins at the size of the real sensor binpick is judged with (issue 67): a
-  // structured-light camera of real_width x real_height pixels 2 m away, tilted 20 degrees,
-  // detected at the defaults (20 % reference points). 0 x 0: not measured.
+  // structured-light camera of real_width x real_height pixels, real_camera_height_mm away and
+  // tilted by real_camera_tilt_deg, detected at the defaults (20 % reference points). 0 x 0:
+  // not measured.
   std::uint32_t real_width = 2064, real_height = 1544;
+  double real_camera_height_mm = 2000, real_camera_tilt_deg = 20;
   int repeats = 3;                             // timed runs per measurement; medians reported
   std::vector<double> ref_ratios{0.2, 0.02};   // the paper's two operating points
   PpfTrainParams train;                        // the paper's model

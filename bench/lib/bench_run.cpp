@@ -99,8 +99,9 @@ BenchRun run_bench(const Model& part, const BenchOptions& o, std::ostream& log) 
   }
 
   if (o.real_width > 0) {
-    r.real_scene = fmt::format("{} x {}, structured light, 2 m, tilted 20°", o.real_width,
-                               o.real_height);
+    r.real_scene = fmt::format("{} x {}, structured light, {:g} m, tilted {:g}°", o.real_width,
+                               o.real_height, o.real_camera_height_mm / 1000,
+                               o.real_camera_tilt_deg);
     log << fmt::format("bench: the same bins at the real size ({}) in {}", r.real_scene,
                        real_dataset_dir(o).string())
         << std::endl;

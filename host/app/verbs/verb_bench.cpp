@@ -89,8 +89,10 @@ void add_bench_verb(CLI::App& app) {
                    "path")
       ->capture_default_str();
   verb->add_option("--real-size", a->real_size,
-                   "the same bins also seen by a structured-light camera of this size (2 m, "
-                   "tilted 20 degrees) and detected at the defaults; off: not measured")
+                   fmt::format("the same bins also seen by a structured-light camera of this "
+                               "size ({:g} m away, tilted {:g} degrees) and detected at the "
+                               "defaults; off: not measured",
+                               o.real_camera_height_mm / 1000, o.real_camera_tilt_deg))
       ->default_str(fmt::format("{}x{}", o.real_width, o.real_height));
   verb->add_flag("--quick", a->quick,
                  "a small scene, one repetition, short sweeps: seconds, to check the bench runs");
