@@ -153,7 +153,7 @@ BP_FN float bp_ppf_wrap_alpha(float alpha) {
  * independently with Eigen. Eight pairs at once, one reference point against eight points, as
  * float8 arithmetic: the kernels run one work item a work group (launch_tasks), where PoCL does
  * not vectorise across work items, so the SIMD lanes are used only if the code itself is vector
- * code (issue 67: the scalar feature ran at 2 % of the cores' FMA peak). Branches are selects. */
+ * code (docs/decisions/2026-12-08-features-in-lanes.md). Branches are selects. */
 
 /* atan2(y, x) in [-pi, pi] to about 2e-7 rad: PoCL's built-in atan2 costs ~150 ns on a CPU,
  * more than the rest of a point pair feature together. Cephes' atanf polynomial on

@@ -45,9 +45,10 @@ void check(const BenchOptions& o) {
           fmt::format("--repeats {} must be in [1, 100]", o.repeats));
   require(o.width >= 16 && o.height >= 16 && o.width <= 8192 && o.height <= 8192,
           fmt::format("image size {} x {} must be within 16 .. 8192 pixels", o.width, o.height));
-  require((o.real_width == 0) == (o.real_height == 0) && o.real_width <= 8192 &&
-              o.real_height <= 8192 && (o.real_width == 0 || o.real_width * o.real_height >= 256),
-          fmt::format("real image size {} x {} must be 0 x 0 or within 16 .. 8192 pixels",
+  const auto in_range = [](std::uint32_t v) { return v >= 16 && v <= 8192; };
+  require((o.real_width == 0 && o.real_height == 0) ||
+              (in_range(o.real_width) && in_range(o.real_height)),
+          fmt::format("--real-size {} x {} must be within 16 .. 8192 pixels, or off",
                       o.real_width, o.real_height));
   require(!o.out.empty(), "--out must name a directory");
   check_fractions(o.ref_ratios, "--ref-ratios", 1.0);

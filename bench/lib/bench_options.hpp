@@ -23,7 +23,7 @@ struct BenchOptions {
   int objects = 350;
   std::uint32_t width = 1600, height = 900;
   std::uint64_t seed = 1;
-  // The same bins at the size of the real sensor binpick is judged with (issue 67): a
+  // The same bins at the size of the real sensor binpick is judged with: a
   // structured-light camera of real_width x real_height pixels, real_camera_height_mm away and
   // tilted by real_camera_tilt_deg, detected at the defaults (20 % reference points). 0 x 0:
   // not measured.

@@ -143,10 +143,9 @@ class Detector {
   // the flat-region test skips does not count, the next stands in. Adds to t.hypotheses; the
   // vote's time is kept out of clock (preparation).
   void vote_from_queue(VoteQueue& queue, std::size_t from, std::size_t to,
-                              const std::function<const HypothesisCrop&(std::size_t)>& crop,
-                              const std::vector<Hypothesis>& hyps,
-                              std::vector<PointCloud>* neighbourhoods, Voted& voted,
-                              Stopwatch& clock, DetectTimes& t);
+                       const std::function<const HypothesisCrop&(std::size_t)>& crop,
+                       const std::vector<Hypothesis>& hyps, std::vector<PointCloud>* neighbourhoods,
+                       Voted& voted, Stopwatch& clock, DetectTimes& t);
   // Refines and verifies every hypothesis' candidates against a point image on the device
   // (one batch for all), keeps each hypothesis' best and ranks them. With a bin found, a pose
   // that sinks the part into its floor scores 0 (below_floor.hpp). sensor: the points are a

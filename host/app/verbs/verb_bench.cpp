@@ -20,15 +20,13 @@
 namespace binpick::cli {
 namespace {
 
-// "W x H" as --real-size takes it ("2064x1544"), or "off" (0 x 0).
+// "W x H" as --real-size takes it ("2064x1544"), or "off" (0 x 0); the range is bench::check's.
 std::pair<std::uint32_t, std::uint32_t> parse_real_size(const std::string& text) {
   if (text == "off") return {0, 0};
   unsigned w = 0, h = 0;
   char x = 0, rest = 0;
-  if (std::sscanf(text.c_str(), "%u%c%u%c", &w, &x, &h, &rest) != 3 || x != 'x' || w < 16 ||
-      h < 16 || w > 8192 || h > 8192)
-    throw InputError(fmt::format(
-        "--real-size '{}' must be WIDTHxHEIGHT within 16 .. 8192 pixels, or off", text));
+  if (std::sscanf(text.c_str(), "%u%c%u%c", &w, &x, &h, &rest) != 3 || x != 'x')
+    throw InputError(fmt::format("--real-size '{}' must be WIDTHxHEIGHT or off", text));
   return {w, h};
 }
 
